@@ -1,0 +1,109 @@
+use glam::Vec3;
+use rand::{Rng, SeedableRng, rngs::StdRng};
+
+use super::*;
+
+fn random_soup(rng: &mut StdRng, count: usize) -> Vec<[Vec3; 3]> {
+    (0..count)
+        .map(|_| {
+            let c = Vec3::new(rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0));
+            let mut v = || c + Vec3::new(rng.random_range(-0.5..0.5), rng.random_range(-0.5..0.5), rng.random_range(-0.5..0.5));
+            [v(), v(), v()]
+        })
+        .collect()
+}
+
+fn random_direction(rng: &mut StdRng) -> Vec3 {
+    loop {
+        let d = Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        if d.length_squared() > 0.01 && d.length_squared() <= 1.0 {
+            return d.normalize();
+        }
+    }
+}
+
+#[test]
+fn packed_tree_finds_the_same_hits_as_brute_force() {
+    let mut rng = StdRng::seed_from_u64(7);
+    for quality in [BuildQuality::Fast, BuildQuality::Balanced, BuildQuality::Quality] {
+        let tris = random_soup(&mut rng, 2000);
+        let blas = build_blas(&tris, quality);
+        let mut hits = 0;
+        for _ in 0..500 {
+            let o = Vec3::new(rng.random_range(-6.0..6.0), rng.random_range(-6.0..6.0), rng.random_range(-6.0..6.0));
+            let d = random_direction(&mut rng);
+            let expected = brute_force_closest_hit(o, d, &tris, f32::INFINITY);
+            let got = traverse_packed(&blas.nodes, &blas.triangle_order, o, d, &tris);
+            assert_eq!(expected.map(|h| h.triangle), got.map(|h| h.triangle), "{quality:?}");
+            hits += expected.is_some() as u32;
+        }
+        assert!(hits > 100, "the test rays should mostly hit ({hits})");
+    }
+}
+
+#[test]
+fn every_triangle_is_referenced_and_boxes_nest() {
+    let mut rng = StdRng::seed_from_u64(3);
+    let tris = random_soup(&mut rng, 777);
+    let blas = build_blas(&tris, BuildQuality::Balanced);
+    let mut seen = vec![false; tris.len()];
+    for &t in &blas.triangle_order {
+        seen[t as usize] = true;
+    }
+    assert!(seen.iter().all(|&s| s));
+    // Every leaf box contains its triangles.
+    for n in &blas.nodes {
+        for (lo, hi, first, count) in [(n.a_min, n.a_max, n.a_first, n.a_count), (n.b_min, n.b_max, n.b_first, n.b_count)] {
+            for slot in first..first + count {
+                for v in tris[blas.triangle_order[slot as usize] as usize] {
+                    assert!(v.cmpge(Vec3::from(lo) - 1e-5).all() && v.cmple(Vec3::from(hi) + 1e-5).all());
+                }
+            }
+        }
+    }
+    assert!(blas.depth >= 8 && blas.depth < 64, "depth {}", blas.depth);
+}
+
+#[test]
+fn a_single_triangle_packs_into_one_node_whose_children_are_the_leaf() {
+    let tri = [[Vec3::ZERO, Vec3::X, Vec3::Y]];
+    let blas = build_blas(&tri, BuildQuality::Balanced);
+    assert_eq!(blas.nodes.len(), 1);
+    assert_eq!(blas.nodes[0].a_count, 1);
+    assert_eq!((blas.nodes[0].b_first, blas.nodes[0].b_count), (0, 1));
+    let hit = traverse_packed(&blas.nodes, &blas.triangle_order, Vec3::new(0.2, 0.2, 1.0), -Vec3::Z, &tri);
+    assert!((hit.unwrap().t - 1.0).abs() < 1e-6);
+}
+
+#[test]
+fn offset_shifts_inner_and_leaf_indices_separately() {
+    let mut rng = StdRng::seed_from_u64(5);
+    let tris = random_soup(&mut rng, 100);
+    let blas = build_blas(&tris, BuildQuality::Fast);
+    let mut shifted = blas.clone();
+    shifted.offset(1000, 50_000);
+    for (a, b) in blas.nodes.iter().zip(&shifted.nodes) {
+        let expect = |first: u32, count: u32| if count == 0 { first + 1000 } else { first + 50_000 };
+        assert_eq!(b.a_first, expect(a.a_first, a.a_count));
+        assert_eq!(b.b_first, expect(a.b_first, a.b_count));
+    }
+}
+
+#[test]
+fn tlas_covers_every_instance() {
+    let boxes: Vec<(Vec3, Vec3)> = (0..37).map(|i| (Vec3::splat(i as f32), Vec3::splat(i as f32 + 0.5))).collect();
+    let tlas = build_tlas(&boxes);
+    let mut order = tlas.instance_order.clone();
+    order.sort();
+    assert_eq!(order, (0..37).collect::<Vec<_>>());
+}
+
+#[test]
+fn transformed_bounds_contain_rotated_corners() {
+    let m = Mat4::from_rotation_y(0.7) * Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0));
+    let (lo, hi) = transform_bounds((Vec3::ZERO, Vec3::ONE), &m);
+    for corner in [Vec3::ZERO, Vec3::ONE, Vec3::X, Vec3::new(1.0, 0.0, 1.0)] {
+        let w = m.transform_point3(corner);
+        assert!(w.cmpge(lo - 1e-5).all() && w.cmple(hi + 1e-5).all());
+    }
+}

@@ -1,0 +1,234 @@
+//! Scenes made in code, needing no files: the quality tests' fixtures and the default scene.
+
+use glam::{Mat4, Vec3, Vec4};
+
+use crate::model::{
+    Camera, Instance, Light, LightKind, Material, Mesh, ProbeVolumeDesc, Region, Scene,
+};
+
+/// Names accepted by [`builtin`], with a line each for `--help` and error messages.
+pub const BUILTIN_SCENES: &[(&str, &str)] = &[
+    ("cornell", "the classic Cornell box with its area light (the default scene)"),
+    ("two-rooms", "a lit room and a dark room joined by a door: the light-leak test"),
+    ("box-cylinders", "a closed box with four cylinders that swallow probes: the dark-leak test"),
+    ("furnace", "a white diffuse sphere under a uniform white sky: the white-furnace test"),
+];
+
+pub fn builtin(name: &str) -> Option<Scene> {
+    match name {
+        "cornell" => Some(cornell()),
+        "two-rooms" => Some(two_rooms()),
+        "box-cylinders" => Some(box_cylinders()),
+        "furnace" => Some(furnace()),
+        _ => None,
+    }
+}
+
+/// Appends quads, boxes and cylinders to one mesh.
+struct Builder {
+    mesh: Mesh,
+    materials: Vec<Material>,
+}
+
+impl Builder {
+    fn new(name: &str) -> Self {
+        Self { mesh: Mesh { name: name.into(), ..Default::default() }, materials: Vec::new() }
+    }
+
+    fn material(&mut self, name: &str, albedo: Vec3, emission: Vec3) -> u32 {
+        self.materials.push(Material {
+            name: name.into(),
+            base_color: albedo.extend(1.0),
+            emission,
+            ..Default::default()
+        });
+        self.materials.len() as u32 - 1
+    }
+
+    /// A planar quad p0 p1 p2 p3 (counter-clockwise seen from the side its normal faces).
+    fn quad(&mut self, p: [Vec3; 4], material: u32) {
+        let base = self.mesh.positions.len() as u32;
+        self.mesh.positions.extend(p);
+        for [i, j, k] in [[0u32, 1, 2], [0, 2, 3]] {
+            let [a, b, c] = [p[i as usize], p[j as usize], p[k as usize]];
+            // Quads that touch a sphere's pole have one zero-area half.
+            if (b - a).cross(c - a).length_squared() > 0.0 {
+                self.mesh.indices.extend([base + i, base + j, base + k]);
+                self.mesh.triangle_materials.push(material);
+            }
+        }
+    }
+
+    /// An axis-aligned box, faces pointing out.
+    fn cuboid(&mut self, lo: Vec3, hi: Vec3, material: u32) {
+        self.transformed_box(Mat4::from_translation((lo + hi) * 0.5) * Mat4::from_scale(hi - lo), material);
+    }
+
+    /// The unit cube [-0.5, 0.5]³ under `transform`, faces pointing out.
+    fn transformed_box(&mut self, transform: Mat4, material: u32) {
+        let c = |x: f32, y: f32, z: f32| transform.transform_point3(Vec3::new(x, y, z) - 0.5);
+        let faces = [
+            [c(0., 0., 1.), c(1., 0., 1.), c(1., 1., 1.), c(0., 1., 1.)],
+            [c(1., 0., 0.), c(0., 0., 0.), c(0., 1., 0.), c(1., 1., 0.)],
+            [c(1., 0., 1.), c(1., 0., 0.), c(1., 1., 0.), c(1., 1., 1.)],
+            [c(0., 0., 0.), c(0., 0., 1.), c(0., 1., 1.), c(0., 1., 0.)],
+            [c(0., 1., 1.), c(1., 1., 1.), c(1., 1., 0.), c(0., 1., 0.)],
+            [c(0., 0., 0.), c(1., 0., 0.), c(1., 0., 1.), c(0., 0., 1.)],
+        ];
+        for f in faces {
+            self.quad(f, material);
+        }
+    }
+
+    /// A closed vertical cylinder (side plus caps).
+    fn cylinder(&mut self, center: Vec3, radius: f32, height: f32, segments: u32, material: u32) {
+        let point = |i: u32, y: f32| {
+            let a = i as f32 / segments as f32 * std::f32::consts::TAU;
+            center + Vec3::new(radius * a.cos(), y, -radius * a.sin())
+        };
+        for i in 0..segments {
+            let (a0, a1) = (point(i, 0.0), point(i + 1, 0.0));
+            let (b0, b1) = (point(i, height), point(i + 1, height));
+            self.quad([a0, a1, b1, b0], material);
+            let top = center + Vec3::Y * height;
+            let base = self.mesh.positions.len() as u32;
+            self.mesh.positions.extend([top, b0, b1, center, a1, a0]);
+            self.mesh.indices.extend([base, base + 1, base + 2, base + 3, base + 4, base + 5]);
+            self.mesh.triangle_materials.extend([material, material]);
+        }
+    }
+
+    fn into_scene(self, name: &str, camera: Camera) -> Scene {
+        Scene {
+            name: name.into(),
+            meshes: vec![self.mesh],
+            instances: vec![Instance { name: name.into(), mesh: 0, transform: Mat4::IDENTITY }],
+            materials: self.materials,
+            camera,
+            ..Default::default()
+        }
+    }
+}
+
+/// The Cornell box: 2 units on a side, floor at y = 0, open towards +z, with the
+/// measured wall colours and area light of the Cornell data set.
+pub fn cornell() -> Scene {
+    let mut b = Builder::new("cornell");
+    let white = b.material("white", Vec3::new(0.725, 0.71, 0.68), Vec3::ZERO);
+    let red = b.material("red", Vec3::new(0.63, 0.065, 0.05), Vec3::ZERO);
+    let green = b.material("green", Vec3::new(0.14, 0.45, 0.091), Vec3::ZERO);
+    let light = b.material("light", Vec3::splat(0.78), Vec3::new(17.0, 12.0, 4.0));
+    let v = Vec3::new;
+    b.quad([v(-1., 0., 1.), v(1., 0., 1.), v(1., 0., -1.), v(-1., 0., -1.)], white); // floor
+    b.quad([v(-1., 2., 1.), v(-1., 2., -1.), v(1., 2., -1.), v(1., 2., 1.)], white); // ceiling
+    b.quad([v(-1., 0., -1.), v(1., 0., -1.), v(1., 2., -1.), v(-1., 2., -1.)], white); // back
+    b.quad([v(-1., 0., 1.), v(-1., 0., -1.), v(-1., 2., -1.), v(-1., 2., 1.)], red); // left
+    b.quad([v(1., 0., -1.), v(1., 0., 1.), v(1., 2., 1.), v(1., 2., -1.)], green); // right
+    b.quad([v(-0.24, 1.98, 0.16), v(-0.24, 1.98, -0.22), v(0.23, 1.98, -0.22), v(0.23, 1.98, 0.16)], light);
+    let short = Mat4::from_translation(v(0.33, 0.3, 0.37)) * Mat4::from_rotation_y(-0.29) * Mat4::from_scale(Vec3::splat(0.6));
+    b.transformed_box(short, white);
+    let tall = Mat4::from_translation(v(-0.335, 0.6, -0.29)) * Mat4::from_rotation_y(0.3) * Mat4::from_scale(v(0.6, 1.2, 0.6));
+    b.transformed_box(tall, white);
+    let mut scene = b.into_scene("cornell", Camera::default());
+    scene.probe_volumes.push(ProbeVolumeDesc {
+        name: "box".into(),
+        min: v(-0.9, 0.1, -0.9),
+        max: v(0.9, 1.9, 0.9),
+        counts: [4, 4, 4],
+    });
+    scene
+}
+
+/// Two 4 × 3 × 4 rooms side by side along x, joined by a door in a 10 cm wall. A point light
+/// burns in the left room; the right room sees only what comes through the door, so any
+/// technique that leaks through the wall brightens it.
+pub fn two_rooms() -> Scene {
+    let mut b = Builder::new("two-rooms");
+    let white = b.material("plaster", Vec3::splat(0.75), Vec3::ZERO);
+    let floor = b.material("floor", Vec3::new(0.6, 0.45, 0.3), Vec3::ZERO);
+    let v = Vec3::new;
+    let t = 0.1;
+    b.cuboid(v(-4.0 - t, -t, -2.0 - t), v(4.0 + t, 0.0, 2.0 + t), floor);
+    b.cuboid(v(-4.0 - t, 3.0, -2.0 - t), v(4.0 + t, 3.0 + t, 2.0 + t), white);
+    b.cuboid(v(-4.0 - t, 0.0, -2.0 - t), v(4.0 + t, 3.0, -2.0), white);
+    b.cuboid(v(-4.0 - t, 0.0, 2.0), v(4.0 + t, 3.0, 2.0 + t), white);
+    b.cuboid(v(-4.0 - t, 0.0, -2.0), v(-4.0, 3.0, 2.0), white);
+    b.cuboid(v(4.0, 0.0, -2.0), v(4.0 + t, 3.0, 2.0), white);
+    // The dividing wall, with a door 1 m wide and 2 m high at z in [-0.5, 0.5].
+    let h = t * 0.5;
+    b.cuboid(v(-h, 0.0, -2.0), v(h, 3.0, -0.5), white);
+    b.cuboid(v(-h, 0.0, 0.5), v(h, 3.0, 2.0), white);
+    b.cuboid(v(-h, 2.0, -0.5), v(h, 3.0, 0.5), white);
+    let camera = Camera { position: v(3.6, 1.6, 1.7), target: v(0.0, 1.0, -0.3), up: Vec3::Y, fov_y_degrees: 60.0 };
+    let mut scene = b.into_scene("two-rooms", camera);
+    scene.lights.push(Light {
+        name: "lamp".into(),
+        kind: LightKind::Point,
+        position: v(-2.0, 2.5, 0.0),
+        direction: -Vec3::Y,
+        color: Vec3::new(1.0, 0.9, 0.75),
+        intensity: 12.0,
+        enabled: true,
+    });
+    scene.probe_volumes.push(ProbeVolumeDesc { name: "rooms".into(), min: v(-3.5, 0.5, -1.5), max: v(3.5, 2.5, 1.5), counts: [8, 3, 4] });
+    scene.regions.push(Region { name: "dark-room".into(), min: v(h, 0.0, -2.0), max: v(4.0, 3.0, 2.0) });
+    scene.regions.push(Region { name: "lit-room".into(), min: v(-4.0, 0.0, -2.0), max: v(-h, 3.0, 2.0) });
+    scene
+}
+
+/// A closed 6 × 3 × 6 box with four floor-to-ceiling cylinders placed exactly on probe
+/// positions of its 4 × 4 × 4 probe grid (the light-field paper's Fig. 10 setup): probes inside
+/// geometry must not darken the surfaces around the cylinders.
+pub fn box_cylinders() -> Scene {
+    let mut b = Builder::new("box-cylinders");
+    let white = b.material("white", Vec3::splat(0.7), Vec3::ZERO);
+    let column = b.material("column", Vec3::new(0.7, 0.55, 0.4), Vec3::ZERO);
+    let v = Vec3::new;
+    let t = 0.1;
+    b.cuboid(v(-3.0 - t, -t, -3.0 - t), v(3.0 + t, 0.0, 3.0 + t), white);
+    b.cuboid(v(-3.0 - t, 3.0, -3.0 - t), v(3.0 + t, 3.0 + t, 3.0 + t), white);
+    b.cuboid(v(-3.0 - t, 0.0, -3.0 - t), v(3.0 + t, 3.0, -3.0), white);
+    b.cuboid(v(-3.0 - t, 0.0, 3.0), v(3.0 + t, 3.0, 3.0 + t), white);
+    b.cuboid(v(-3.0 - t, 0.0, -3.0), v(-3.0, 3.0, 3.0), white);
+    b.cuboid(v(3.0, 0.0, -3.0), v(3.0 + t, 3.0, 3.0), white);
+    for (x, z) in [(-0.75, -0.75), (0.75, -0.75), (-0.75, 0.75), (0.75, 0.75)] {
+        b.cylinder(v(x, 0.0, z), 0.35, 3.0, 24, column);
+    }
+    let camera = Camera { position: v(0.0, 1.6, 2.9), target: v(0.0, 1.0, -1.0), up: Vec3::Y, fov_y_degrees: 70.0 };
+    let mut scene = b.into_scene("box-cylinders", camera);
+    scene.lights.push(Light {
+        name: "lamp".into(),
+        kind: LightKind::Point,
+        position: v(-2.2, 2.6, 2.2),
+        direction: -Vec3::Y,
+        color: Vec3::ONE,
+        intensity: 8.0,
+        enabled: true,
+    });
+    scene.probe_volumes.push(ProbeVolumeDesc { name: "box".into(), min: v(-2.25, 0.375, -2.25), max: v(2.25, 2.625, 2.25), counts: [4, 4, 4] });
+    scene.regions.push(Region { name: "around-cylinders".into(), min: v(-1.5, 0.0, -1.5), max: v(1.5, 3.0, 1.5) });
+    scene
+}
+
+/// A white Lambertian sphere under a uniform sky of radiance 1: every pixel converges to 1,
+/// whatever the number of bounces (the white-furnace test).
+pub fn furnace() -> Scene {
+    let mut b = Builder::new("furnace");
+    let white = b.material("white", Vec3::ONE, Vec3::ZERO);
+    let (rings, segments) = (24u32, 48u32);
+    let point = |r: u32, s: u32| {
+        let theta = r as f32 / rings as f32 * std::f32::consts::PI;
+        let phi = s as f32 / segments as f32 * std::f32::consts::TAU;
+        Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
+    };
+    for r in 0..rings {
+        for s in 0..segments {
+            b.quad([point(r, s), point(r + 1, s), point(r + 1, s + 1), point(r, s + 1)], white);
+        }
+    }
+    let camera = Camera { position: Vec3::new(0.0, 0.0, 4.0), target: Vec3::ZERO, up: Vec3::Y, fov_y_degrees: 40.0 };
+    let mut scene = b.into_scene("furnace", camera);
+    scene.sky = Vec3::ONE;
+    scene.materials[0].base_color = Vec4::ONE;
+    scene
+}

@@ -1,0 +1,276 @@
+//! Scene manifests (TOML): a mesh file placed in the world, plus what OBJ files cannot carry:
+//! lights, camera, sky, probe volumes, named regions and keyframed animation.
+//!
+//! ```toml
+//! name = "sponza"
+//! sky = [0.5, 0.6, 0.8]
+//! [mesh]
+//! path = "../../shared/scenes/sponza-dabrovic/sponza.obj"   # relative to this manifest
+//! scale = 0.01
+//! [camera]
+//! position = [8.0, 2.0, 0.0]
+//! target = [0.0, 3.0, 0.0]
+//! fov_y_degrees = 60.0
+//! [[light]]
+//! name = "sun"
+//! kind = "directional"
+//! direction = [0.2, -1.0, 0.1]
+//! color = [1.0, 0.95, 0.85]
+//! intensity = 8.0
+//! [[probe_volume]]
+//! min = [-15.0, 0.5, -6.0]
+//! max = [15.0, 14.0, 6.0]
+//! counts = [16, 8, 8]
+//! [[region]]
+//! name = "gallery"
+//! min = [-15.0, 0.0, -7.0]
+//! max = [15.0, 5.0, -4.0]
+//! [[animation]]
+//! light = "sun"
+//! intensity_scale = [[0.0, 1.0], [2.0, 0.0]]   # [time, scale]
+//! translation = [[0.0, 0.0, 0.0, 0.0]]         # [time, x, y, z]
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use glam::{Mat4, Vec3};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Result, SceneError};
+use crate::model::{
+    Animation, AnimationTarget, Camera, Light, LightKind, ProbeVolumeDesc, Region, Scene, Tracks,
+};
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The geometry: an .obj, .gltf or .glb file, or a built-in scene name.
+    pub mesh: MeshRef,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<CameraDesc>,
+    /// Radiance of rays that leave the scene; black when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky: Option<[f32; 3]>,
+    /// Lights added to those the mesh file brings (glTF lights are kept).
+    #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
+    pub lights: Vec<LightDesc>,
+    #[serde(default, rename = "probe_volume", skip_serializing_if = "Vec::is_empty")]
+    pub probe_volumes: Vec<ProbeVolumeManifest>,
+    #[serde(default, rename = "region", skip_serializing_if = "Vec::is_empty")]
+    pub regions: Vec<RegionDesc>,
+    #[serde(default, rename = "animation", skip_serializing_if = "Vec::is_empty")]
+    pub animations: Vec<AnimationDesc>,
+}
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct MeshRef {
+    /// Path relative to the manifest (or a built-in scene name such as `cornell`).
+    pub path: String,
+    /// Uniform scale applied first (Sponza's OBJ is in centimetres in some exports).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation_y_degrees: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub translation: Option<[f32; 3]>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CameraDesc {
+    pub position: [f32; 3],
+    pub target: [f32; 3],
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub up: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fov_y_degrees: Option<f32>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LightKindDesc {
+    Point,
+    Spot,
+    Directional,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LightDesc {
+    pub name: String,
+    pub kind: LightKindDesc,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f32; 3]>,
+    /// The direction the light travels (spot, directional).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direction: Option<[f32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<[f32; 3]>,
+    pub intensity: f32,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inner_angle_degrees: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outer_angle_degrees: Option<f32>,
+    /// Off lights can be switched on by animation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub enabled: Option<bool>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProbeVolumeManifest {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    pub min: [f32; 3],
+    pub max: [f32; 3],
+    pub counts: [u32; 3],
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RegionDesc {
+    pub name: String,
+    pub min: [f32; 3],
+    pub max: [f32; 3],
+}
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct AnimationDesc {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub light: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub instance: Option<String>,
+    /// Keys `[time, x, y, z]`: offset from the rest position.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub translation: Vec<[f32; 4]>,
+    /// Keys `[time, scale]` of a light's intensity; 0 switches it off.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub intensity_scale: Vec<[f32; 2]>,
+    /// Keys `[time, degrees]` about the y axis.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub rotation_y_degrees: Vec<[f32; 2]>,
+}
+
+impl Manifest {
+    /// Parses TOML; unknown keys are returned as warnings (a typo must not pass silently, and
+    /// a newer manifest must still load in an older build).
+    pub fn parse(text: &str, path: &Path, warnings: &mut Vec<String>) -> Result<Manifest> {
+        let deserializer = toml::Deserializer::parse(text)
+            .map_err(|e| SceneError::Manifest { path: path.to_owned(), message: e.to_string() })?;
+        let mut unknown = Vec::new();
+        let manifest: Manifest = serde_ignored::deserialize(deserializer, |key| unknown.push(key.to_string()))
+            .map_err(|e| SceneError::Manifest { path: path.to_owned(), message: e.to_string() })?;
+        for key in unknown {
+            warnings.push(format!("{}: unknown key '{key}' ignored (see scenes/README.md for the keys a manifest takes)", path.display()));
+        }
+        Ok(manifest)
+    }
+
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).expect("a manifest always serialises")
+    }
+
+    /// Where the mesh file lies: relative paths are relative to the manifest's folder.
+    pub fn mesh_path(&self, manifest_path: &Path) -> PathBuf {
+        let base = manifest_path.parent().unwrap_or(Path::new("."));
+        base.join(&self.mesh.path)
+    }
+
+    /// Applies everything but the mesh to a loaded scene.
+    pub fn apply(&self, scene: &mut Scene, path: &Path) -> Result<()> {
+        if let Some(name) = &self.name {
+            scene.name = name.clone();
+        }
+        let placement = Mat4::from_translation(self.mesh.translation.map(Vec3::from).unwrap_or(Vec3::ZERO))
+            * Mat4::from_rotation_y(self.mesh.rotation_y_degrees.unwrap_or(0.0).to_radians())
+            * Mat4::from_scale(Vec3::splat(self.mesh.scale.unwrap_or(1.0)));
+        for instance in &mut scene.instances {
+            instance.transform = placement * instance.transform;
+        }
+        if let Some(c) = &self.camera {
+            scene.camera = Camera {
+                position: c.position.into(),
+                target: c.target.into(),
+                up: c.up.map(Vec3::from).unwrap_or(Vec3::Y),
+                fov_y_degrees: c.fov_y_degrees.unwrap_or(Camera::default().fov_y_degrees),
+            };
+        } else if self.mesh.scale.is_some() || self.mesh.translation.is_some() {
+            scene.camera = crate::framing::camera_for_bounds(scene);
+        }
+        if let Some(sky) = self.sky {
+            scene.sky = sky.into();
+        }
+        for l in &self.lights {
+            let kind = match l.kind {
+                LightKindDesc::Point => LightKind::Point,
+                LightKindDesc::Directional => LightKind::Directional,
+                LightKindDesc::Spot => LightKind::Spot {
+                    inner_angle: l.inner_angle_degrees.unwrap_or(20.0).to_radians(),
+                    outer_angle: l.outer_angle_degrees.unwrap_or(30.0).to_radians(),
+                },
+            };
+            let needs_position = kind != LightKind::Directional;
+            if needs_position && l.position.is_none() {
+                return Err(invalid(path, format!("light '{}' has no position", l.name), "Add `position = [x, y, z]` to it."));
+            }
+            if !needs_position && l.direction.is_none() {
+                return Err(invalid(path, format!("light '{}' has no direction", l.name), "Add `direction = [x, y, z]` (the way the light travels)."));
+            }
+            scene.lights.push(Light {
+                name: l.name.clone(),
+                kind,
+                position: l.position.map(Vec3::from).unwrap_or(Vec3::ZERO),
+                direction: l.direction.map(Vec3::from).unwrap_or(-Vec3::Y).normalize_or(-Vec3::Y),
+                color: l.color.map(Vec3::from).unwrap_or(Vec3::ONE),
+                intensity: l.intensity,
+                enabled: l.enabled.unwrap_or(true),
+            });
+        }
+        for (i, v) in self.probe_volumes.iter().enumerate() {
+            scene.probe_volumes.push(ProbeVolumeDesc {
+                name: v.name.clone().unwrap_or_else(|| format!("volume{i}")),
+                min: v.min.into(),
+                max: v.max.into(),
+                counts: v.counts,
+            });
+        }
+        for r in &self.regions {
+            scene.regions.push(Region { name: r.name.clone(), min: r.min.into(), max: r.max.into() });
+        }
+        for a in &self.animations {
+            let target = match (&a.light, &a.instance) {
+                (Some(light), None) => {
+                    if !scene.lights.iter().any(|l| &l.name == light) {
+                        return Err(invalid(path, format!("animation names light '{light}', which the scene does not have"), "Use the `name` of one of the scene's lights."));
+                    }
+                    AnimationTarget::Light(light.clone())
+                }
+                (None, Some(instance)) => {
+                    if !scene.instances.iter().any(|i| &i.name == instance) {
+                        let names: Vec<_> = scene.instances.iter().map(|i| i.name.as_str()).take(8).collect();
+                        return Err(invalid(path, format!("animation names instance '{instance}', which the scene does not have"), &format!("Use one of: {}.", names.join(", "))));
+                    }
+                    AnimationTarget::Instance(instance.clone())
+                }
+                _ => return Err(invalid(path, "an [[animation]] must name exactly one of `light` or `instance`".into(), "Add `light = \"name\"` or `instance = \"name\"`.")),
+            };
+            let keys_sorted = |times: Vec<f32>| times.windows(2).all(|w| w[0] <= w[1]);
+            if !keys_sorted(a.translation.iter().map(|k| k[0]).collect())
+                || !keys_sorted(a.intensity_scale.iter().map(|k| k[0]).collect())
+                || !keys_sorted(a.rotation_y_degrees.iter().map(|k| k[0]).collect())
+            {
+                return Err(invalid(path, "animation keys are not in time order".into(), "Sort each track's keys by their first number, the time."));
+            }
+            scene.animations.push(Animation {
+                target,
+                tracks: Tracks {
+                    translation: a.translation.iter().map(|k| (k[0], Vec3::new(k[1], k[2], k[3]))).collect(),
+                    intensity_scale: a.intensity_scale.iter().map(|k| (k[0], k[1])).collect(),
+                    rotation_y_degrees: a.rotation_y_degrees.iter().map(|k| (k[0], k[1])).collect(),
+                },
+            });
+        }
+        Ok(())
+    }
+}
+
+fn invalid(path: &Path, problem: String, fix: &str) -> SceneError {
+    SceneError::Invalid { path: path.to_owned(), problem, fix: fix.into() }
+}
