@@ -55,8 +55,8 @@ pub fn traverse_packed(nodes: &[GpuBvhNode], order: &[u32], origin: Vec3, dir: V
     while let Some(index) = stack.pop() {
         let n = &nodes[index as usize];
         for (lo, hi, first, count) in [(n.a_min, n.a_max, n.a_first, n.a_count), (n.b_min, n.b_max, n.b_first, n.b_count)] {
-            let t_max = best.map_or(f32::INFINITY, |b| b.t);
-            if !slab(origin, inv, Vec3::from(lo), Vec3::from(hi), t_max) {
+            let t_max = best.map_or(1e20, |b| b.t);
+            if first == crate::ABSENT || !slab(origin, inv, Vec3::from(lo), Vec3::from(hi), t_max) {
                 continue;
             }
             if count == 0 {

@@ -24,9 +24,9 @@ pub use cpu_trace::{CpuHit, brute_force_closest_hit, intersect_triangle, travers
 /// - `count == 0`: the child is an inner node; `first` is its index in the node array.
 /// - `count > 0`: the child is a leaf of `count` primitives starting at `first` (triangles in
 ///   the global triangle array for a bottom level, instances for the top level).
-/// - A tree that is a single leaf gets an inner root whose two children are that same leaf
-///   (its few triangles are tested twice), so traversal has no special case. An inverted box
-///   would not do: the slab test's per-axis min/max swap turns it back into a valid box.
+/// - An absent child (the root of a one-leaf tree has one) has `first == ABSENT`, count 0
+///   and a point box at 1e30, beyond any ray's reach. (An inverted box would not do: the slab
+///   test's per-axis min/max swap turns it back into a valid box.)
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuBvhNode {
@@ -122,6 +122,11 @@ pub fn transform_bounds(bounds: (Vec3, Vec3), transform: &Mat4) -> (Vec3, Vec3) 
     out
 }
 
+/// `first` of an absent child.
+pub const ABSENT: u32 = u32::MAX;
+/// Coordinates of an absent child's box: shaders cap ray length at 1e20.
+const ABSENT_BOX: f32 = 1e30;
+
 /// Converts obvhs' node list (children side by side, leaves as nodes) into parent-holds-both-
 /// children-boxes nodes. Leaves' primitives are laid out in leaf order, so `first` indexes the
 /// returned order list directly.
@@ -139,10 +144,10 @@ fn pack(bvh: &Bvh2) -> (Vec<GpuBvhNode>, Vec<u32>, u32) {
             a_first: first,
             a_max: root.aabb.max.into(),
             a_count: root.prim_count,
-            b_min: root.aabb.min.into(),
-            b_first: first,
-            b_max: root.aabb.max.into(),
-            b_count: root.prim_count,
+            b_min: [ABSENT_BOX; 3],
+            b_first: ABSENT,
+            b_max: [ABSENT_BOX; 3],
+            b_count: 0,
         });
         return (nodes, order, depth);
     }
@@ -187,6 +192,9 @@ impl Blas {
     pub fn offset(&mut self, node_base: u32, triangle_base: u32) {
         for n in &mut self.nodes {
             for (first, count) in [(&mut n.a_first, n.a_count), (&mut n.b_first, n.b_count)] {
+                if *first == ABSENT {
+                    continue;
+                }
                 *first += if count == 0 { node_base } else { triangle_base };
             }
         }

@@ -65,12 +65,12 @@ fn every_triangle_is_referenced_and_boxes_nest() {
 }
 
 #[test]
-fn a_single_triangle_packs_into_one_node_whose_children_are_the_leaf() {
+fn a_single_triangle_packs_into_one_node_with_an_absent_sibling() {
     let tri = [[Vec3::ZERO, Vec3::X, Vec3::Y]];
     let blas = build_blas(&tri, BuildQuality::Balanced);
     assert_eq!(blas.nodes.len(), 1);
     assert_eq!(blas.nodes[0].a_count, 1);
-    assert_eq!((blas.nodes[0].b_first, blas.nodes[0].b_count), (0, 1));
+    assert_eq!((blas.nodes[0].b_first, blas.nodes[0].b_count), (ABSENT, 0));
     let hit = traverse_packed(&blas.nodes, &blas.triangle_order, Vec3::new(0.2, 0.2, 1.0), -Vec3::Z, &tri);
     assert!((hit.unwrap().t - 1.0).abs() < 1e-6);
 }

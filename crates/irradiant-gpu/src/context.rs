@@ -1,0 +1,199 @@
+//! Adapter choice and device creation, with errors that say how to get a working adapter.
+
+use std::sync::{Arc, Mutex};
+
+use wgpu::{Adapter, Backends, Device, Features, Limits, Queue};
+
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error("no GPU adapter found ({tried}). Install a Vulkan driver; with no GPU, Mesa's software driver works: `sudo apt-get install mesa-vulkan-drivers` (Debian/Ubuntu).")]
+    NoAdapter { tried: String },
+    #[error("no adapter matches '{wanted}'. Adapters present: {present}. Pass an index or a part of a name from this list (--adapter or IRRADIANT_ADAPTER).")]
+    NoMatchingAdapter { wanted: String, present: String },
+    #[error("the adapter '{adapter}' cannot run Irradiant: {reason}. Pick another adapter with --adapter (see `irradiant info`).")]
+    Unsuitable { adapter: String, reason: String },
+    #[error("GPU error in {what}: {message}")]
+    Validation { what: String, message: String },
+    #[error("the GPU device was lost ({0}). The driver reset it or ran out of memory; try a smaller size or fewer samples per frame.")]
+    DeviceLost(String),
+    #[error("waiting for the GPU failed: {0}")]
+    Poll(String),
+}
+
+/// Which adapter to use: the first usable one, one by index in `irradiant info`'s list, or the
+/// first whose name contains a string (case-insensitive).
+#[derive(Clone, Debug, Default)]
+pub enum AdapterChoice {
+    #[default]
+    Auto,
+    Index(usize),
+    Name(String),
+}
+
+impl AdapterChoice {
+    /// `IRRADIANT_ADAPTER`, if set, else [`AdapterChoice::Auto`].
+    pub fn from_env() -> Self {
+        std::env::var("IRRADIANT_ADAPTER").map(|s| Self::parse(&s)).unwrap_or_default()
+    }
+
+    pub fn parse(text: &str) -> Self {
+        match text.trim() {
+            "" | "auto" => Self::Auto,
+            t => t.parse().map(Self::Index).unwrap_or_else(|_| Self::Name(t.to_owned())),
+        }
+    }
+}
+
+/// What `irradiant info` prints and benchmark records carry.
+#[derive(Clone, Debug)]
+pub struct GpuInfo {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+    pub driver_info: String,
+    pub timestamps: bool,
+    pub max_storage_buffer_binding_size: u64,
+    pub max_buffer_size: u64,
+    pub max_compute_workgroup_size_x: u32,
+    pub max_storage_buffers_per_shader_stage: u32,
+}
+
+pub struct GpuContext {
+    pub instance: wgpu::Instance,
+    pub adapter: Adapter,
+    pub device: Device,
+    pub queue: Queue,
+    pub info: GpuInfo,
+    /// Errors the device reported outside an error scope; taken by [`GpuContext::check`].
+    errors: Arc<Mutex<Vec<String>>>,
+    lost: Arc<Mutex<Option<String>>>,
+}
+
+/// Storage buffers one shader stage may bind: the scene takes 7, a pass a few more.
+const STORAGE_BUFFERS_NEEDED: u32 = 12;
+
+impl GpuContext {
+    /// Every adapter wgpu can see (Vulkan only: the backend Irradiant is tested on).
+    pub fn adapters() -> (wgpu::Instance, Vec<Adapter>) {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        if std::env::var_os("WGPU_BACKEND").is_none() {
+            desc.backends = Backends::VULKAN;
+        }
+        let instance = wgpu::Instance::new(desc);
+        let adapters = pollster::block_on(instance.enumerate_adapters(Backends::all()));
+        (instance, adapters)
+    }
+
+    pub fn new(choice: &AdapterChoice) -> Result<Self, GpuError> {
+        let (instance, adapters) = Self::adapters();
+        let names = || adapters.iter().enumerate().map(|(i, a)| format!("{i}: {}", a.get_info().name)).collect::<Vec<_>>().join(", ");
+        let adapter = match choice {
+            AdapterChoice::Auto => {
+                // Prefer real GPUs over software ones.
+                let rank = |a: &Adapter| match a.get_info().device_type {
+                    wgpu::DeviceType::DiscreteGpu => 0,
+                    wgpu::DeviceType::IntegratedGpu => 1,
+                    wgpu::DeviceType::VirtualGpu => 2,
+                    wgpu::DeviceType::Other => 3,
+                    wgpu::DeviceType::Cpu => 4,
+                };
+                adapters.iter().min_by_key(|a| rank(a)).cloned()
+            }
+            AdapterChoice::Index(i) => {
+                Some(adapters.get(*i).cloned().ok_or_else(|| GpuError::NoMatchingAdapter { wanted: i.to_string(), present: names() })?)
+            }
+            AdapterChoice::Name(n) => Some(
+                adapters
+                    .iter()
+                    .find(|a| a.get_info().name.to_lowercase().contains(&n.to_lowercase()))
+                    .cloned()
+                    .ok_or_else(|| GpuError::NoMatchingAdapter { wanted: n.clone(), present: names() })?,
+            ),
+        };
+        let adapter = adapter.ok_or_else(|| GpuError::NoAdapter { tried: "Vulkan".into() })?;
+        Self::from_adapter(instance, adapter)
+    }
+
+    fn from_adapter(instance: wgpu::Instance, adapter: Adapter) -> Result<Self, GpuError> {
+        let adapter_info = adapter.get_info();
+        let available = adapter.limits();
+        let unsuitable = |reason: String| GpuError::Unsuitable { adapter: adapter_info.name.clone(), reason };
+        if available.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
+            return Err(unsuitable(format!(
+                "it allows {} storage buffers per shader stage and Irradiant needs {STORAGE_BUFFERS_NEEDED}",
+                available.max_storage_buffers_per_shader_stage
+            )));
+        }
+        let features = adapter.features() & Features::TIMESTAMP_QUERY;
+        let limits = Limits {
+            max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED.max(Limits::default().max_storage_buffers_per_shader_stage),
+            // Large scenes (Sibenik, Sponza) need big node and triangle buffers.
+            max_storage_buffer_binding_size: available.max_storage_buffer_binding_size,
+            max_buffer_size: available.max_buffer_size,
+            max_texture_array_layers: available.max_texture_array_layers,
+            ..Limits::default()
+        };
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("irradiant"),
+            required_features: features,
+            required_limits: limits.clone(),
+            ..Default::default()
+        }))
+        .map_err(|e| unsuitable(e.to_string()))?;
+
+        let errors = Arc::new(Mutex::new(Vec::new()));
+        let sink = errors.clone();
+        // wgpu's default handler panics; Irradiant reports errors as values instead.
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| sink.lock().unwrap().push(e.to_string())));
+        let lost = Arc::new(Mutex::new(None));
+        let lost_sink = lost.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            *lost_sink.lock().unwrap() = Some(format!("{reason:?}: {message}"));
+        });
+        let info = GpuInfo {
+            name: adapter_info.name.clone(),
+            backend: format!("{:?}", adapter_info.backend),
+            device_type: format!("{:?}", adapter_info.device_type),
+            driver: adapter_info.driver.clone(),
+            driver_info: adapter_info.driver_info.clone(),
+            timestamps: features.contains(Features::TIMESTAMP_QUERY),
+            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
+            max_buffer_size: limits.max_buffer_size,
+            max_compute_workgroup_size_x: limits.max_compute_workgroup_size_x,
+            max_storage_buffers_per_shader_stage: limits.max_storage_buffers_per_shader_stage,
+        };
+        Ok(Self { instance, adapter, device, queue, info, errors, lost })
+    }
+
+    /// Reports the first error the device raised since the last check, or its loss.
+    pub fn check(&self, what: &str) -> Result<(), GpuError> {
+        if let Some(reason) = self.lost.lock().unwrap().clone() {
+            return Err(GpuError::DeviceLost(reason));
+        }
+        let mut errors = self.errors.lock().unwrap();
+        if let Some(message) = errors.first().cloned() {
+            errors.clear();
+            return Err(GpuError::Validation { what: what.to_owned(), message });
+        }
+        Ok(())
+    }
+
+    /// Blocks until the GPU has finished all submitted work.
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::Wait { submission_index: None, timeout: None })
+            .map_err(|e| GpuError::Poll(e.to_string()))?;
+        self.check("GPU work")
+    }
+
+    /// Runs `build` inside a validation error scope, turning errors into values.
+    pub fn scoped<T>(&self, what: &str, build: impl FnOnce(&Device) -> T) -> Result<T, GpuError> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let value = build(&self.device);
+        match pollster::block_on(scope.pop()) {
+            Some(e) => Err(GpuError::Validation { what: what.to_owned(), message: e.to_string() }),
+            None => Ok(value),
+        }
+    }
+}

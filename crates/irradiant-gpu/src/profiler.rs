@@ -1,0 +1,85 @@
+//! GPU pass timing with timestamp queries: each compute pass labelled `technique/stage` gets a
+//! begin and an end timestamp; [`Profiler::read`] turns them into milliseconds.
+
+use crate::{GpuContext, GpuError, read_buffer};
+
+#[derive(Clone, Debug)]
+pub struct PassTiming {
+    pub label: String,
+    pub milliseconds: f64,
+}
+
+pub struct Profiler {
+    query_set: Option<wgpu::QuerySet>,
+    resolve: Option<wgpu::Buffer>,
+    capacity: u32,
+    labels: Vec<String>,
+    period_ns: f64,
+}
+
+impl Profiler {
+    /// `capacity` passes per frame. Without TIMESTAMP_QUERY the profiler records nothing.
+    pub fn new(ctx: &GpuContext, capacity: u32) -> Self {
+        let enabled = ctx.info.timestamps;
+        let query_set = enabled.then(|| {
+            ctx.device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("profiler/timestamps"), ty: wgpu::QueryType::Timestamp, count: capacity * 2 })
+        });
+        let resolve = enabled.then(|| {
+            ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("profiler/resolve"),
+                size: capacity as u64 * 16,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        });
+        Self { query_set, resolve, capacity, labels: Vec::new(), period_ns: ctx.queue.get_timestamp_period() as f64 }
+    }
+
+    pub fn enabled(&self) -> bool {
+        self.query_set.is_some()
+    }
+
+    /// Timestamp writes for the next pass, or `None` when disabled or full.
+    pub fn pass(&mut self, label: &str) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+        let query_set = self.query_set.as_ref()?;
+        let index = self.labels.len() as u32;
+        if index >= self.capacity {
+            return None;
+        }
+        self.labels.push(label.to_owned());
+        Some(wgpu::ComputePassTimestampWrites {
+            query_set,
+            beginning_of_pass_write_index: Some(2 * index),
+            end_of_pass_write_index: Some(2 * index + 1),
+        })
+    }
+
+    /// Records the resolve of this frame's timestamps; call before submitting the encoder.
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let (Some(q), Some(b)) = (&self.query_set, &self.resolve) {
+            let n = self.labels.len() as u32 * 2;
+            if n > 0 {
+                encoder.resolve_query_set(q, 0..n, b, 0);
+            }
+        }
+    }
+
+    /// Reads the timings of the submitted frame and starts a new one.
+    pub fn read(&mut self, ctx: &GpuContext) -> Result<Vec<PassTiming>, GpuError> {
+        let labels = std::mem::take(&mut self.labels);
+        let Some(buffer) = &self.resolve else { return Ok(Vec::new()) };
+        if labels.is_empty() {
+            return Ok(Vec::new());
+        }
+        let bytes = read_buffer(ctx, buffer, 0, labels.len() as u64 * 16)?;
+        let ticks: &[u64] = bytemuck::cast_slice(&bytes);
+        Ok(labels
+            .into_iter()
+            .enumerate()
+            .map(|(i, label)| PassTiming {
+                label,
+                milliseconds: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns * 1e-6,
+            })
+            .collect())
+    }
+}

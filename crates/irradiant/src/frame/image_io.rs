@@ -1,0 +1,46 @@
+//! Linear RGB images and their files: EXR keeps the linear values, PNG the tonemapped ones.
+
+use std::path::Path;
+
+use crate::RenderError;
+
+/// Linear RGB radiance, rows top to bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<[f32; 3]>,
+}
+
+impl Image {
+    pub fn mean(&self) -> [f64; 3] {
+        let mut sum = [0f64; 3];
+        for p in &self.pixels {
+            for c in 0..3 {
+                sum[c] += p[c] as f64;
+            }
+        }
+        sum.map(|s| s / self.pixels.len().max(1) as f64)
+    }
+
+    pub fn write_exr(&self, path: &Path) -> Result<(), RenderError> {
+        let data: Vec<f32> = self.pixels.iter().flatten().copied().collect();
+        let image = image::Rgb32FImage::from_raw(self.width, self.height, data).expect("pixel count matches size");
+        image.save_with_format(path, image::ImageFormat::OpenExr).map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
+    }
+
+    pub fn read_exr(path: &Path) -> Result<Self, RenderError> {
+        let image = image::open(path).map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))?.to_rgb32f();
+        Ok(Self {
+            width: image.width(),
+            height: image.height(),
+            pixels: image.pixels().map(|p| p.0).collect(),
+        })
+    }
+}
+
+/// Writes packed sRGB RGBA8 bytes as a PNG.
+pub fn write_png(path: &Path, rgba8: &[u8], width: u32, height: u32) -> Result<(), RenderError> {
+    image::save_buffer_with_format(path, rgba8, width, height, image::ExtendedColorType::Rgba8, image::ImageFormat::Png)
+        .map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
+}

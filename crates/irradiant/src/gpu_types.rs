@@ -1,0 +1,224 @@
+//! The Rust definitions of the GPU structs of `shaders/types.wgsl` and the passes' parameter
+//! blocks. `tests/gpu_structs.rs` checks every one against its WGSL declaration.
+
+use bytemuck::{Pod, Zeroable};
+use irradiant_gpu::{Expected, gpu_layout};
+
+pub use irradiant_bvh::GpuBvhNode;
+
+/// Triangle flag: the material is alpha-masked and textured, so hits test the texture.
+pub const TRIANGLE_ALPHA_TESTED: u32 = 1;
+
+/// Intersection data in object space: v0 and the two edges (Möller–Trumbore needs no more).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuTriangle {
+    pub v0: [f32; 3],
+    pub material: u32,
+    pub e1: [f32; 3],
+    /// bit 0: [`TRIANGLE_ALPHA_TESTED`]
+    pub flags: u32,
+    pub e2: [f32; 3],
+    pub _pad: u32,
+}
+const _: () = assert!(size_of::<GpuTriangle>() == 48);
+
+/// Shading data: vertex normals (zero length: flat shading) and texture coordinates.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuTriangleShading {
+    pub n0: [f32; 3],
+    pub _pad0: u32,
+    pub n1: [f32; 3],
+    pub _pad1: u32,
+    pub n2: [f32; 3],
+    pub _pad2: u32,
+    pub uv0: [f32; 2],
+    pub uv1: [f32; 2],
+    pub uv2: [f32; 2],
+    pub _pad3: [f32; 2],
+}
+const _: () = assert!(size_of::<GpuTriangleShading>() == 80);
+
+/// Rows of the 3×4 world-to-object and object-to-world matrices, and the root of the mesh's BVH.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuInstance {
+    pub world_to_object0: [f32; 4],
+    pub world_to_object1: [f32; 4],
+    pub world_to_object2: [f32; 4],
+    pub object_to_world0: [f32; 4],
+    pub object_to_world1: [f32; 4],
+    pub object_to_world2: [f32; 4],
+    pub blas_root: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
+}
+const _: () = assert!(size_of::<GpuInstance>() == 112);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub base_color: [f32; 4],
+    pub emission: [f32; 3],
+    /// Texture array layer, or -1.
+    pub texture: i32,
+    pub metallic: f32,
+    pub roughness: f32,
+    pub specular: f32,
+    /// Alpha below this is a hole; -1 for opaque materials.
+    pub alpha_cutoff: f32,
+}
+const _: () = assert!(size_of::<GpuMaterial>() == 48);
+
+pub const LIGHT_POINT: u32 = 0;
+pub const LIGHT_SPOT: u32 = 1;
+pub const LIGHT_DIRECTIONAL: u32 = 2;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuLight {
+    pub position: [f32; 3],
+    /// [`LIGHT_POINT`], [`LIGHT_SPOT`] or [`LIGHT_DIRECTIONAL`]
+    pub kind: u32,
+    /// The direction light travels.
+    pub direction: [f32; 3],
+    pub cos_inner: f32,
+    /// Colour × intensity, zero when off.
+    pub power: [f32; 3],
+    pub cos_outer: f32,
+}
+const _: () = assert!(size_of::<GpuLight>() == 48);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuEmitter {
+    pub triangle: u32,
+    pub instance: u32,
+    /// Cumulative selection probability up to and including this emitter.
+    pub cdf: f32,
+    pub _pad: u32,
+}
+const _: () = assert!(size_of::<GpuEmitter>() == 16);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuSceneInfo {
+    pub sky: [f32; 3],
+    pub light_count: u32,
+    pub emitter_count: u32,
+    /// Σ luminance(emission) × world area over the emitters.
+    pub emissive_power: f32,
+    pub tlas_root: u32,
+    pub instance_count: u32,
+}
+const _: () = assert!(size_of::<GpuSceneInfo>() == 32);
+
+/// A pinhole camera as an orthonormal frame; image y goes down.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuCamera {
+    pub position: [f32; 3],
+    pub tan_half_fov_y: f32,
+    pub right: [f32; 3],
+    pub aspect: f32,
+    pub up: [f32; 3],
+    pub _pad0: f32,
+    pub forward: [f32; 3],
+    pub _pad1: f32,
+}
+const _: () = assert!(size_of::<GpuCamera>() == 64);
+
+impl GpuCamera {
+    pub fn new(camera: &irradiant_scene::Camera, width: u32, height: u32) -> Self {
+        let forward = (camera.target - camera.position).normalize();
+        let right = forward.cross(camera.up).normalize_or(glam::Vec3::X);
+        let up = right.cross(forward);
+        Self {
+            position: camera.position.into(),
+            tan_half_fov_y: (camera.fov_y_degrees.to_radians() * 0.5).tan(),
+            right: right.into(),
+            aspect: width as f32 / height as f32,
+            up: up.into(),
+            _pad0: 0.0,
+            forward: forward.into(),
+            _pad1: 0.0,
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuPathTraceParams {
+    pub camera: GpuCamera,
+    pub width: u32,
+    pub height: u32,
+    pub sample_offset: u32,
+    pub samples: u32,
+    pub max_bounces: u32,
+    pub seed: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+}
+const _: () = assert!(size_of::<GpuPathTraceParams>() == 96);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuTonemapParams {
+    pub width: u32,
+    pub height: u32,
+    pub exposure: f32,
+    /// 0: filmic; 1: clamp only.
+    pub curve: u32,
+}
+
+/// A ray for the ray-cast pass (tests, benchmarks).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuRay {
+    pub origin: [f32; 3],
+    pub t_max: f32,
+    pub dir: [f32; 3],
+    pub _pad: u32,
+}
+
+/// The closest hit of a [`GpuRay`]: triangle and instance are `u32::MAX` on a miss.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuRayHit {
+    pub t: f32,
+    pub triangle: u32,
+    pub instance: u32,
+    pub _pad: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuRayCastParams {
+    pub ray_count: u32,
+    /// 1: stop at the first hit (shadow rays).
+    pub any_hit: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+}
+
+/// Every GPU struct with its expected layout, for the WGSL check.
+pub fn all_layouts() -> Vec<Expected> {
+    vec![
+        gpu_layout!(GpuBvhNode { a_min, a_first, a_max, a_count, b_min, b_first, b_max, b_count }),
+        gpu_layout!(GpuTriangle { v0, material, e1, flags, e2, _pad }),
+        gpu_layout!(GpuTriangleShading { n0, _pad0, n1, _pad1, n2, _pad2, uv0, uv1, uv2, _pad3 }),
+        gpu_layout!(GpuInstance { world_to_object0, world_to_object1, world_to_object2, object_to_world0, object_to_world1, object_to_world2, blas_root, _pad0, _pad1, _pad2 }),
+        gpu_layout!(GpuMaterial { base_color, emission, texture, metallic, roughness, specular, alpha_cutoff }),
+        gpu_layout!(GpuLight { position, kind, direction, cos_inner, power, cos_outer }),
+        gpu_layout!(GpuEmitter { triangle, instance, cdf, _pad }),
+        gpu_layout!(GpuSceneInfo { sky, light_count, emitter_count, emissive_power, tlas_root, instance_count }),
+        gpu_layout!(GpuCamera { position, tan_half_fov_y, right, aspect, up, _pad0, forward, _pad1 }),
+        gpu_layout!(GpuPathTraceParams { camera, width, height, sample_offset, samples, max_bounces, seed, _pad0, _pad1 }),
+        gpu_layout!(GpuTonemapParams { width, height, exposure, curve }),
+        gpu_layout!(GpuRay { origin, t_max, dir, _pad }),
+        gpu_layout!(GpuRayHit { t, triangle, instance, _pad }),
+        gpu_layout!(GpuRayCastParams { ray_count, any_hit, _pad0, _pad1 }),
+    ]
+}

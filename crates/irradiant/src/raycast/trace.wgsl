@@ -1,0 +1,44 @@
+// raycast/trace: closest-hit (or any-hit) of a buffer of rays. Used to test the GPU traversal
+// against a CPU oracle and to measure rays per second.
+#import bvh
+
+struct GpuRay {
+    origin: vec3<f32>,
+    t_max: f32,
+    dir: vec3<f32>,
+    _pad: u32,
+}
+
+struct GpuRayHit {
+    t: f32,
+    triangle: u32,
+    instance: u32,
+    _pad: u32,
+}
+
+struct GpuRayCastParams {
+    ray_count: u32,
+    any_hit: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+@group(1) @binding(0) var<uniform> params: GpuRayCastParams;
+@group(1) @binding(1) var<storage, read> rays: array<GpuRay>;
+@group(1) @binding(2) var<storage, read_write> hits: array<GpuRayHit>;
+
+@compute @workgroup_size(64, 1, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    // 2D dispatch for ray counts above 65535 × 64.
+    let index = id.x + id.y * groups.x * 64u;
+    if index >= params.ray_count {
+        return;
+    }
+    let ray = rays[index];
+    let hit = trace_ray(ray.origin, ray.dir, ray.t_max, params.any_hit != 0u);
+    var out: GpuRayHit;
+    out.t = select(hit.t, -1.0, hit.triangle == INVALID);
+    out.triangle = hit.triangle;
+    out.instance = hit.instance;
+    hits[index] = out;
+}

@@ -1,0 +1,178 @@
+// Two-level BVH traversal in compute: a top level over instances, a bottom level per mesh.
+// Nodes hold both children's boxes; the nearer inner child is visited first, the other
+// pushed on a per-thread stack; leaves are intersected as soon as their box is hit.
+#import scene
+
+// Deepest bottom-level tree, checked on the CPU when the scene is uploaded.
+const BLAS_STACK_SIZE: u32 = 64u;
+const TLAS_STACK_SIZE: u32 = 32u;
+const NO_HIT: f32 = 3.0e38;
+// Rays never reach beyond this, so an absent child's box (a point at 1e30) is never hit.
+const RAY_FAR: f32 = 1.0e20;
+const INVALID: u32 = 0xffffffffu;
+
+struct Hit {
+    t: f32,
+    triangle: u32,
+    instance: u32,
+    bary: vec2<f32>,
+}
+
+fn safe_inverse(d: vec3<f32>) -> vec3<f32> {
+    // A zero component would give 0 × ∞ = NaN in the slab test.
+    let tiny = vec3<f32>(1e-20);
+    let fixed = select(d, select(-tiny, tiny, d >= vec3<f32>(0.0)), abs(d) < tiny);
+    return 1.0 / fixed;
+}
+
+// Entry distance of the ray into the box, or NO_HIT.
+fn slab(origin: vec3<f32>, inv_dir: vec3<f32>, lo: vec3<f32>, hi: vec3<f32>, t_max: f32) -> f32 {
+    let t0 = (lo - origin) * inv_dir;
+    let t1 = (hi - origin) * inv_dir;
+    let near = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
+    let far = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), t_max));
+    return select(NO_HIT, near, near <= far);
+}
+
+// Möller–Trumbore; returns (t, u, v) with t = NO_HIT on a miss.
+fn intersect_triangle(tri: GpuTriangle, origin: vec3<f32>, dir: vec3<f32>, t_max: f32) -> vec3<f32> {
+    let p = cross(dir, tri.e2);
+    let det = dot(tri.e1, p);
+    let inv = 1.0 / det;
+    let s = origin - tri.v0;
+    let u = dot(s, p) * inv;
+    let q = cross(s, tri.e1);
+    let v = dot(dir, q) * inv;
+    let t = dot(tri.e2, q) * inv;
+    let hit = abs(det) > 1e-20 && u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < t_max;
+    return select(vec3<f32>(NO_HIT, 0.0, 0.0), vec3<f32>(t, u, v), hit);
+}
+
+// Walks one bottom-level tree with the ray in its object space, updating `hit`. With
+// `any_hit`, returns true at the first hit.
+fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_hit: bool, hit: ptr<function, Hit>) -> bool {
+    let inv_dir = safe_inverse(dir);
+    var stack: array<u32, BLAS_STACK_SIZE>;
+    var sp = 0u;
+    var node = root;
+    loop {
+        let n = bvh_nodes[node];
+        let ta = slab(origin, inv_dir, n.a_min, n.a_max, (*hit).t);
+        let tb = slab(origin, inv_dir, n.b_min, n.b_max, (*hit).t);
+        // Leaves first: a hit shortens the ray before the inner children are ordered.
+        for (var k = 0u; k < 2u; k++) {
+            let t_box = select(tb, ta, k == 0u);
+            let count = select(n.b_count, n.a_count, k == 0u);
+            let first = select(n.b_first, n.a_first, k == 0u);
+            if t_box < (*hit).t && count > 0u {
+                for (var i = first; i < first + count; i++) {
+                    let tri = triangles[i];
+                    let r = intersect_triangle(tri, origin, dir, (*hit).t);
+                    if r.x < (*hit).t {
+                        if (tri.flags & 1u) != 0u && is_alpha_hole(i, r.yz) {
+                            continue;
+                        }
+                        (*hit).t = r.x;
+                        (*hit).triangle = i;
+                        (*hit).instance = instance;
+                        (*hit).bary = r.yz;
+                        if any_hit {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        let go_a = ta < (*hit).t && n.a_count == 0u && n.a_first != INVALID;
+        let go_b = tb < (*hit).t && n.b_count == 0u && n.b_first != INVALID;
+        if go_a && go_b {
+            let a_first = ta <= tb;
+            node = select(n.b_first, n.a_first, a_first);
+            if sp < BLAS_STACK_SIZE {
+                stack[sp] = select(n.a_first, n.b_first, a_first);
+                sp++;
+            }
+        } else if go_a {
+            node = n.a_first;
+        } else if go_b {
+            node = n.b_first;
+        } else {
+            if sp == 0u {
+                break;
+            }
+            sp--;
+            node = stack[sp];
+        }
+    }
+    return false;
+}
+
+// Traces a world-space ray through the top level; returns the closest hit (or, with
+// `any_hit`, any hit) before t_max. hit.triangle is INVALID on a miss.
+fn trace_ray(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, any_hit: bool) -> Hit {
+    var hit: Hit;
+    hit.t = min(t_max, RAY_FAR);
+    hit.triangle = INVALID;
+    hit.instance = INVALID;
+    // One instance (a static OBJ scene): skip the top level.
+    if scene_info.instance_count == 1u {
+        let inst = instances[0];
+        trace_blas(inst.blas_root, 0u, to_object_point(inst, origin), to_object_vector(inst, dir), any_hit, &hit);
+        return hit;
+    }
+    let inv_dir = safe_inverse(dir);
+    var stack: array<u32, TLAS_STACK_SIZE>;
+    var sp = 0u;
+    var node = scene_info.tlas_root;
+    loop {
+        let n = bvh_nodes[node];
+        let ta = slab(origin, inv_dir, n.a_min, n.a_max, hit.t);
+        let tb = slab(origin, inv_dir, n.b_min, n.b_max, hit.t);
+        for (var k = 0u; k < 2u; k++) {
+            let t_box = select(tb, ta, k == 0u);
+            let count = select(n.b_count, n.a_count, k == 0u);
+            let first = select(n.b_first, n.a_first, k == 0u);
+            if t_box < hit.t && count > 0u {
+                for (var i = first; i < first + count; i++) {
+                    let inst = instances[i];
+                    if trace_blas(inst.blas_root, i, to_object_point(inst, origin), to_object_vector(inst, dir), any_hit, &hit) {
+                        return hit;
+                    }
+                }
+            }
+        }
+        let go_a = ta < hit.t && n.a_count == 0u && n.a_first != INVALID;
+        let go_b = tb < hit.t && n.b_count == 0u && n.b_first != INVALID;
+        if go_a && go_b {
+            let a_first = ta <= tb;
+            node = select(n.b_first, n.a_first, a_first);
+            if sp < TLAS_STACK_SIZE {
+                stack[sp] = select(n.a_first, n.b_first, a_first);
+                sp++;
+            }
+        } else if go_a {
+            node = n.a_first;
+        } else if go_b {
+            node = n.b_first;
+        } else {
+            if sp == 0u {
+                break;
+            }
+            sp--;
+            node = stack[sp];
+        }
+    }
+    return hit;
+}
+
+// Whether anything blocks the segment from `origin` along `dir` up to `distance`.
+fn occluded(origin: vec3<f32>, dir: vec3<f32>, distance: f32) -> bool {
+    return trace_ray(origin, dir, distance, true).triangle != INVALID;
+}
+
+// Offsets a ray origin off a surface along its geometric normal, scaled with the magnitude
+// of the position so that it works at any scene scale (after Wächter and Binder 2019, simplified).
+fn offset_ray(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let scale = 1e-4 * max(1.0, max(abs(p.x), max(abs(p.y), abs(p.z))));
+    return p + n * scale;
+}

@@ -1,0 +1,140 @@
+// Scene access: the bindings of group 0, shared by every pass that traces rays
+// (see GpuScene::bind_group_layout for their names).
+#import types
+#import sampling
+
+@group(0) @binding(0) var<storage, read> bvh_nodes: array<GpuBvhNode>;
+@group(0) @binding(1) var<storage, read> triangles: array<GpuTriangle>;
+@group(0) @binding(2) var<storage, read> triangle_shading: array<GpuTriangleShading>;
+@group(0) @binding(3) var<storage, read> instances: array<GpuInstance>;
+@group(0) @binding(4) var<storage, read> materials: array<GpuMaterial>;
+@group(0) @binding(5) var<storage, read> lights: array<GpuLight>;
+@group(0) @binding(6) var<storage, read> emitters: array<GpuEmitter>;
+@group(0) @binding(7) var<uniform> scene_info: GpuSceneInfo;
+@group(0) @binding(8) var scene_textures: texture_2d_array<f32>;
+@group(0) @binding(9) var scene_sampler: sampler;
+
+fn to_object_point(inst: GpuInstance, p: vec3<f32>) -> vec3<f32> {
+    let q = vec4<f32>(p, 1.0);
+    return vec3<f32>(dot(inst.world_to_object0, q), dot(inst.world_to_object1, q), dot(inst.world_to_object2, q));
+}
+
+fn to_object_vector(inst: GpuInstance, v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(inst.world_to_object0.xyz, v), dot(inst.world_to_object1.xyz, v), dot(inst.world_to_object2.xyz, v));
+}
+
+fn to_world_point(inst: GpuInstance, p: vec3<f32>) -> vec3<f32> {
+    let q = vec4<f32>(p, 1.0);
+    return vec3<f32>(dot(inst.object_to_world0, q), dot(inst.object_to_world1, q), dot(inst.object_to_world2, q));
+}
+
+fn to_world_vector(inst: GpuInstance, v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(inst.object_to_world0.xyz, v), dot(inst.object_to_world1.xyz, v), dot(inst.object_to_world2.xyz, v));
+}
+
+// Normals go through the inverse transpose: the transposed world-to-object matrix.
+fn to_world_normal(inst: GpuInstance, n: vec3<f32>) -> vec3<f32> {
+    return normalize(inst.world_to_object0.xyz * n.x + inst.world_to_object1.xyz * n.y + inst.world_to_object2.xyz * n.z);
+}
+
+fn interpolate_uv(s: GpuTriangleShading, bary: vec2<f32>) -> vec2<f32> {
+    return s.uv0 * (1.0 - bary.x - bary.y) + s.uv1 * bary.x + s.uv2 * bary.y;
+}
+
+// Base colour and coverage at a texture coordinate (level 0: the path tracer antialiases by
+// accumulation, and probe rays are too sparse for ray cones to matter).
+fn base_color_at(m: GpuMaterial, uv: vec2<f32>) -> vec4<f32> {
+    if m.texture < 0 {
+        return m.base_color;
+    }
+    return m.base_color * textureSampleLevel(scene_textures, scene_sampler, uv, m.texture, 0.0);
+}
+
+// Whether an alpha-tested triangle is a hole at these barycentrics.
+fn is_alpha_hole(tri_index: u32, bary: vec2<f32>) -> bool {
+    let m = materials[triangles[tri_index].material];
+    let uv = interpolate_uv(triangle_shading[tri_index], bary);
+    return base_color_at(m, uv).a < m.alpha_cutoff;
+}
+
+// Everything shading needs at a hit point, in world space.
+struct Surface {
+    position: vec3<f32>,
+    // Geometric and shading normals, both turned towards the incoming ray (surfaces are
+    // two-sided for reflection).
+    geometric_normal: vec3<f32>,
+    normal: vec3<f32>,
+    albedo: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+    specular: f32,
+    // Emitted radiance towards the ray; emitters emit from their front (counter-clockwise) side.
+    emission: vec3<f32>,
+}
+
+fn surface_at(origin: vec3<f32>, dir: vec3<f32>, t: f32, tri_index: u32, instance_index: u32, bary: vec2<f32>) -> Surface {
+    let tri = triangles[tri_index];
+    let shading = triangle_shading[tri_index];
+    let inst = instances[instance_index];
+    let m = materials[tri.material];
+    var s: Surface;
+    s.position = origin + dir * t;
+    let face = to_world_normal(inst, cross(tri.e1, tri.e2));
+    let front = dot(face, dir) < 0.0;
+    s.geometric_normal = select(-face, face, front);
+    let w = vec3<f32>(1.0 - bary.x - bary.y, bary.x, bary.y);
+    let interpolated = shading.n0 * w.x + shading.n1 * w.y + shading.n2 * w.z;
+    if dot(interpolated, interpolated) > 1e-12 {
+        var n = to_world_normal(inst, interpolated);
+        n = select(-n, n, dot(n, s.geometric_normal) >= 0.0);
+        s.normal = n;
+    } else {
+        s.normal = s.geometric_normal;
+    }
+    let base = base_color_at(m, interpolate_uv(shading, bary));
+    s.albedo = base.rgb;
+    s.metallic = m.metallic;
+    s.roughness = m.roughness;
+    s.specular = m.specular;
+    s.emission = select(vec3<f32>(0.0), m.emission, front);
+    return s;
+}
+
+// A point on an emitter chosen for next-event estimation.
+struct EmitterSample {
+    position: vec3<f32>,
+    normal: vec3<f32>,
+    radiance: vec3<f32>,
+    // pdf with respect to area
+    pdf_area: f32,
+}
+
+fn sample_emitter(u_select: f32, u: vec2<f32>) -> EmitterSample {
+    // Binary search of the cumulative distribution.
+    var lo = 0u;
+    var hi = scene_info.emitter_count - 1u;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if emitters[mid].cdf < u_select {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    let e = emitters[lo];
+    let tri = triangles[e.triangle];
+    let inst = instances[e.instance];
+    let b = uniform_triangle(u);
+    var s: EmitterSample;
+    s.position = to_world_point(inst, tri.v0 + tri.e1 * b.x + tri.e2 * b.y);
+    s.normal = to_world_normal(inst, cross(tri.e1, tri.e2));
+    let m = materials[tri.material];
+    s.radiance = m.emission;
+    s.pdf_area = emitter_pdf_area(m.emission);
+    return s;
+}
+
+// The area pdf with which sample_emitter picks a point of an emitter of this radiance.
+fn emitter_pdf_area(emission: vec3<f32>) -> f32 {
+    return luminance(emission) / max(scene_info.emissive_power, 1e-30);
+}

@@ -1,0 +1,113 @@
+// GPU structs shared by every pass. Each has one Rust definition (src/gpu_types.rs) and a
+// test that checks the two agree (tests/gpu_structs.rs).
+
+// Inner BVH node holding both children's boxes. A child with count 0 is an inner node
+// (first = node index); count > 0 is a leaf of `count` primitives from `first`; first =
+// 0xffffffff marks an absent child.
+struct GpuBvhNode {
+    a_min: vec3<f32>,
+    a_first: u32,
+    a_max: vec3<f32>,
+    a_count: u32,
+    b_min: vec3<f32>,
+    b_first: u32,
+    b_max: vec3<f32>,
+    b_count: u32,
+}
+
+// Intersection data, in the mesh's object space, in BVH leaf order.
+struct GpuTriangle {
+    v0: vec3<f32>,
+    material: u32,
+    e1: vec3<f32>,
+    // bit 0: alpha-tested (the material has a mask and a texture)
+    flags: u32,
+    e2: vec3<f32>,
+    _pad: u32,
+}
+
+// Shading data, same order as GpuTriangle. Normals of length 0 mean "use the face normal".
+struct GpuTriangleShading {
+    n0: vec3<f32>,
+    _pad0: u32,
+    n1: vec3<f32>,
+    _pad1: u32,
+    n2: vec3<f32>,
+    _pad2: u32,
+    uv0: vec2<f32>,
+    uv1: vec2<f32>,
+    uv2: vec2<f32>,
+    _pad3: vec2<f32>,
+}
+
+// An instance: rows of its 3×4 world-to-object and object-to-world matrices.
+struct GpuInstance {
+    world_to_object0: vec4<f32>,
+    world_to_object1: vec4<f32>,
+    world_to_object2: vec4<f32>,
+    object_to_world0: vec4<f32>,
+    object_to_world1: vec4<f32>,
+    object_to_world2: vec4<f32>,
+    blas_root: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+struct GpuMaterial {
+    base_color: vec4<f32>,
+    emission: vec3<f32>,
+    // layer of the texture array, or -1
+    texture: i32,
+    metallic: f32,
+    roughness: f32,
+    specular: f32,
+    // alpha below this is a hole; -1 for opaque materials
+    alpha_cutoff: f32,
+}
+
+const LIGHT_POINT: u32 = 0u;
+const LIGHT_SPOT: u32 = 1u;
+const LIGHT_DIRECTIONAL: u32 = 2u;
+
+struct GpuLight {
+    position: vec3<f32>,
+    kind: u32,
+    // the direction light travels
+    direction: vec3<f32>,
+    cos_inner: f32,
+    // colour × intensity; zero when switched off
+    power: vec3<f32>,
+    cos_outer: f32,
+}
+
+// One emissive triangle for next-event estimation, chosen with probability ∝ its power.
+struct GpuEmitter {
+    triangle: u32,
+    instance: u32,
+    // cumulative selection probability up to and including this emitter
+    cdf: f32,
+    _pad: u32,
+}
+
+struct GpuSceneInfo {
+    sky: vec3<f32>,
+    light_count: u32,
+    emitter_count: u32,
+    // Σ luminance(emission) × area over emitters: an emissive point's area pdf is
+    // luminance(emission) / emissive_power
+    emissive_power: f32,
+    tlas_root: u32,
+    instance_count: u32,
+}
+
+struct GpuCamera {
+    position: vec3<f32>,
+    tan_half_fov_y: f32,
+    right: vec3<f32>,
+    aspect: f32,
+    up: vec3<f32>,
+    _pad0: f32,
+    forward: vec3<f32>,
+    _pad1: f32,
+}
