@@ -1,0 +1,101 @@
+//! The reference path tracer is proved, not assumed: a white furnace, and agreement with an
+//! external renderer (Mitsuba 3) on the Cornell box.
+
+mod common;
+
+use irradiant::GpuScene;
+use irradiant::frame::Image;
+use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+
+fn render(ctx: &irradiant::GpuContext, scene: &irradiant_scene::Scene, size: u32, spp: u32, seed: u32) -> Image {
+    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
+    let mut tracer = PathTracer::new(ctx, &gpu_scene, size, size).unwrap();
+    let settings = PathTraceSettings { samples_per_pixel: spp, samples_per_dispatch: 16, max_bounces: 64, seed };
+    tracer.render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {}).unwrap()
+}
+
+/// A white Lambertian sphere under a uniform sky of radiance 1 must look exactly like the sky:
+/// with albedo 1 nothing is absorbed, so every pixel converges to 1 whatever the bounce count.
+#[test]
+fn white_furnace_every_pixel_converges_to_the_sky() {
+    let Some(ctx) = common::gpu() else { return };
+    let scene = irradiant_scene::load("furnace").unwrap().scene;
+    let image = render(&ctx, &scene, 32, 64, 1);
+    let mean = image.mean();
+    for c in mean {
+        // The sphere is convex, so its pixels see the sky after one bounce: no path is ever
+        // cut short, and the only noise is which sky direction was picked — none, the sky is
+        // uniform. So the mean is 1 up to float error.
+        assert!((c - 1.0).abs() < 2e-3, "furnace mean {mean:?} should be 1");
+    }
+    let worst = image.pixels.iter().flatten().map(|v| (v - 1.0).abs()).fold(0.0f32, f32::max);
+    assert!(worst < 1e-2, "a pixel deviates from 1 by {worst}");
+}
+
+/// A furnace with a dimmer sphere: a convex Lambertian sphere of albedo ρ under sky 1 shows ρ
+/// where it covers the pixel, 1 elsewhere; so the image mean lies between ρ and 1 and every
+/// pixel lies in [ρ, 1]. Catches a BRDF that creates or loses energy.
+#[test]
+fn grey_furnace_reflects_exactly_its_albedo() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut scene = irradiant_scene::load("furnace").unwrap().scene;
+    scene.materials[0].base_color = glam::Vec4::new(0.5, 0.5, 0.5, 1.0);
+    let image = render(&ctx, &scene, 32, 16, 2);
+    // The centre pixel is fully covered by the sphere.
+    let centre = image.pixels[(16 * 32 + 16) as usize];
+    for c in centre {
+        assert!((c - 0.5).abs() < 1e-3, "centre pixel {centre:?} should equal the albedo 0.5");
+    }
+    for p in &image.pixels {
+        for c in p {
+            assert!(*c > 0.5 - 1e-3 && *c < 1.0 + 1e-3, "pixel {p:?} outside [albedo, 1]");
+        }
+    }
+}
+
+/// Our path tracer against Mitsuba 3 (scalar_rgb, 32768 spp, tools/mitsuba/cornell_reference.py)
+/// on the original Cornell box at 64×64.
+#[test]
+fn cornell_box_matches_mitsuba() {
+    let Some(ctx) = common::gpu() else { return };
+    let manifest = common::repo_root().join("scenes/cornell-box/original.toml");
+    let scene = irradiant_scene::load(manifest.to_str().unwrap()).unwrap().scene;
+    let reference = Image::read_exr(&common::repo_root().join("tests/golden/cornell-box/mitsuba-original-64.exr")).unwrap();
+    let ours = render(&ctx, &scene, 64, 256, 3);
+    let (ours_mean, ref_mean) = (ours.mean(), reference.mean());
+    let mut worst_mean = 0.0f64;
+    for c in 0..3 {
+        worst_mean = worst_mean.max((ours_mean[c] - ref_mean[c]).abs() / ref_mean[c]);
+    }
+    // 8×8 blocks: 64 pixels × 256 spp each, so per-block noise is a few per cent at most.
+    let mut block_errors = Vec::new();
+    for by in 0..8 {
+        for bx in 0..8 {
+            let mut sums = [[0f64; 3]; 2];
+            for y in 0..8 {
+                for x in 0..8 {
+                    let i = ((by * 8 + y) * 64 + bx * 8 + x) as usize;
+                    for c in 0..3 {
+                        sums[0][c] += ours.pixels[i][c] as f64;
+                        sums[1][c] += reference.pixels[i][c] as f64;
+                    }
+                }
+            }
+            let lum = |s: [f64; 3]| 0.2126 * s[0] + 0.7152 * s[1] + 0.0722 * s[2];
+            let reference_lum = lum(sums[1]);
+            if reference_lum > 1e-3 {
+                block_errors.push((lum(sums[0]) - reference_lum).abs() / reference_lum);
+            }
+        }
+    }
+    let mean_block_error = block_errors.iter().sum::<f64>() / block_errors.len() as f64;
+    eprintln!("image mean: ours {ours_mean:?}, Mitsuba {ref_mean:?}; worst channel error {worst_mean:.4}; mean 8×8-block error {mean_block_error:.4}");
+    // Bounds: the issue asks for mean relative error under 2 %. At 256 spp the noise of the
+    // whole-image mean is ~0.3 %, so 2 % leaves room for noise but not for a missing bounce
+    // (one bounce less is −20 %), a wrong light pdf (×2) or a one-sided wall.
+    assert!(worst_mean < 0.02, "image mean differs from Mitsuba by {:.2} %", worst_mean * 100.0);
+    // Per-block noise at 256 spp × 64 pixels is about 1 % (0.65 % seen on lavapipe, with the
+    // image mean 0.16 % off); 4 % catches local errors (a wrong
+    // shadow, a misplaced light) that the global mean can hide.
+    assert!(mean_block_error < 0.04, "8×8 blocks differ from Mitsuba by {:.2} % on average", mean_block_error * 100.0);
+}
