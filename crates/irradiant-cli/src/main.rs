@@ -1,1 +1,68 @@
-fn main() {}
+//! `irradiant`: render, benchmark and inspect Irradiant from the command line.
+
+mod bench;
+mod info;
+mod options;
+mod render;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "irradiant", version, about = "Real-time global illumination on any GPU", long_about = None)]
+struct Cli {
+    /// GPU adapter: an index or part of a name from `irradiant info` (default: the first
+    /// hardware GPU, else the software one). Also IRRADIANT_ADAPTER.
+    #[arg(long, global = true)]
+    adapter: Option<String>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List adapters and show the one Irradiant would use, with its driver and limits.
+    Info,
+    /// Render a scene to a PNG (tonemapped) or EXR (linear) image.
+    Render(render::RenderArgs),
+    /// Time every GPU pass with timestamp queries and report rays per second.
+    Bench(bench::BenchArgs),
+}
+
+fn main() -> ExitCode {
+    tracing_subscriber::fmt()
+        .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("IRRADIANT_LOG").unwrap_or_else(|_| "warn".into()))
+        .with_writer(std::io::stderr)
+        .without_time()
+        .init();
+    let cli = Cli::parse();
+    let adapter = cli.adapter.as_deref().map(irradiant::AdapterChoice::parse).unwrap_or_else(irradiant::AdapterChoice::from_env);
+    let result = match cli.command {
+        Command::Info => info::run(&adapter),
+        Command::Render(args) => render::run(&args, &adapter),
+        Command::Bench(args) => bench::run(&args, &adapter),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Everything a command can fail with; each message names the problem and the fix.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    #[error(transparent)]
+    Scene(#[from] irradiant_scene::SceneError),
+    #[error(transparent)]
+    Render(#[from] irradiant::RenderError),
+    #[error(transparent)]
+    Gpu(#[from] irradiant::GpuError),
+    #[error("{0}")]
+    Usage(String),
+    #[error("{path}: {message}")]
+    Io { path: std::path::PathBuf, message: String },
+}

@@ -1,0 +1,243 @@
+//! `irradiant bench`: BVH build time, and each GPU pass timed with timestamp queries after a
+//! warm-up (median of many runs), with rays per second where a pass traces rays.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+use glam::Vec3;
+use irradiant::gpu_types::{GpuCamera, GpuRay};
+use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+use irradiant::raycast::RayCaster;
+use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
+use irradiant_gpu::{Profiler, wgpu};
+use rand::{Rng, SeedableRng, rngs::StdRng};
+use serde::Serialize;
+
+use crate::CliError;
+use crate::options::parse_size;
+
+#[derive(Args)]
+pub struct BenchArgs {
+    /// Scenes to measure (built-in names, manifests or mesh files), comma-separated.
+    #[arg(long, default_value = "cornell", value_delimiter = ',')]
+    pub scene: Vec<String>,
+    /// Image size for camera-driven passes: rays per dispatch = width × height.
+    #[arg(long, default_value = "1920x1080", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Timed runs per pass (after the warm-up); the median is reported.
+    #[arg(long, default_value = "20")]
+    pub iterations: u32,
+    /// Warm-up runs per pass, not timed.
+    #[arg(long, default_value = "3")]
+    pub warmup: u32,
+    /// Also write every figure as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// A quick check that every pass runs (CI): 64×64, 2 iterations, no warm-up.
+    #[arg(long)]
+    pub smoke: bool,
+}
+
+#[derive(Serialize)]
+struct PassRecord {
+    scene: String,
+    label: String,
+    median_ms: f64,
+    min_ms: f64,
+    rays: Option<u64>,
+    mrays_per_s: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct SceneRecord {
+    scene: String,
+    triangles: usize,
+    bvh_nodes: usize,
+    bvh_build_ms: f64,
+    max_blas_depth: u32,
+    scene_load_ms: f64,
+}
+
+#[derive(Serialize)]
+struct BenchRecord {
+    adapter: String,
+    backend: String,
+    driver: String,
+    timing: &'static str,
+    commit: &'static str,
+    date_unix: u64,
+    command: String,
+    size: [u32; 2],
+    iterations: u32,
+    scenes: Vec<SceneRecord>,
+    passes: Vec<PassRecord>,
+}
+
+pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
+    let (size, iterations, warmup) = if args.smoke { ((64, 64), 2, 0) } else { (args.size, args.iterations.max(1), args.warmup) };
+    let ctx = GpuContext::new(adapter)?;
+    let mut record = BenchRecord {
+        adapter: ctx.info.name.clone(),
+        backend: ctx.info.backend.clone(),
+        driver: format!("{} {}", ctx.info.driver, ctx.info.driver_info),
+        timing: if ctx.info.timestamps { "GPU timestamp queries" } else { "wall clock (no timestamp queries)" },
+        commit: env!("IRRADIANT_COMMIT"),
+        date_unix: std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0),
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+        size: [size.0, size.1],
+        iterations,
+        scenes: Vec::new(),
+        passes: Vec::new(),
+    };
+    for name in &args.scene {
+        let start = Instant::now();
+        let scene = irradiant_scene::load(name)?.scene;
+        let load_ms = start.elapsed().as_secs_f64() * 1e3;
+        let gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings::default())?;
+        record.scenes.push(SceneRecord {
+            scene: scene.name.clone(),
+            triangles: gpu_scene.stats.triangles,
+            bvh_nodes: gpu_scene.stats.bvh_nodes,
+            bvh_build_ms: gpu_scene.stats.bvh_build.as_secs_f64() * 1e3,
+            max_blas_depth: gpu_scene.stats.max_blas_depth,
+            scene_load_ms: load_ms,
+        });
+        let caster = RayCaster::new(&ctx, &gpu_scene)?;
+        let primary = primary_rays(&scene, size);
+        let primary_batch = caster.upload(&ctx, &primary, false);
+        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| caster.record(encoder, &gpu_scene, &primary_batch, profiler))?;
+        record.passes.push(pass_record(&scene.name, "raycast/trace (primary)", &times, Some(primary.len() as u64)));
+
+        let hits = caster.trace(&ctx, &gpu_scene, &primary, false)?;
+        let diffuse = diffuse_rays(&scene, &gpu_scene, &primary, &hits);
+        let diffuse_batch = caster.upload(&ctx, &diffuse, false);
+        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| caster.record(encoder, &gpu_scene, &diffuse_batch, profiler))?;
+        record.passes.push(pass_record(&scene.name, "raycast/trace (diffuse)", &times, Some(diffuse.len() as u64)));
+
+        let shadow_batch = caster.upload(&ctx, &diffuse, true);
+        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| caster.record(encoder, &gpu_scene, &shadow_batch, profiler))?;
+        record.passes.push(pass_record(&scene.name, "raycast/trace (diffuse, any hit)", &times, Some(diffuse.len() as u64)));
+
+        let mut tracer = PathTracer::new(&ctx, &gpu_scene, size.0, size.1)?;
+        let settings = PathTraceSettings { samples_per_pixel: 1, samples_per_dispatch: 1, ..PathTraceSettings::balanced() };
+        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| {
+            tracer.record(&ctx, encoder, &gpu_scene, &scene.camera, &settings, 1, profiler)
+        })?;
+        record.passes.push(pass_record(&scene.name, "pathtrace/trace (1 spp)", &times, None));
+    }
+    print_table(&record);
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&record).expect("bench records serialise");
+        std::fs::write(path, text).map_err(|e| CliError::Io { path: path.clone(), message: e.to_string() })?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// Runs `record_pass` warm-up + timed times, one submission each, and returns the timed
+/// durations in milliseconds (GPU timestamps, or wall clock around a wait without them).
+fn time_pass(
+    ctx: &GpuContext,
+    warmup: u32,
+    iterations: u32,
+    mut record_pass: impl FnMut(&mut wgpu::CommandEncoder, Option<&mut Profiler>),
+) -> Result<Vec<f64>, CliError> {
+    let mut profiler = Profiler::new(ctx, 1);
+    let mut times = Vec::new();
+    for i in 0..warmup + iterations {
+        let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench") });
+        record_pass(&mut encoder, if profiler.enabled() { Some(&mut profiler) } else { None });
+        profiler.resolve(&mut encoder);
+        let start = Instant::now();
+        ctx.queue.submit([encoder.finish()]);
+        ctx.wait()?;
+        let wall = start.elapsed().as_secs_f64() * 1e3;
+        let gpu = profiler.read(ctx)?;
+        if i >= warmup {
+            times.push(gpu.first().map_or(wall, |t| t.milliseconds));
+        }
+    }
+    Ok(times)
+}
+
+fn pass_record(scene: &str, label: &str, times: &[f64], rays: Option<u64>) -> PassRecord {
+    let mut sorted = times.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted[sorted.len() / 2];
+    PassRecord {
+        scene: scene.to_owned(),
+        label: label.to_owned(),
+        median_ms: median,
+        min_ms: sorted[0],
+        rays,
+        mrays_per_s: rays.map(|r| r as f64 / (median * 1e-3) / 1e6),
+    }
+}
+
+fn print_table(r: &BenchRecord) {
+    println!("adapter: {} ({}, driver {}); timing: {}; commit {}", r.adapter, r.backend, r.driver, r.timing, r.commit);
+    println!("{:<22} {:>10} {:>10} {:>12} {:>10}", "scene", "triangles", "BVH nodes", "BVH build ms", "load ms");
+    for s in &r.scenes {
+        println!("{:<22} {:>10} {:>10} {:>12.1} {:>10.1}", s.scene, s.triangles, s.bvh_nodes, s.bvh_build_ms, s.scene_load_ms);
+    }
+    println!("\n{:<22} {:<34} {:>10} {:>10} {:>12} {:>10}", "scene", "pass", "median ms", "min ms", "rays", "Mrays/s");
+    for p in &r.passes {
+        let rays = p.rays.map_or("-".into(), |n| n.to_string());
+        let rate = p.mrays_per_s.map_or("-".into(), |m| format!("{m:.1}"));
+        println!("{:<22} {:<34} {:>10.3} {:>10.3} {:>12} {:>10}", p.scene, p.label, p.median_ms, p.min_ms, rays, rate);
+    }
+}
+
+/// One ray through each pixel centre.
+fn primary_rays(scene: &irradiant_scene::Scene, (w, h): (u32, u32)) -> Vec<GpuRay> {
+    let cam = GpuCamera::new(&scene.camera, w, h);
+    let (forward, right, up) = (Vec3::from(cam.forward), Vec3::from(cam.right), Vec3::from(cam.up));
+    let mut rays = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let ndc_x = (x as f32 + 0.5) / w as f32 * 2.0 - 1.0;
+            let ndc_y = 1.0 - (y as f32 + 0.5) / h as f32 * 2.0;
+            let dir = (forward + right * ndc_x * cam.tan_half_fov_y * cam.aspect + up * ndc_y * cam.tan_half_fov_y).normalize();
+            rays.push(GpuRay { origin: cam.position, t_max: 1e20, dir: dir.into(), _pad: 0 });
+        }
+    }
+    rays
+}
+
+/// Incoherent secondary rays: from each primary hit, a cosine-distributed direction about the
+/// surface normal (what a path tracer's or DDGI's bounce rays look like). Pixels whose primary
+/// ray missed shoot a uniformly random ray from the camera instead, keeping the count.
+fn diffuse_rays(scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, primary: &[GpuRay], hits: &[irradiant::gpu_types::GpuRayHit]) -> Vec<GpuRay> {
+    let mut rng = StdRng::seed_from_u64(1);
+    let mut unit = || loop {
+        let v = Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        let l = v.length_squared();
+        if l > 1e-4 && l <= 1.0 {
+            break v / l.sqrt();
+        }
+    };
+    primary
+        .iter()
+        .zip(hits)
+        .map(|(ray, hit)| {
+            let o = Vec3::from(ray.origin);
+            let d = Vec3::from(ray.dir);
+            if hit.t < 0.0 {
+                return GpuRay { origin: ray.origin, t_max: 1e20, dir: unit().into(), _pad: 0 };
+            }
+            let instance = &scene.instances[gpu_scene.instance_order[hit.instance as usize] as usize];
+            let (mesh, t) = gpu_scene.triangle_sources[hit.triangle as usize];
+            let [a, b, c] = scene.meshes[mesh as usize].triangle(t as usize).map(|p| instance.transform.transform_point3(p));
+            let mut n = (b - a).cross(c - a).normalize();
+            if n.dot(d) > 0.0 {
+                n = -n;
+            }
+            let p = o + d * hit.t;
+            // Cosine distribution: normal plus a uniform point on the unit sphere.
+            let dir = (n + unit()).normalize_or(n);
+            let origin = p + n * 1e-4 * p.abs().max_element().max(1.0);
+            GpuRay { origin: origin.into(), t_max: 1e20, dir: dir.into(), _pad: 0 }
+        })
+        .collect()
+}
