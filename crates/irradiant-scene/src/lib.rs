@@ -53,7 +53,7 @@ pub fn load(spec: &str) -> Result<Loaded> {
     };
     validate::validate(&mut scene, path, &mut warnings)?;
     for w in &warnings {
-        tracing::warn!("{w}");
+        tracing::debug!("{w}");
     }
     Ok(Loaded { scene, warnings })
 }

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Lays out .dev/ for the lent GPU machine (which has no Rust toolchain and no ../shared):
+# the release binary, the manifests, and the shared scenes at the same relative place.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+cargo build --release --locked -p irradiant-cli
+rm -rf .dev && mkdir -p .dev/repo .dev/shared/scenes
+cp target/release/irradiant .dev/
+cp -r scenes .dev/repo/
+cp -r ../shared/scenes/sponza-dabrovic ../shared/scenes/sibenik ../shared/scenes/cornell-box .dev/shared/scenes/
+cp tools/device/bench.sh .dev/
+du -sh .dev
