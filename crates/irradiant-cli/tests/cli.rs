@@ -39,7 +39,7 @@ fn bad_outputs_are_refused_before_rendering() {
 #[test]
 fn absurd_settings_are_refused() {
     fails_with(&["render", "--spp", "0"], "--spp 0");
-    fails_with(&["render", "--exposure", "-1"], "--exposure");
+    fails_with(&["render", "--exposure=-1"], "--exposure");
     fails_with(&["render", "--max-bounces", "99999"], "--max-bounces");
 }
 

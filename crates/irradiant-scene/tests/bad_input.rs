@@ -119,7 +119,7 @@ fn manifest_errors_name_the_manifest_and_the_fix() {
         ("probes.toml", "[mesh]\npath = 'tri.obj'\n[[probe_volume]]\nmin = [0, 0, 0]\nmax = [1, 1, 1]\ncounts = [100000, 1, 1]", "probes per axis"),
         ("box.toml", "[mesh]\npath = 'tri.obj'\n[[region]]\nname = 'r'\nmin = [1, 1, 1]\nmax = [0, 0, 0]", "min ≥ max"),
         ("fov.toml", "[mesh]\npath = 'tri.obj'\n[camera]\nposition = [0, 0, 1]\ntarget = [0, 0, 0]\nfov_y_degrees = 500.0", "field of view"),
-        ("sky.toml", "[mesh]\npath = 'tri.obj'\nsky = [-1, 0, 0]", "sky"),
+        ("sky.toml", "sky = [-1, 0, 0]\n[mesh]\npath = 'tri.obj'", "sky"),
     ];
     for (name, text, expected) in cases {
         let path = write(&dir, name, text);
