@@ -1,5 +1,6 @@
 //! `irradiant`: render, benchmark and inspect Irradiant from the command line.
 
+mod atlas;
 mod bench;
 mod info;
 mod options;

@@ -60,10 +60,13 @@ pub struct GpuScene {
     /// Object-space triangles of each slot, for emitter areas.
     slot_triangles: Vec<[Vec3; 3]>,
     instance_meshes: Vec<u32>,
-    sky: Vec3,
+    /// Radiance of rays that leave the scene.
+    pub sky: Vec3,
     /// The instance buffer is in top-level leaf order: entry k holds scene instance
     /// `instance_order[k]` (hits report k).
     pub instance_order: Vec<u32>,
+    /// Last uploaded transforms, in scene order (motion vectors).
+    previous_transforms: Vec<Mat4>,
     pub triangle_sources: Vec<TriangleSource>,
     pub stats: GpuSceneStats,
 }
@@ -227,6 +230,7 @@ impl GpuScene {
             instance_meshes: scene.instances.iter().map(|i| i.mesh).collect(),
             sky: scene.sky,
             instance_order: Vec::new(),
+            previous_transforms: Vec::new(),
             stats: GpuSceneStats {
                 triangles: triangles.len(),
                 bvh_nodes: nodes.len(),
@@ -250,7 +254,8 @@ impl GpuScene {
         let mut boxes = Vec::with_capacity(pose.instance_transforms.len());
         for (i, transform) in pose.instance_transforms.iter().enumerate() {
             let (root, bounds) = self.blas_roots[self.instance_meshes[i] as usize];
-            instances.push(gpu_instance(transform, root));
+            let previous = self.previous_transforms.get(i).unwrap_or(transform);
+            instances.push(gpu_instance(transform, previous, root));
             boxes.push(transform_bounds(bounds, transform));
         }
         let tlas = build_tlas(&boxes);
@@ -306,6 +311,7 @@ impl GpuScene {
         };
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
         self.instance_order = tlas.instance_order;
+        self.previous_transforms = pose.instance_transforms.clone();
     }
 }
 
@@ -335,11 +341,12 @@ fn triangle_shading(mesh: &irradiant_scene::Mesh, t: usize) -> GpuTriangleShadin
     }
 }
 
-fn gpu_instance(transform: &Mat4, blas_root: u32) -> GpuInstance {
+fn gpu_instance(transform: &Mat4, previous: &Mat4, blas_root: u32) -> GpuInstance {
     let inverse = transform.inverse();
     let rows = |m: &Mat4| [m.row(0).to_array(), m.row(1).to_array(), m.row(2).to_array()];
     let [w0, w1, w2] = rows(&inverse);
     let [o0, o1, o2] = rows(transform);
+    let [p0, p1, p2] = rows(previous);
     GpuInstance {
         world_to_object0: w0,
         world_to_object1: w1,
@@ -347,6 +354,9 @@ fn gpu_instance(transform: &Mat4, blas_root: u32) -> GpuInstance {
         object_to_world0: o0,
         object_to_world1: o1,
         object_to_world2: o2,
+        previous_object_to_world0: p0,
+        previous_object_to_world1: p1,
+        previous_object_to_world2: p2,
         blas_root,
         _pad0: 0,
         _pad1: 0,

@@ -40,7 +40,8 @@ pub struct GpuTriangleShading {
 }
 const _: () = assert!(size_of::<GpuTriangleShading>() == 80);
 
-/// Rows of the 3×4 world-to-object and object-to-world matrices, and the root of the mesh's BVH.
+/// Rows of the 3×4 world-to-object, object-to-world and last frame's object-to-world
+/// matrices, and the root of the mesh's BVH.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuInstance {
@@ -50,12 +51,15 @@ pub struct GpuInstance {
     pub object_to_world0: [f32; 4],
     pub object_to_world1: [f32; 4],
     pub object_to_world2: [f32; 4],
+    pub previous_object_to_world0: [f32; 4],
+    pub previous_object_to_world1: [f32; 4],
+    pub previous_object_to_world2: [f32; 4],
     pub blas_root: u32,
     pub _pad0: u32,
     pub _pad1: u32,
     pub _pad2: u32,
 }
-const _: () = assert!(size_of::<GpuInstance>() == 112);
+const _: () = assert!(size_of::<GpuInstance>() == 160);
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -203,13 +207,99 @@ pub struct GpuRayCastParams {
     pub _pad1: u32,
 }
 
+/// The real-time frame's parameters (`frame/frame_types.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuFrameParams {
+    pub camera: GpuCamera,
+    pub previous_camera: GpuCamera,
+    pub width: u32,
+    pub height: u32,
+    pub frame_index: u32,
+    /// Emitter samples per pixel per frame for direct light from emissive surfaces.
+    pub area_light_samples: u32,
+    pub seed: u32,
+    /// Frames already in the direct-light running mean; 0 restarts it.
+    pub accumulated_frames: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+}
+const _: () = assert!(size_of::<GpuFrameParams>() == 160);
+
+/// One G-buffer pixel. `depth` < 0 where the camera ray left the scene.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuGBufferTexel {
+    pub position: [f32; 3],
+    pub depth: f32,
+    pub normal: [f32; 3],
+    pub roughness: f32,
+    pub geometric_normal: [f32; 3],
+    pub metallic: f32,
+    pub albedo: [f32; 3],
+    pub specular: f32,
+    pub emission: [f32; 3],
+    pub _pad0: f32,
+    /// Previous position minus current, in pixels.
+    pub motion: [f32; 2],
+    pub _pad1: [f32; 2],
+}
+const _: () = assert!(size_of::<GpuGBufferTexel>() == 96);
+
+/// A DDGI probe volume's parameters (`ddgi/volume.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuDdgiVolume {
+    pub origin: [f32; 3],
+    pub probe_count: u32,
+    pub spacing: [f32; 3],
+    pub rays_per_probe: u32,
+    pub counts: [u32; 3],
+    pub probes_per_row: u32,
+    pub ray_rotation0: [f32; 4],
+    pub ray_rotation1: [f32; 4],
+    pub ray_rotation2: [f32; 4],
+    pub irradiance_texels: u32,
+    pub distance_texels: u32,
+    pub irradiance_hysteresis: f32,
+    pub distance_hysteresis: f32,
+    pub max_ray_distance: f32,
+    pub self_shadow_bias: f32,
+    pub distance_exponent: f32,
+    pub irradiance_gamma: f32,
+    /// `WEIGHT_*` bits of `ddgi/volume.wgsl`.
+    pub weights: u32,
+    pub frame: u32,
+    pub min_spacing: f32,
+    pub convergence_heuristics: u32,
+}
+const _: () = assert!(size_of::<GpuDdgiVolume>() == 144);
+
+/// A probe ray's closest hit; `t` < 0 for a miss; `bary` is `pack2x16unorm`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuDdgiRayHit {
+    pub t: f32,
+    pub triangle: u32,
+    pub instance: u32,
+    pub bary: u32,
+}
+
+/// The radiance a probe ray brought back and the distance it travelled (negative: a backface).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuDdgiRaySample {
+    pub radiance: [f32; 3],
+    pub distance: f32,
+}
+
 /// Every GPU struct with its expected layout, for the WGSL check.
 pub fn all_layouts() -> Vec<Expected> {
     vec![
         gpu_layout!(GpuBvhNode { a_min, a_first, a_max, a_count, b_min, b_first, b_max, b_count }),
         gpu_layout!(GpuTriangle { v0, material, e1, flags, e2, _pad }),
         gpu_layout!(GpuTriangleShading { n0, _pad0, n1, _pad1, n2, _pad2, uv0, uv1, uv2, _pad3 }),
-        gpu_layout!(GpuInstance { world_to_object0, world_to_object1, world_to_object2, object_to_world0, object_to_world1, object_to_world2, blas_root, _pad0, _pad1, _pad2 }),
+        gpu_layout!(GpuInstance { world_to_object0, world_to_object1, world_to_object2, object_to_world0, object_to_world1, object_to_world2, previous_object_to_world0, previous_object_to_world1, previous_object_to_world2, blas_root, _pad0, _pad1, _pad2 }),
         gpu_layout!(GpuMaterial { base_color, emission, texture, metallic, roughness, specular, alpha_cutoff }),
         gpu_layout!(GpuLight { position, kind, direction, cos_inner, power, cos_outer }),
         gpu_layout!(GpuEmitter { triangle, instance, cdf, _pad }),
@@ -220,5 +310,10 @@ pub fn all_layouts() -> Vec<Expected> {
         gpu_layout!(GpuRay { origin, t_max, dir, _pad }),
         gpu_layout!(GpuRayHit { t, triangle, instance, _pad }),
         gpu_layout!(GpuRayCastParams { ray_count, any_hit, _pad0, _pad1 }),
+        gpu_layout!(GpuFrameParams { camera, previous_camera, width, height, frame_index, area_light_samples, seed, accumulated_frames, _pad0, _pad1 }),
+        gpu_layout!(GpuGBufferTexel { position, depth, normal, roughness, geometric_normal, metallic, albedo, specular, emission, _pad0, motion, _pad1 }),
+        gpu_layout!(GpuDdgiVolume { origin, probe_count, spacing, rays_per_probe, counts, probes_per_row, ray_rotation0, ray_rotation1, ray_rotation2, irradiance_texels, distance_texels, irradiance_hysteresis, distance_hysteresis, max_ray_distance, self_shadow_bias, distance_exponent, irradiance_gamma, weights, frame, min_spacing, convergence_heuristics }),
+        gpu_layout!(GpuDdgiRayHit { t, triangle, instance, bary }),
+        gpu_layout!(GpuDdgiRaySample { radiance, distance }),
     ]
 }

@@ -5,6 +5,7 @@
 //! - [`raycast`]: rays in, hits out (tests, benchmarks).
 //! - [`frame`]: tonemapping and images.
 
+pub mod ddgi;
 pub mod frame;
 pub mod gpu_scene;
 pub mod gpu_types;

@@ -93,3 +93,22 @@ pub fn storage_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Bu
         mapped_at_creation: false,
     })
 }
+
+/// A bind group layout of compute-stage buffers: (binding, kind) pairs, each with its name in
+/// the WGSL beside it at the call site.
+pub fn buffer_layout(device: &wgpu::Device, label: &str, entries: &[(u32, wgpu::BufferBindingType)]) -> wgpu::BindGroupLayout {
+    let entries: Vec<_> = entries.iter().map(|&(binding, ty)| buffer_entry(binding, ty)).collect();
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
+}
+
+/// A bind group of buffers at explicit bindings.
+pub fn bind_at(device: &wgpu::Device, label: &str, layout: &wgpu::BindGroupLayout, entries: &[(u32, &wgpu::Buffer)]) -> wgpu::BindGroup {
+    let entries: Vec<_> = entries.iter().map(|&(binding, b)| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() }).collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(label), layout, entries: &entries })
+}
+
+/// Workgroup counts for `groups` workgroups, folded into two dimensions past the 65535 limit.
+pub fn fold_groups(groups: u32) -> [u32; 3] {
+    let x = groups.clamp(1, 32768);
+    [x, groups.div_ceil(x).max(1), 1]
+}

@@ -1,6 +1,10 @@
-//! The end of the frame: tonemapping to 8-bit, and the linear image type every renderer returns.
+//! The real-time frame: G-buffer from primary rays → direct light → the technique's indirect
+//! light → compose → tonemap (ARCHITECTURE.md, "The frame").
 
 mod image_io;
+mod renderer;
+
+pub use renderer::{FrameBuffers, FrameRenderer, FrameSettings, Technique};
 
 pub use image_io::{Image, write_png};
 

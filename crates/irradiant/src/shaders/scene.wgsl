@@ -2,6 +2,7 @@
 // (see GpuScene::bind_group_layout for their names).
 #import types
 #import sampling
+#import surface
 
 @group(0) @binding(0) var<storage, read> bvh_nodes: array<GpuBvhNode>;
 @group(0) @binding(1) var<storage, read> triangles: array<GpuTriangle>;
@@ -55,21 +56,6 @@ fn is_alpha_hole(tri_index: u32, bary: vec2<f32>) -> bool {
     let m = materials[triangles[tri_index].material];
     let uv = interpolate_uv(triangle_shading[tri_index], bary);
     return base_color_at(m, uv).a < m.alpha_cutoff;
-}
-
-// Everything shading needs at a hit point, in world space.
-struct Surface {
-    position: vec3<f32>,
-    // Geometric and shading normals, both turned towards the incoming ray (surfaces are
-    // two-sided for reflection).
-    geometric_normal: vec3<f32>,
-    normal: vec3<f32>,
-    albedo: vec3<f32>,
-    metallic: f32,
-    roughness: f32,
-    specular: f32,
-    // Emitted radiance towards the ray; emitters emit from their front (counter-clockwise) side.
-    emission: vec3<f32>,
 }
 
 fn surface_at(origin: vec3<f32>, dir: vec3<f32>, t: f32, tri_index: u32, instance_index: u32, bary: vec2<f32>) -> Surface {

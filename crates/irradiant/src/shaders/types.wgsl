@@ -40,7 +40,8 @@ struct GpuTriangleShading {
     _pad3: vec2<f32>,
 }
 
-// An instance: rows of its 3×4 world-to-object and object-to-world matrices.
+// An instance: rows of its 3×4 world-to-object and object-to-world matrices, and of last
+// frame's object-to-world (for motion vectors).
 struct GpuInstance {
     world_to_object0: vec4<f32>,
     world_to_object1: vec4<f32>,
@@ -48,6 +49,9 @@ struct GpuInstance {
     object_to_world0: vec4<f32>,
     object_to_world1: vec4<f32>,
     object_to_world2: vec4<f32>,
+    previous_object_to_world0: vec4<f32>,
+    previous_object_to_world1: vec4<f32>,
+    previous_object_to_world2: vec4<f32>,
     blas_root: u32,
     _pad0: u32,
     _pad1: u32,

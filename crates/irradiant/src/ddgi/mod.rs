@@ -1,0 +1,122 @@
+//! DDGI: dynamic diffuse global illumination with ray-traced irradiance fields (Majercik et
+//! al. 2019, as evaluated in seed 001), with the production rules of seed 003 that its query
+//! and update need (self-shadow bias, perceptual encoding, per-texel convergence thresholds,
+//! backface hits). See docs/ddgi.md.
+//!
+//! Each frame [`Ddgi::update`] records `ddgi/ray_directions → ddgi/trace → ddgi/shade →
+//! ddgi/blend_irradiance → ddgi/blend_distance → ddgi/borders`, and [`Ddgi::resolve`] turns a
+//! G-buffer into indirect diffuse light (`ddgi/resolve`).
+
+pub mod octahedral;
+mod passes;
+mod resources;
+
+pub use passes::Ddgi;
+
+/// Which of the query's weights are on: the paper's Figure 7 ladder, each step adding one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ProbeWeights {
+    /// Trilinear only: classic irradiance probes, which leak light through walls.
+    Classic,
+    /// + smooth backface (wrap) weight: probes behind the surface count less.
+    Backface,
+    /// + Chebyshev visibility from the distance moments: occluded probes are culled.
+    Chebyshev,
+    /// + self-shadow bias and the backface-hit rule: the full method.
+    Full,
+}
+
+/// DDGI settings. Every one trades something; `fast`, `balanced` and `quality` are the presets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DdgiSettings {
+    /// Rays per probe per frame. More rays: less noise and lower usable hysteresis, at a
+    /// linear cost in trace and shade time (the paper's m; 256 by default).
+    pub rays_per_probe: u32,
+    /// Interior texels per side of a probe's irradiance tile (a 1-texel border is added: 6 →
+    /// 8×8). Irradiance is smooth; more texels cost blend time and memory for little gain.
+    pub irradiance_texels: u32,
+    /// Interior texels per side of a distance tile (14 → 16×16). Sharper visibility, at the
+    /// cost of blend time; too few blur occluder edges into light leaks.
+    pub distance_texels: u32,
+    /// Share of last frame's irradiance kept each frame. Higher: stable, slow to react (about
+    /// 1/(1−h) frames of lag); lower: fast but flickering.
+    pub hysteresis: f32,
+    /// The same for the distance moments; kept high, since visibility noise reads as flicker.
+    pub distance_hysteresis: f32,
+    /// Longest probe ray, in scene units. `None`: the volume's diagonal. Shorter rays are
+    /// cheaper but miss distant light.
+    pub max_ray_distance: Option<f32>,
+    /// TunableShadowBias of 003 (eq. 2): moves the visibility test off the surface. Too low:
+    /// self-shadowing blotches; too high: light leaks at thin walls.
+    pub self_shadow_bias: f32,
+    /// Cosine power of the distance blend (RTXGI uses 50). Higher: sharper visibility, noisier.
+    pub distance_exponent: f32,
+    /// Perceptual encoding exponent (003 §4.2; 5 converges fastest); 1 stores linear values.
+    pub irradiance_gamma: f32,
+    /// The Figure 7 ladder.
+    pub weights: ProbeWeights,
+    /// Per-texel hysteresis drops where the light changed by more than 25 % / 80 % (003 §4.3).
+    /// Faster response to changes, slightly more flicker.
+    pub convergence_heuristics: bool,
+    /// Seed of the per-frame random rotation of the ray set.
+    pub seed: u32,
+}
+
+impl Default for DdgiSettings {
+    fn default() -> Self {
+        Self::balanced()
+    }
+}
+
+impl DdgiSettings {
+    pub fn fast() -> Self {
+        Self { rays_per_probe: 64, hysteresis: 0.95, ..Self::balanced() }
+    }
+    pub fn balanced() -> Self {
+        Self {
+            rays_per_probe: 256,
+            irradiance_texels: 6,
+            distance_texels: 14,
+            hysteresis: 0.97,
+            distance_hysteresis: 0.97,
+            max_ray_distance: None,
+            self_shadow_bias: 0.3,
+            distance_exponent: 50.0,
+            irradiance_gamma: 5.0,
+            weights: ProbeWeights::Full,
+            convergence_heuristics: true,
+            seed: 0,
+        }
+    }
+    pub fn quality() -> Self {
+        Self { rays_per_probe: 512, hysteresis: 0.98, distance_hysteresis: 0.98, ..Self::balanced() }
+    }
+
+    /// Refuses settings that cannot work, saying which and why.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(1..=4096).contains(&self.rays_per_probe) {
+            return Err(format!("rays per probe {} is out of range: use 1…4096", self.rays_per_probe));
+        }
+        if !(2..=16).contains(&self.irradiance_texels) || !(2..=30).contains(&self.distance_texels) {
+            return Err("probe texels out of range: irradiance 2…16, distance 2…30 per side".into());
+        }
+        for (name, h) in [("hysteresis", self.hysteresis), ("distance hysteresis", self.distance_hysteresis)] {
+            if !(0.0..1.0).contains(&h) {
+                return Err(format!("{name} {h} must be in [0, 1): 1 would never update"));
+            }
+        }
+        if self.max_ray_distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
+            return Err("max ray distance must be a positive number".into());
+        }
+        if !(self.self_shadow_bias.is_finite() && self.self_shadow_bias >= 0.0) {
+            return Err("self-shadow bias must be ≥ 0".into());
+        }
+        if !(self.distance_exponent.is_finite() && self.distance_exponent >= 1.0) {
+            return Err("distance exponent must be ≥ 1".into());
+        }
+        if !(self.irradiance_gamma.is_finite() && self.irradiance_gamma >= 1.0) {
+            return Err("irradiance gamma must be ≥ 1".into());
+        }
+        Ok(())
+    }
+}

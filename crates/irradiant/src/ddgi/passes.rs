@@ -1,0 +1,319 @@
+use glam::{Mat3, Quat};
+use irradiant_gpu::{GpuContext, Profiler, read_buffer_as, wgpu};
+use irradiant_scene::ProbeVolumeDesc;
+
+use super::resources::{DdgiResources, VolumeLayout};
+use super::{DdgiSettings, ProbeWeights};
+use crate::RenderError;
+use crate::frame::FrameBuffers;
+use crate::gpu_scene::GpuScene;
+use crate::gpu_types::GpuDdgiVolume;
+use crate::pipeline::*;
+
+const WEIGHT_BACKFACE: u32 = 1;
+const WEIGHT_CHEBYSHEV: u32 = 2;
+const WEIGHT_BACKFACE_HITS: u32 = 4;
+
+/// One probe volume and its passes.
+pub struct Ddgi {
+    pub settings: DdgiSettings,
+    pub layout: VolumeLayout,
+    pub resources: DdgiResources,
+    max_ray_distance: f32,
+    /// Frames blended so far; 0 means the next update starts the probes from scratch.
+    pub frame: u32,
+    ray_directions: ComputeStage,
+    trace: ComputeStage,
+    shade: ComputeStage,
+    blend_irradiance: ComputeStage,
+    blend_distance: ComputeStage,
+    borders: ComputeStage,
+    resolve: ComputeStage,
+    visualize: ComputeStage,
+    groups: UpdateGroups,
+    frame_layout: wgpu::BindGroupLayout,
+    visualize_layout: wgpu::BindGroupLayout,
+    frame_groups: Option<(wgpu::BindGroup, wgpu::BindGroup)>,
+}
+
+struct UpdateGroups {
+    ray_directions: wgpu::BindGroup,
+    trace: wgpu::BindGroup,
+    shade: wgpu::BindGroup,
+    blend_irradiance: wgpu::BindGroup,
+    blend_distance: wgpu::BindGroup,
+    borders: wgpu::BindGroup,
+}
+
+impl Ddgi {
+    pub fn new(ctx: &GpuContext, scene: &GpuScene, desc: &ProbeVolumeDesc, settings: &DdgiSettings) -> Result<Self, RenderError> {
+        settings.validate().map_err(RenderError::Settings)?;
+        let layout = VolumeLayout::new(desc);
+        let resources = DdgiResources::new(ctx, &layout, settings)?;
+        let device = &ctx.device;
+        let max_ray_distance = settings.max_ray_distance.unwrap_or((desc.max - desc.min).length().max(1e-3) * 1.5);
+        let r = &resources;
+        // Bindings, by the names in the WGSL: 0 volume, 1 irradiance (read), 2 distance (read),
+        // 3 directions, 4 hits, 6 samples, 7 irradiance (write), 8 distance (write),
+        // 9 gbuffer, 10 indirect, 11 frame, 12 radiance.
+        let make = |label: &'static str, source: &str, entries: &[(u32, wgpu::BufferBindingType)], constants: &[(&str, String)]| {
+            let group_layout = buffer_layout(device, label, entries);
+            let stage = ComputeStage::new(ctx, label, source, constants, &[&scene.layout, &group_layout])?;
+            Ok::<_, RenderError>((stage, group_layout))
+        };
+        let (ray_directions, l_dirs) = make("ddgi/ray_directions", include_str!("ray_directions.wgsl"), &[(0, UNIFORM), (3, STORAGE_WRITE)], &[])?;
+        let (trace, l_trace) = make("ddgi/trace", include_str!("trace.wgsl"), &[(0, UNIFORM), (3, STORAGE_READ), (4, STORAGE_WRITE)], &[])?;
+        let (shade, l_shade) = make(
+            "ddgi/shade",
+            include_str!("shade.wgsl"),
+            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (3, STORAGE_READ), (4, STORAGE_READ), (6, STORAGE_WRITE)],
+            &[],
+        )?;
+        let irradiance_group = settings.irradiance_texels.max(8);
+        let distance_group = settings.distance_texels.max(8);
+        let (blend_irradiance, l_bi) = make(
+            "ddgi/blend_irradiance",
+            include_str!("blend_irradiance.wgsl"),
+            &[(0, UNIFORM), (3, STORAGE_READ), (6, STORAGE_READ), (7, STORAGE_WRITE)],
+            &[("BLEND_GROUP", format!("{irradiance_group}u"))],
+        )?;
+        let (blend_distance, l_bd) = make(
+            "ddgi/blend_distance",
+            include_str!("blend_distance.wgsl"),
+            &[(0, UNIFORM), (3, STORAGE_READ), (6, STORAGE_READ), (8, STORAGE_WRITE)],
+            &[("BLEND_GROUP", format!("{distance_group}u"))],
+        )?;
+        let (borders, l_borders) = make("ddgi/borders", include_str!("borders.wgsl"), &[(0, UNIFORM), (7, STORAGE_WRITE), (8, STORAGE_WRITE)], &[])?;
+        let (resolve, frame_layout) = make(
+            "ddgi/resolve",
+            include_str!("resolve.wgsl"),
+            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (9, STORAGE_READ), (10, STORAGE_WRITE), (11, UNIFORM)],
+            &[],
+        )?;
+        let (visualize, visualize_layout) = make(
+            "ddgi/visualize",
+            include_str!("visualize.wgsl"),
+            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (9, STORAGE_READ), (11, UNIFORM), (12, STORAGE_WRITE)],
+            &[],
+        )?;
+        let groups = UpdateGroups {
+            ray_directions: bind_at(device, "ddgi/ray_directions", &l_dirs, &[(0, &r.volume), (3, &r.directions)]),
+            trace: bind_at(device, "ddgi/trace", &l_trace, &[(0, &r.volume), (3, &r.directions), (4, &r.hits)]),
+            shade: bind_at(
+                device,
+                "ddgi/shade",
+                &l_shade,
+                &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (3, &r.directions), (4, &r.hits), (6, &r.samples)],
+            ),
+            blend_irradiance: bind_at(device, "ddgi/blend_irradiance", &l_bi, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (7, &r.irradiance)]),
+            blend_distance: bind_at(device, "ddgi/blend_distance", &l_bd, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (8, &r.distance)]),
+            borders: bind_at(device, "ddgi/borders", &l_borders, &[(0, &r.volume), (7, &r.irradiance), (8, &r.distance)]),
+        };
+        Ok(Self {
+            settings: settings.clone(),
+            layout,
+            resources,
+            max_ray_distance,
+            frame: 0,
+            ray_directions,
+            trace,
+            shade,
+            blend_irradiance,
+            blend_distance,
+            borders,
+            resolve,
+            visualize,
+            groups,
+            frame_layout,
+            visualize_layout,
+            frame_groups: None,
+        })
+    }
+
+    /// Starts the probes over (the next update blends with hysteresis 0).
+    pub fn reset(&mut self) {
+        self.frame = 0;
+    }
+
+    pub fn max_ray_distance(&self) -> f32 {
+        self.max_ray_distance
+    }
+
+    fn volume_uniform(&self) -> GpuDdgiVolume {
+        let s = &self.settings;
+        let l = &self.layout;
+        let weights = match s.weights {
+            ProbeWeights::Classic => 0,
+            ProbeWeights::Backface => WEIGHT_BACKFACE,
+            ProbeWeights::Chebyshev => WEIGHT_BACKFACE | WEIGHT_CHEBYSHEV,
+            ProbeWeights::Full => WEIGHT_BACKFACE | WEIGHT_CHEBYSHEV | WEIGHT_BACKFACE_HITS,
+        };
+        let rotation = Mat3::from_quat(random_rotation(s.seed, self.frame));
+        let row = |i: usize| rotation.row(i).extend(0.0).to_array();
+        GpuDdgiVolume {
+            origin: l.origin.into(),
+            probe_count: l.probe_count,
+            spacing: l.spacing.into(),
+            rays_per_probe: s.rays_per_probe,
+            counts: l.counts.into(),
+            probes_per_row: l.probes_per_row,
+            ray_rotation0: row(0),
+            ray_rotation1: row(1),
+            ray_rotation2: row(2),
+            irradiance_texels: s.irradiance_texels,
+            distance_texels: s.distance_texels,
+            irradiance_hysteresis: s.hysteresis,
+            distance_hysteresis: s.distance_hysteresis,
+            max_ray_distance: self.max_ray_distance,
+            self_shadow_bias: if s.weights == ProbeWeights::Full { s.self_shadow_bias } else { 0.0 },
+            distance_exponent: s.distance_exponent,
+            irradiance_gamma: s.irradiance_gamma,
+            weights,
+            frame: self.frame,
+            min_spacing: l.min_spacing(),
+            convergence_heuristics: s.convergence_heuristics as u32,
+        }
+    }
+
+    /// Writes this frame's volume parameters; call before recording the frame's passes, once a
+    /// submission (the queue applies the write before the submission runs).
+    pub fn prepare(&self, ctx: &GpuContext) {
+        ctx.queue.write_buffer(&self.resources.volume, 0, bytemuck::bytes_of(&self.volume_uniform()));
+    }
+
+    /// Records the probe update: trace, shade, blend, borders.
+    pub fn update(&mut self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, mut profiler: Option<&mut Profiler>) {
+        let rays = self.layout.probe_count * self.settings.rays_per_probe;
+        let g = &self.groups;
+        let s = &scene.bind_group;
+        self.ray_directions.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.ray_directions], [self.settings.rays_per_probe.div_ceil(64), 1, 1]);
+        self.trace.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.trace], fold_groups(rays.div_ceil(64)));
+        self.shade.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.shade], fold_groups(rays.div_ceil(64)));
+        self.record_blend(encoder, scene, profiler);
+        self.frame += 1;
+    }
+
+    /// Records only the blend and border passes (tests feed the ray samples themselves).
+    pub fn record_blend(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, mut profiler: Option<&mut Profiler>) {
+        let g = &self.groups;
+        let s = &scene.bind_group;
+        let probes = fold_groups(self.layout.probe_count);
+        self.blend_irradiance.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.blend_irradiance], probes);
+        self.blend_distance.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.blend_distance], probes);
+        let tile = |t: u32| (t + 2) * (t + 2);
+        let border_threads = self.layout.probe_count * (tile(self.settings.irradiance_texels) + tile(self.settings.distance_texels));
+        self.borders.dispatch(encoder, profiler, &[s, &g.borders], fold_groups(border_threads.div_ceil(64)));
+    }
+
+    /// Binds the frame's G-buffer and outputs; call again when they are recreated.
+    pub fn bind_frame(&mut self, ctx: &GpuContext, frame: &FrameBuffers) {
+        let r = &self.resources;
+        let resolve = bind_at(
+            &ctx.device,
+            "ddgi/resolve",
+            &self.frame_layout,
+            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (9, &frame.gbuffer), (10, &frame.indirect), (11, &frame.params)],
+        );
+        let visualize = bind_at(
+            &ctx.device,
+            "ddgi/visualize",
+            &self.visualize_layout,
+            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (9, &frame.gbuffer), (11, &frame.params), (12, &frame.radiance)],
+        );
+        self.frame_groups = Some((resolve, visualize));
+    }
+
+    /// Records ddgi/resolve: the G-buffer's indirect diffuse light into `frame.indirect`.
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers, profiler: Option<&mut Profiler>) {
+        let (group, _) = self.frame_groups.as_ref().expect("Ddgi::bind_frame before resolve");
+        self.resolve.dispatch(encoder, profiler, &[&scene.bind_group, group], [frame.width.div_ceil(8), frame.height.div_ceil(8), 1]);
+    }
+
+    /// Records ddgi/visualize: probes drawn as spheres into the composed radiance.
+    pub fn visualize(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers) {
+        let (_, group) = self.frame_groups.as_ref().expect("Ddgi::bind_frame before visualize");
+        self.visualize.dispatch(encoder, None, &[&scene.bind_group, group], [frame.width.div_ceil(8), frame.height.div_ceil(8), 1]);
+    }
+
+    /// The atlases, decoded: irradiance as cosine-weighted mean radiance (rgb), distance as
+    /// (mean, mean²); each with its width and height in texels.
+    pub fn read_atlases(&self, ctx: &GpuContext) -> Result<Atlases, RenderError> {
+        let packed: Vec<[u32; 2]> = read_buffer_as(ctx, &self.resources.irradiance)?;
+        let distance: Vec<[f32; 2]> = read_buffer_as(ctx, &self.resources.distance)?;
+        let gamma = self.settings.irradiance_gamma;
+        let unpack = |v: u32| [half_to_f32(v as u16), half_to_f32((v >> 16) as u16)];
+        let irradiance = packed
+            .iter()
+            .map(|p| {
+                let [r, g] = unpack(p[0]);
+                let [b, _] = unpack(p[1]);
+                [r, g, b].map(|c| c.max(0.0).powf(gamma))
+            })
+            .collect();
+        let (iw, ih) = self.layout.atlas_size(self.settings.irradiance_texels);
+        let (dw, dh) = self.layout.atlas_size(self.settings.distance_texels);
+        Ok(Atlases { irradiance, irradiance_size: (iw, ih), distance, distance_size: (dw, dh) })
+    }
+}
+
+/// Decoded probe atlases (see [`Ddgi::read_atlases`]).
+pub struct Atlases {
+    pub irradiance: Vec<[f32; 3]>,
+    pub irradiance_size: (u32, u32),
+    pub distance: Vec<[f32; 2]>,
+    pub distance_size: (u32, u32),
+}
+
+/// IEEE half to f32 (the atlases pack f16 pairs with WGSL's pack2x16float).
+pub fn half_to_f32(h: u16) -> f32 {
+    let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
+    let exponent = ((h >> 10) & 0x1f) as i32;
+    let mantissa = (h & 0x3ff) as f32;
+    match exponent {
+        0 => sign * mantissa * 2f32.powi(-24),
+        31 => if mantissa == 0.0 { sign * f32::INFINITY } else { f32::NAN },
+        e => sign * (1.0 + mantissa / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
+/// A uniformly random rotation for frame `frame` (Shoemake's method from three hashed numbers).
+fn random_rotation(seed: u32, frame: u32) -> Quat {
+    let hash = |mut x: u32| {
+        x ^= x >> 16;
+        x = x.wrapping_mul(0x7feb352d);
+        x ^= x >> 15;
+        x = x.wrapping_mul(0x846ca68b);
+        x ^= x >> 16;
+        x
+    };
+    let base = hash(seed.wrapping_mul(0x9e3779b9) ^ hash(frame));
+    let u = [hash(base), hash(base ^ 0x68e31da4), hash(base ^ 0xb5297a4d)].map(|v| (v >> 8) as f32 / 16_777_216.0);
+    let (a, b) = ((1.0 - u[0]).sqrt(), u[0].sqrt());
+    let (t1, t2) = (std::f32::consts::TAU * u[1], std::f32::consts::TAU * u[2]);
+    Quat::from_xyzw(a * t1.sin(), a * t1.cos(), b * t2.sin(), b * t2.cos()).normalize()
+}
+
+
+impl crate::frame::Technique for Ddgi {
+    fn name(&self) -> &'static str {
+        "ddgi"
+    }
+    fn bind_frame(&mut self, ctx: &GpuContext, frame: &FrameBuffers) {
+        Ddgi::bind_frame(self, ctx, frame);
+    }
+    fn prepare(&mut self, ctx: &GpuContext) {
+        Ddgi::prepare(self, ctx);
+    }
+    fn update(&mut self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, profiler: Option<&mut Profiler>) {
+        Ddgi::update(self, encoder, scene, profiler);
+    }
+    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers, profiler: Option<&mut Profiler>) {
+        Ddgi::resolve(self, encoder, scene, frame, profiler);
+    }
+    fn visualize(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers) {
+        Ddgi::visualize(self, encoder, scene, frame);
+    }
+    fn reset(&mut self) {
+        Ddgi::reset(self);
+    }
+}

@@ -1,0 +1,101 @@
+// ddgi: the irradiance query at any point of the volume: the 8-probe cage, trilinear ×
+// smooth backface (wrap) × Chebyshev visibility × low-weight crush, with the self-shadow bias,
+// normalised. Shared by the probe rays' shading (ddgi/shade) and the camera (ddgi/resolve).
+#import ddgi_volume
+
+@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
+// per texel: rgb as two packed f16 pairs (value^(1/gamma))
+@group(1) @binding(1) var<storage, read> irradiance_atlas: array<vec2<u32>>;
+// per texel: mean distance, mean squared distance
+@group(1) @binding(2) var<storage, read> distance_atlas: array<vec2<f32>>;
+
+fn load_irradiance(x: u32, y: u32) -> vec3<f32> {
+    let v = irradiance_atlas[y * atlas_width(volume.irradiance_texels + 2u) + x];
+    return vec3<f32>(unpack2x16float(v.x), unpack2x16float(v.y).x);
+}
+
+fn load_distance(x: u32, y: u32) -> vec2<f32> {
+    return distance_atlas[y * atlas_width(volume.distance_texels + 2u) + x];
+}
+
+// Bilinear position in a probe's tile for direction d: integer corner and fraction.
+fn tile_coord(probe: u32, texels: u32, d: vec3<f32>) -> vec2<f32> {
+    let origin = vec2<f32>(tile_origin(probe, texels + 2u)) + 1.0;
+    return origin + (oct_encode(d) * 0.5 + 0.5) * f32(texels) - 0.5;
+}
+
+fn sample_irradiance_encoded(probe: u32, d: vec3<f32>) -> vec3<f32> {
+    let c = tile_coord(probe, volume.irradiance_texels, d);
+    let c0 = floor(c);
+    let f = c - c0;
+    let x = u32(c0.x);
+    let y = u32(c0.y);
+    let top = mix(load_irradiance(x, y), load_irradiance(x + 1u, y), f.x);
+    let bottom = mix(load_irradiance(x, y + 1u), load_irradiance(x + 1u, y + 1u), f.x);
+    return mix(top, bottom, f.y);
+}
+
+fn sample_distance(probe: u32, d: vec3<f32>) -> vec2<f32> {
+    let c = tile_coord(probe, volume.distance_texels, d);
+    let c0 = floor(c);
+    let f = c - c0;
+    let x = u32(c0.x);
+    let y = u32(c0.y);
+    let top = mix(load_distance(x, y), load_distance(x + 1u, y), f.x);
+    let bottom = mix(load_distance(x, y + 1u), load_distance(x + 1u, y + 1u), f.x);
+    return mix(top, bottom, f.y);
+}
+
+// Cosine-weighted mean radiance arriving at p around normal n (irradiance / π): a Lambertian
+// surface of albedo ρ reflects ρ times this. `wo` points from p towards the viewer.
+fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+    let bias = (n * 0.2 + wo * 0.8) * (0.75 * volume.min_spacing * volume.self_shadow_bias);
+    let biased = p + bias;
+    let max_base = vec3<i32>(volume.counts) - vec3<i32>(2);
+    let grid = (biased - volume.origin) / volume.spacing;
+    let base = clamp(vec3<i32>(floor(grid)), vec3<i32>(0), max(max_base, vec3<i32>(0)));
+    let alpha = saturate(grid - vec3<f32>(base));
+    // Half of the gamma curve is decoded before blending probes and half after, so that the
+    // probes blend in a perceptual (gamma 2) space (003, Listing 2).
+    let half_gamma = volume.irradiance_gamma * 0.5;
+    var sum = vec3<f32>(0.0);
+    var weight_sum = 0.0;
+    for (var i = 0u; i < 8u; i++) {
+        let offset = vec3<u32>(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u);
+        let coord = min(vec3<u32>(base) + offset, volume.counts - 1u);
+        let probe = probe_index(coord);
+        let probe_pos = probe_position(probe);
+        let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
+        var w = 1.0;
+        if (volume.weights & WEIGHT_BACKFACE) != 0u {
+            // Smooth backface: wrap shading of the direction to the probe.
+            let to_probe = normalize(probe_pos - p);
+            let wrap = (dot(to_probe, n) + 1.0) * 0.5;
+            w *= wrap * wrap + 0.2;
+        }
+        if (volume.weights & WEIGHT_CHEBYSHEV) != 0u {
+            let probe_to_point = biased - probe_pos;
+            let r = length(probe_to_point);
+            let moments = sample_distance(probe, probe_to_point / max(r, 1e-6));
+            if r > moments.x {
+                let variance = abs(moments.y - moments.x * moments.x);
+                let d = r - moments.x;
+                let chebyshev = variance / (variance + d * d);
+                w *= max(chebyshev * chebyshev * chebyshev, 0.0);
+            }
+        }
+        w = max(w, 1e-6);
+        // Crush tiny weights (the "log perception" weight): light leaks read as far brighter
+        // than their weight suggests in the dark.
+        let crush = 0.2;
+        if w < crush {
+            w *= w * w / (crush * crush);
+        }
+        w *= trilinear.x * trilinear.y * trilinear.z;
+        let encoded = sample_irradiance_encoded(probe, n);
+        sum += w * pow(max(encoded, vec3<f32>(0.0)), vec3<f32>(half_gamma));
+        weight_sum += w;
+    }
+    let blended = sum / max(weight_sum, 1e-9);
+    return blended * blended;
+}

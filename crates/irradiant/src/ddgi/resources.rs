@@ -1,0 +1,96 @@
+//! DDGI's GPU memory: the volume uniform, the ray buffers and the two probe atlases.
+
+use glam::{UVec3, Vec3};
+use irradiant_gpu::{GpuContext, wgpu};
+use irradiant_scene::ProbeVolumeDesc;
+
+use super::DdgiSettings;
+use crate::RenderError;
+use crate::gpu_types::{GpuDdgiRayHit, GpuDdgiRaySample};
+use crate::pipeline::{storage_buffer, uniform_buffer};
+
+/// Where the probes are and how the atlases are laid out.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VolumeLayout {
+    pub origin: Vec3,
+    pub spacing: Vec3,
+    pub counts: UVec3,
+    pub probe_count: u32,
+    pub probes_per_row: u32,
+    pub rows: u32,
+}
+
+impl VolumeLayout {
+    /// Probes on a regular grid from `min` to `max` (one probe a volume of count 1 sits in the middle).
+    pub fn new(desc: &ProbeVolumeDesc) -> Self {
+        let counts = UVec3::from(desc.counts).max(UVec3::ONE);
+        let steps = (counts.as_vec3() - 1.0).max(Vec3::ONE);
+        let extent = desc.max - desc.min;
+        let spacing = extent / steps;
+        let origin = Vec3::select(counts.cmpeq(UVec3::ONE).into(), (desc.min + desc.max) * 0.5, desc.min);
+        let probe_count = counts.x * counts.y * counts.z;
+        let probes_per_row = (probe_count as f32).sqrt().ceil() as u32;
+        let rows = probe_count.div_ceil(probes_per_row);
+        Self { origin, spacing: Vec3::select(counts.cmpeq(UVec3::ONE).into(), extent.max(Vec3::splat(1e-3)), spacing), counts, probe_count, probes_per_row, rows }
+    }
+
+    pub fn min_spacing(&self) -> f32 {
+        self.spacing.min_element()
+    }
+
+    pub fn probe_position(&self, probe: u32) -> Vec3 {
+        let c = self.counts;
+        let coord = UVec3::new(probe % c.x, (probe / c.x) % c.y, probe / (c.x * c.y));
+        self.origin + coord.as_vec3() * self.spacing
+    }
+
+    /// Atlas size in texels for tiles of `texels` interior texels.
+    pub fn atlas_size(&self, texels: u32) -> (u32, u32) {
+        (self.probes_per_row * (texels + 2), self.rows * (texels + 2))
+    }
+}
+
+pub struct DdgiResources {
+    pub volume: wgpu::Buffer,
+    /// The rotated ray set of this frame (vec4 a ray).
+    pub directions: wgpu::Buffer,
+    pub hits: wgpu::Buffer,
+    pub samples: wgpu::Buffer,
+    /// Two packed f16 pairs a texel (rgb, value^(1/gamma)).
+    pub irradiance: wgpu::Buffer,
+    /// Two f32 a texel: mean distance and mean squared distance.
+    pub distance: wgpu::Buffer,
+}
+
+impl DdgiResources {
+    pub fn new(ctx: &GpuContext, layout: &VolumeLayout, settings: &DdgiSettings) -> Result<Self, RenderError> {
+        let rays = layout.probe_count as u64 * settings.rays_per_probe as u64;
+        let (iw, ih) = layout.atlas_size(settings.irradiance_texels);
+        let (dw, dh) = layout.atlas_size(settings.distance_texels);
+        let sizes = [
+            ("ddgi/hits", rays * size_of::<GpuDdgiRayHit>() as u64),
+            ("ddgi/samples", rays * size_of::<GpuDdgiRaySample>() as u64),
+            ("ddgi/irradiance_atlas", iw as u64 * ih as u64 * 8),
+            ("ddgi/distance_atlas", dw as u64 * dh as u64 * 8),
+        ];
+        let limit = ctx.info.max_storage_buffer_binding_size;
+        for (label, size) in sizes {
+            if size > limit {
+                return Err(RenderError::Settings(format!(
+                    "{label} would need {} MiB, more than this adapter binds ({} MiB): use fewer probes or fewer rays per probe",
+                    size >> 20,
+                    limit >> 20
+                )));
+            }
+        }
+        let device = &ctx.device;
+        Ok(Self {
+            volume: uniform_buffer(device, "ddgi/volume", size_of::<crate::gpu_types::GpuDdgiVolume>()),
+            directions: storage_buffer(device, "ddgi/directions", settings.rays_per_probe as u64 * 16),
+            hits: storage_buffer(device, sizes[0].0, sizes[0].1),
+            samples: storage_buffer(device, sizes[1].0, sizes[1].1),
+            irradiance: storage_buffer(device, sizes[2].0, sizes[2].1),
+            distance: storage_buffer(device, sizes[3].0, sizes[3].1),
+        })
+    }
+}

@@ -1,0 +1,67 @@
+// ddgi/shade: the radiance each probe ray brings back: direct light (punctual lights with
+// shadow rays, one emitter sample) and indirect light from last frame's probes, so that
+// bounces accumulate over frames. Misses take the sky. Emission is left out: the frame's
+// direct pass samples every emitter already, so the probes hold indirect light only.
+#import ddgi_query
+#import ddgi_rays
+#import lights
+#import random
+
+@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(1) @binding(4) var<storage, read> hits: array<GpuDdgiRayHit>;
+@group(1) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
+
+fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
+    let origin = offset_ray(s.position, s.geometric_normal);
+    let e = sample_emitter(rand(rng), rand2(rng));
+    let to_light = e.position - origin;
+    let d2 = dot(to_light, to_light);
+    let distance = sqrt(d2);
+    let wi = to_light / distance;
+    let cos_light = -dot(e.normal, wi);
+    let cos_surface = dot(s.normal, wi);
+    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, wi) <= 0.0 || occluded(origin, wi, distance * (1.0 - 1e-4)) {
+        return vec3<f32>(0.0);
+    }
+    return brdf_eval(s, wo, wi) * e.radiance * cos_surface * cos_light / (e.pdf_area * d2);
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let index = ray_index(id, groups);
+    if index >= volume.probe_count * volume.rays_per_probe {
+        return;
+    }
+    let probe = index / volume.rays_per_probe;
+    let dir = directions[index % volume.rays_per_probe].xyz;
+    let hit = hits[index];
+    var out: GpuDdgiRaySample;
+    if hit.t < 0.0 {
+        out.radiance = scene_info.sky;
+        out.distance = volume.max_ray_distance;
+        samples[index] = out;
+        return;
+    }
+    let origin = probe_position(probe);
+    let tri = triangles[hit.triangle];
+    let face = to_world_normal(instances[hit.instance], cross(tri.e1, tri.e2));
+    if (volume.weights & WEIGHT_BACKFACE_HITS) != 0u && dot(face, dir) > 0.0 {
+        // Inside geometry, or looking at the back of a one-sided wall: no light, and a
+        // shortened depth so that the probe reads this direction as shadowed.
+        out.radiance = vec3<f32>(0.0);
+        out.distance = -0.2 * hit.t;
+        samples[index] = out;
+        return;
+    }
+    let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, unpack2x16unorm(hit.bary));
+    let wo = -dir;
+    var l = direct_punctual(s, wo);
+    if scene_info.emitter_count > 0u {
+        var rng = rng_seed(index, volume.frame, 0x68bc21ebu);
+        l += emitter_light(s, wo, &rng);
+    }
+    l += diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, wo);
+    out.radiance = l;
+    out.distance = hit.t;
+    samples[index] = out;
+}
