@@ -170,7 +170,9 @@ pub fn two_rooms() -> Scene {
         intensity: 12.0,
         enabled: true,
     });
-    scene.probe_volumes.push(ProbeVolumeDesc { name: "rooms".into(), min: v(-3.5, 0.5, -1.5), max: v(3.5, 2.5, 1.5), counts: [8, 3, 4] });
+    // Probes span the rooms up to 10–20 cm from the walls (irradiance is not extrapolated past
+    // the outermost probes), and straddle the dividing wall at x = ±0.43.
+    scene.probe_volumes.push(ProbeVolumeDesc { name: "rooms".into(), min: v(-3.9, 0.2, -1.9), max: v(3.9, 2.8, 1.9), counts: [10, 4, 5] });
     scene.regions.push(Region { name: "dark-room".into(), min: v(h, 0.0, -2.0), max: v(4.0, 3.0, 2.0) });
     scene.regions.push(Region { name: "lit-room".into(), min: v(-4.0, 0.0, -2.0), max: v(-h, 3.0, 2.0) });
     scene
@@ -229,6 +231,8 @@ pub fn furnace() -> Scene {
     let camera = Camera { position: Vec3::new(0.0, 0.0, 4.0), target: Vec3::ZERO, up: Vec3::Y, fov_y_degrees: 40.0 };
     let mut scene = b.into_scene("furnace", camera);
     scene.sky = Vec3::ONE;
+    // Probes around the sphere, none inside it (the inner ones sit at |p| = 1.15).
+    scene.probe_volumes.push(ProbeVolumeDesc { name: "around".into(), min: Vec3::splat(-2.0), max: Vec3::splat(2.0), counts: [4, 4, 4] });
     scene.materials[0].base_color = Vec4::ONE;
     scene
 }

@@ -48,6 +48,6 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         return;
     }
     let value = select(vec2<f32>(volume.max_ray_distance, volume.max_ray_distance * volume.max_ray_distance), sum / weight_sum, weight_sum > 0.0);
-    let hysteresis = select(volume.distance_hysteresis, 0.0, volume.frame == 0u);
+    let hysteresis = startup_hysteresis(volume.distance_hysteresis);
     distance_atlas[index] = mix(value, old, hysteresis);
 }

@@ -49,7 +49,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     let index = texel.y * atlas_width(texels + 2u) + texel.x;
     let packed_old = irradiance_atlas[index];
     let old = vec3<f32>(unpack2x16float(packed_old.x), unpack2x16float(packed_old.y).x);
-    var hysteresis = select(volume.irradiance_hysteresis, 0.0, volume.frame == 0u);
+    var hysteresis = startup_hysteresis(volume.irradiance_hysteresis);
     if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
         let delta = abs(encoded - old);
         let change = max(delta.x, max(delta.y, delta.z)) / max(max(max(encoded.x, encoded.y), max(encoded.z, max(old.x, max(old.y, old.z)))), 1e-4);

@@ -72,3 +72,11 @@ fn texel_direction(texel: vec2<u32>, texels: u32) -> vec3<f32> {
 fn rotate_ray(d: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(dot(volume.ray_rotation0.xyz, d), dot(volume.ray_rotation1.xyz, d), dot(volume.ray_rotation2.xyz, d));
 }
+
+// A new volume starts as a running mean (frame f keeps f/(f+1) of the old value) until that
+// reaches the set hysteresis: probes converge in tens of frames from nothing instead of
+// creeping up at 1 − hysteresis a frame, and the first frame (hysteresis 0) starts them.
+fn startup_hysteresis(hysteresis: f32) -> f32 {
+    let f = f32(volume.frame);
+    return min(hysteresis, f / (f + 1.0));
+}

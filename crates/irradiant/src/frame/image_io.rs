@@ -23,6 +23,21 @@ impl Image {
         sum.map(|s| s / self.pixels.len().max(1) as f64)
     }
 
+    /// sRGB8 RGB through the same exposure and curve as `frame/tonemap` (its CPU twin), for
+    /// metrics such as FLIP that compare display values.
+    pub fn to_srgb8(&self, exposure: f32, filmic: bool) -> Vec<u8> {
+        let aces = |x: f32| ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0);
+        let srgb = |c: f32| if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        self.pixels
+            .iter()
+            .flat_map(|p| p.map(|v| {
+                let v = (v * exposure).max(0.0);
+                let v = if filmic { aces(v) } else { v.min(1.0) };
+                (srgb(v) * 255.0 + 0.5) as u8
+            }))
+            .collect()
+    }
+
     pub fn write_exr(&self, path: &Path) -> Result<(), RenderError> {
         let data: Vec<f32> = self.pixels.iter().flatten().copied().collect();
         let image = image::Rgb32FImage::from_raw(self.width, self.height, data).expect("pixel count matches size");

@@ -25,3 +25,82 @@ pub fn shared_scenes() -> std::path::PathBuf {
 pub fn repo_root() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
+
+use irradiant::GpuScene;
+use irradiant::ddgi::{Ddgi, DdgiSettings};
+use irradiant::frame::{FrameRenderer, FrameSettings, Image, Technique};
+use irradiant::gpu_types::GpuGBufferTexel;
+use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+use irradiant_scene::{Region, Scene};
+
+/// What a real-time render leaves behind for measuring.
+pub struct FrameResult {
+    pub total: Image,
+    pub direct: Image,
+    pub indirect: Image,
+    pub gbuffer: Vec<GpuGBufferTexel>,
+}
+
+/// Renders `frames` frames of a static scene with DDGI (or direct light only, for `None`).
+pub fn render_frames(ctx: &GpuContext, scene: &Scene, size: (u32, u32), settings: Option<&DdgiSettings>, frames: u32) -> FrameResult {
+    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
+    let mut frame = FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
+    let mut ddgi = settings.map(|s| {
+        let mut d = Ddgi::new(ctx, &gpu_scene, &scene.probe_volumes[0], s).unwrap();
+        d.bind_frame(ctx, &frame.buffers);
+        d
+    });
+    for _ in 0..frames {
+        let technique = ddgi.as_mut().map(|d| d as &mut dyn Technique);
+        frame.render(ctx, &gpu_scene, &scene.camera, technique, false, None).unwrap();
+    }
+    FrameResult {
+        total: frame.image(ctx).unwrap(),
+        direct: frame.read(ctx, &frame.buffers.direct).unwrap(),
+        indirect: frame.read(ctx, &frame.buffers.indirect).unwrap(),
+        gbuffer: frame.read_gbuffer(ctx).unwrap(),
+    }
+}
+
+pub fn path_trace(ctx: &GpuContext, scene: &Scene, size: (u32, u32), spp: u32) -> Image {
+    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
+    let mut tracer = PathTracer::new(ctx, &gpu_scene, size.0, size.1).unwrap();
+    let settings = PathTraceSettings { samples_per_pixel: spp, samples_per_dispatch: 32, max_bounces: 64, seed: 7 };
+    tracer.render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {}).unwrap()
+}
+
+/// Pixels whose visible surface lies inside the region.
+pub fn region_mask(gbuffer: &[GpuGBufferTexel], region: &Region) -> Vec<bool> {
+    gbuffer
+        .iter()
+        .map(|g| {
+            let p = glam::Vec3::from(g.position);
+            g.depth >= 0.0 && p.cmpge(region.min).all() && p.cmple(region.max).all()
+        })
+        .collect()
+}
+
+/// Mean luminance of an image over the masked pixels.
+pub fn masked_mean(image: &Image, mask: &[bool]) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for (p, &m) in image.pixels.iter().zip(mask) {
+        if m {
+            sum += 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
+            n += 1;
+        }
+    }
+    assert!(n > 0, "the region covers no pixel");
+    sum / n as f64
+}
+
+/// The path tracer's indirect light: its total minus the frame's direct light and emission.
+pub fn path_traced_indirect(total: &Image, frame: &FrameResult) -> Image {
+    let pixels = total
+        .pixels
+        .iter()
+        .zip(&frame.direct.pixels)
+        .zip(&frame.gbuffer)
+        .map(|((t, d), g)| [0, 1, 2].map(|c| if g.depth < 0.0 { 0.0 } else { t[c] - d[c] - g.emission[c] }))
+        .collect();
+    Image { width: total.width, height: total.height, pixels }
+}

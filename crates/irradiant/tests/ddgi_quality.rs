@@ -1,0 +1,69 @@
+//! DDGI against the path tracer on the built-in test scenes (lavapipe-sized), with figures
+//! printed for docs/ddgi.md.
+
+mod common;
+
+use common::*;
+use irradiant::ddgi::{DdgiSettings, ProbeWeights};
+
+/// Settings for converging a static scene quickly on a CPU adapter: hysteresis 0.9 (about ten
+/// frames of memory) instead of 0.97, so that 120 frames carry light through several bounces.
+fn converging(weights: ProbeWeights) -> DdgiSettings {
+    DdgiSettings { weights, hysteresis: 0.9, rays_per_probe: 256, ..DdgiSettings::balanced() }
+}
+
+#[test]
+fn two_rooms_full_ddgi_is_ten_times_closer_than_classic_probes_in_the_dark_room() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("two-rooms").unwrap().scene;
+    let size = (64, 48);
+    let classic = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Classic)), 120);
+    let full = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Full)), 120);
+    let reference = path_trace(&ctx, &scene, size, 1024);
+    let mask = region_mask(&full.gbuffer, scene.region("dark-room").unwrap());
+    let pt = masked_mean(&path_traced_indirect(&reference, &full), &mask);
+    let (c, f) = (masked_mean(&classic.indirect, &mask), masked_mean(&full.indirect, &mask));
+    eprintln!("two-rooms dark-room mean indirect luminance: path tracer {pt:.5}, classic probes {c:.5} (error {:.5}), full DDGI {f:.5} (error {:.5})", (c - pt).abs(), (f - pt).abs());
+    assert!((f - pt).abs() * 10.0 <= (c - pt).abs(), "full DDGI must be at least 10× closer to the path tracer than classic probes");
+}
+
+/// Cornell box colour bleeding: FLIP of converged DDGI against the path-traced reference.
+#[test]
+fn cornell_box_converged_ddgi_is_within_flip_0_1_of_the_path_tracer() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (64, 64);
+    let ddgi = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Full)), 120);
+    let reference = path_trace(&ctx, &scene, size, 1024);
+    let flip = irradiant_eval::flip(&reference.to_srgb8(1.0, true), &ddgi.total.to_srgb8(1.0, true), size.0, size.1).unwrap();
+    let none = render_frames(&ctx, &scene, size, None, 60);
+    let flip_none = irradiant_eval::flip(&reference.to_srgb8(1.0, true), &none.total.to_srgb8(1.0, true), size.0, size.1).unwrap();
+    eprintln!("cornell FLIP against the path tracer: DDGI mean {:.4} p95 {:.4}; direct light only mean {:.4}", flip.mean, flip.p95, flip_none.mean);
+    // Bound from issue 3 (mean FLIP ≤ 0.1). The reference's own noise at 1024 spp adds about
+    // 0.01–0.02 of FLIP at 64×64; without indirect light the error is several times larger.
+    assert!(flip.mean <= 0.1, "mean FLIP {} above 0.1", flip.mean);
+    assert!(flip.mean * 2.0 < flip_none.mean, "DDGI must be much closer to the reference than no indirect light");
+}
+
+/// The light-field paper's Figure 10 setup: probes swallowed by cylinders must not darken the
+/// surfaces around the cylinders (the "dark halo").
+#[test]
+fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("box-cylinders").unwrap().scene;
+    let size = (64, 48);
+    let full = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Full)), 120);
+    let classic = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Classic)), 120);
+    let reference = path_trace(&ctx, &scene, size, 1024);
+    let mask = region_mask(&full.gbuffer, scene.region("around-cylinders").unwrap());
+    let pt = masked_mean(&path_traced_indirect(&reference, &full), &mask);
+    let (f, c) = (masked_mean(&full.indirect, &mask), masked_mean(&classic.indirect, &mask));
+    eprintln!("box-cylinders indirect luminance around the cylinders: path tracer {pt:.5}, full DDGI {f:.5} ({:+.1} %), classic probes {c:.5} ({:+.1} %)", (f / pt - 1.0) * 100.0, (c / pt - 1.0) * 100.0);
+    // A dark halo is a deficit: the swallowed probes' black interiors pull the surroundings
+    // down. Measured on lavapipe: classic probes −88 %, Chebyshev without the backface-hit
+    // rule −64 %, full DDGI −21 %, and full DDGI with 7×4×7 probes −12 % — what remains shrinks
+    // with probe density, so it is interpolation error, not a halo. Bound: 25 %, and classic
+    // probes at least three times worse.
+    assert!((f / pt - 1.0).abs() < 0.25, "DDGI differs from the path tracer by {:.1} % around the cylinders", (f / pt - 1.0) * 100.0);
+    assert!((c - pt).abs() > 3.0 * (f - pt).abs(), "classic probes should show the dark halo that DDGI removes");
+}
