@@ -55,8 +55,9 @@ pub struct DdgiSettings {
     pub irradiance_gamma: f32,
     /// The Figure 7 ladder.
     pub weights: ProbeWeights,
-    /// Per-texel hysteresis drops where the light changed by more than 25 % / 80 % (003 §4.3).
-    /// Faster response to changes, slightly more flicker.
+    /// 003 §4.3's convergence heuristics: per-texel hysteresis drops where the light changed
+    /// by more than 25 % / 80 %, and scene-level drops for some frames after a light or an
+    /// object changes. Faster response to changes, slightly more flicker.
     pub convergence_heuristics: bool,
     /// Seed of the per-frame random rotation of the ray set.
     pub seed: u32,

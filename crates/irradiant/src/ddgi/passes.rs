@@ -34,6 +34,8 @@ pub struct Ddgi {
     frame_layout: wgpu::BindGroupLayout,
     visualize_layout: wgpu::BindGroupLayout,
     frame_groups: Option<(wgpu::BindGroup, wgpu::BindGroup)>,
+    /// Active hysteresis reductions: (frames left, irradiance factor, distance factor).
+    boosts: Vec<(u32, f32, f32)>,
 }
 
 struct UpdateGroups {
@@ -127,6 +129,7 @@ impl Ddgi {
             frame_layout,
             visualize_layout,
             frame_groups: None,
+            boosts: Vec::new(),
         })
     }
 
@@ -137,6 +140,30 @@ impl Ddgi {
 
     pub fn max_ray_distance(&self) -> f32 {
         self.max_ray_distance
+    }
+
+    /// 003 §4.3's scene-level heuristics: a small lighting change lowers the irradiance
+    /// hysteresis by 15 % for 4 frames, a large one by 50 % for 10 frames; an object that moves
+    /// lowers irradiance hysteresis by 50 % for 10 frames and visibility's by 50 % for 7.
+    pub fn scene_changed(&mut self, change: &crate::frame::SceneChange) {
+        use crate::frame::LightingChange;
+        if !self.settings.convergence_heuristics {
+            return;
+        }
+        match change.lighting {
+            LightingChange::Small => self.boosts.push((4, 0.85, 1.0)),
+            LightingChange::Large => self.boosts.push((10, 0.5, 1.0)),
+            LightingChange::None => {}
+        }
+        if change.geometry {
+            self.boosts.push((10, 0.5, 1.0));
+            self.boosts.push((7, 1.0, 0.5));
+        }
+    }
+
+    /// This frame's hysteresis multipliers (irradiance, distance) from the active boosts.
+    fn boost_factors(&self) -> (f32, f32) {
+        self.boosts.iter().fold((1.0f32, 1.0f32), |(i, d), b| (i.min(b.1), d.min(b.2)))
     }
 
     fn volume_uniform(&self) -> GpuDdgiVolume {
@@ -162,8 +189,8 @@ impl Ddgi {
             ray_rotation2: row(2),
             irradiance_texels: s.irradiance_texels,
             distance_texels: s.distance_texels,
-            irradiance_hysteresis: s.hysteresis,
-            distance_hysteresis: s.distance_hysteresis,
+            irradiance_hysteresis: s.hysteresis * self.boost_factors().0,
+            distance_hysteresis: s.distance_hysteresis * self.boost_factors().1,
             max_ray_distance: self.max_ray_distance,
             self_shadow_bias: if s.weights == ProbeWeights::Full { s.self_shadow_bias } else { 0.0 },
             distance_exponent: s.distance_exponent,
@@ -191,6 +218,10 @@ impl Ddgi {
         self.shade.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.shade], fold_groups(rays.div_ceil(64)));
         self.record_blend(encoder, scene, profiler);
         self.frame += 1;
+        for boost in &mut self.boosts {
+            boost.0 -= 1;
+        }
+        self.boosts.retain(|b| b.0 > 0);
     }
 
     /// Records only the blend and border passes (tests feed the ray samples themselves).
@@ -315,5 +346,8 @@ impl crate::frame::Technique for Ddgi {
     }
     fn reset(&mut self) {
         Ddgi::reset(self);
+    }
+    fn scene_changed(&mut self, change: &crate::frame::SceneChange) {
+        Ddgi::scene_changed(self, change);
     }
 }

@@ -4,7 +4,7 @@
 mod image_io;
 mod renderer;
 
-pub use renderer::{FrameBuffers, FrameRenderer, FrameSettings, Technique};
+pub use renderer::{FrameBuffers, FrameRenderer, FrameSettings, LightingChange, SceneChange, Technique, apply_pose};
 
 pub use image_io::{Image, write_png};
 

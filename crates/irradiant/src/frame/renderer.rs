@@ -1,6 +1,6 @@
 use glam::Vec3;
 use irradiant_gpu::{GpuContext, Profiler, wgpu};
-use irradiant_scene::Camera;
+use irradiant_scene::{Camera, Pose};
 
 use super::{Image, ToneSettings, Tonemapper, read_radiance};
 use crate::RenderError;
@@ -26,6 +26,64 @@ pub trait Technique {
     fn visualize(&self, _encoder: &mut wgpu::CommandEncoder, _scene: &GpuScene, _frame: &FrameBuffers) {}
     /// Forgets all history (the next frame starts from scratch).
     fn reset(&mut self);
+    /// Told when the scene changes between frames, so that it can adapt (DDGI lowers its
+    /// hysteresis for a while, 003 §4.3).
+    fn scene_changed(&mut self, _change: &SceneChange) {}
+}
+
+/// How much the lighting changed between two poses (003 §4.3's scene-level heuristics).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
+pub enum LightingChange {
+    #[default]
+    None,
+    /// A light moved, turned, or changed its power by less than half.
+    Small,
+    /// A light switched on or off, or its power changed by half or more.
+    Large,
+}
+
+/// What changed between two poses of the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SceneChange {
+    pub lighting: LightingChange,
+    /// An instance moved.
+    pub geometry: bool,
+}
+
+impl SceneChange {
+    pub fn between(old: &Pose, new: &Pose) -> Self {
+        let mut lighting = LightingChange::None;
+        for (a, b) in old.lights.iter().zip(&new.lights) {
+            let (pa, pb) = (a.power().max_element(), b.power().max_element());
+            let change = if (pa > 0.0) != (pb > 0.0) || (pa - pb).abs() >= 0.5 * pa.max(pb) {
+                LightingChange::Large
+            } else if a != b {
+                LightingChange::Small
+            } else {
+                LightingChange::None
+            };
+            lighting = lighting.max(change);
+        }
+        Self { lighting, geometry: old.instance_transforms != new.instance_transforms }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.lighting == LightingChange::None && !self.geometry
+    }
+}
+
+/// Moves the scene to a new pose: uploads it, resets the frame's accumulated history and tells
+/// the technique what changed — the one path by which a change reaches everything it affects.
+pub fn apply_pose(ctx: &GpuContext, scene: &mut GpuScene, frame: &mut FrameRenderer, technique: Option<&mut dyn Technique>, old: &Pose, new: &Pose) {
+    let change = SceneChange::between(old, new);
+    if change.is_empty() && old == new {
+        return;
+    }
+    scene.update(ctx, new);
+    frame.invalidate_history();
+    if let Some(t) = technique {
+        t.scene_changed(&change);
+    }
 }
 
 /// How the frame renders what is not the technique's job.
