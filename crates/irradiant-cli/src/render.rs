@@ -3,7 +3,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use irradiant::ddgi::{Ddgi, DdgiSettings, ProbeWeights};
-use irradiant::frame::{FrameRenderer, FrameSettings, Technique, ToneSettings, Tonemapper, apply_pose, write_png};
+use irradiant::frame::{FrameRenderer, FrameSettings, Technique as FrameTechnique, ToneSettings, Tonemapper, apply_pose, write_png};
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
 
@@ -173,9 +173,9 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             let mut pose = scene.pose_at(0.0);
             for i in 0..args.frames {
                 let next = scene.pose_at(i as f32 / args.fps);
-                apply_pose(&ctx, &mut gpu_scene, &mut frame, ddgi.as_mut().map(|d| d as &mut dyn Technique), &pose, &next);
+                apply_pose(&ctx, &mut gpu_scene, &mut frame, ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique), &pose, &next);
                 pose = next;
-                frame.render(&ctx, &gpu_scene, &scene.camera, ddgi.as_mut().map(|d| d as &mut dyn Technique), args.ddgi.show_probes, None)?;
+                frame.render(&ctx, &gpu_scene, &scene.camera, ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique), args.ddgi.show_probes, None)?;
                 if args.sequence {
                     write_frame(&ctx, &frame, &numbered(&args.out, i + 1), &tone)?;
                 }
