@@ -1,18 +1,37 @@
 #!/usr/bin/env bash
 # Runs on the lent NVIDIA machine (see BENCHMARKS.md for how): prints the adapter, times every
-# pass on Sponza, Sibenik and the Cornell box at 1920×1080, and renders the README's pictures.
-# Expects .dev/ as tools/device/pack.sh lays it out; writes into $OUT.
+# pass at 1920×1080 (ray casting and the path tracer on three scenes; the DDGI frame on
+# Sibenik at the paper's probe grids and ray counts, and on the other scenes' own volumes),
+# and renders the pictures of the README and docs/. Expects .dev/ as tools/device/pack.sh lays
+# it out; writes into $OUT (at most 8 files come back, so the pictures travel as one tar).
 set -euo pipefail
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
 export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 cd .dev/repo
 bin=../irradiant
+sponza=scenes/sponza/sponza.toml
+sibenik=scenes/sibenik/sibenik.toml
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
 $bin info | tee "$OUT/info.txt"
-$bin bench --scene cornell,scenes/sponza/sponza.toml,scenes/sibenik/sibenik.toml --size 1920x1080 --iterations 30 --json "$OUT/bench.json" | tee "$OUT/bench.txt"
+$bin bench --scene cornell,$sponza,$sibenik --size 1920x1080 --iterations 30 --json "$OUT/bench.json" | tee "$OUT/bench.txt"
+$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --ddgi-probes 16x8x16,32x8x32 --ddgi-rays 32,64,128,256 --json "$OUT/ddgi-sibenik.json" | tee "$OUT/ddgi.txt"
+$bin bench --scene cornell,two-rooms,$sponza --size 1920x1080 --iterations 30 --ddgi-probes scene --ddgi-rays 128,256 --json "$OUT/ddgi-scenes.json" | tee -a "$OUT/ddgi.txt"
 if [ "${RENDER:-1}" = 1 ]; then
-    $bin render --scene cornell --spp 4096 --size 512x512 --out "$OUT/cornell.png"
-    $bin render --scene scenes/sponza/sponza.toml --spp 2048 --size 640x400 --out "$OUT/sponza.png"
-    $bin render --scene scenes/sibenik/sibenik.toml --spp 2048 --size 640x400 --out "$OUT/sibenik.png"
+    img=$(mktemp -d)
+    $bin render --scene cornell --spp 4096 --size 512x512 --out "$img/cornell.png"
+    $bin render --scene $sponza --spp 2048 --size 640x400 --out "$img/sponza.png"
+    $bin render --scene $sibenik --spp 2048 --size 640x400 --out "$img/sibenik.png"
+    $bin render --scene cornell --technique ddgi --frames 200 --size 512x512 --out "$img/cornell-ddgi.png"
+    $bin render --scene cornell --technique ddgi --frames 200 --size 512x512 --show-probes --out "$img/cornell-ddgi-probes.png" --dump-atlas "$img"
+    $bin render --scene $sponza --technique ddgi --frames 300 --size 640x400 --out "$img/sponza-ddgi.png"
+    $bin render --scene $sibenik --technique ddgi --frames 300 --size 640x400 --out "$img/sibenik-ddgi.png"
+    for w in classic backface chebyshev full; do
+        $bin render --scene two-rooms --technique ddgi --weights $w --frames 300 --size 480x360 --out "$img/two-rooms-$w.png"
+    done
+    $bin render --scene two-rooms --spp 4096 --size 480x360 --out "$img/two-rooms-path.png"
+    $bin render --scene box-cylinders --technique ddgi --weights classic --frames 300 --size 480x360 --out "$img/box-cylinders-classic.png"
+    $bin render --scene box-cylinders --technique ddgi --frames 300 --size 480x360 --out "$img/box-cylinders-ddgi.png"
+    $bin render --scene box-cylinders --spp 4096 --size 480x360 --out "$img/box-cylinders-path.png"
+    tar -C "$img" -cf "$OUT/images.tar" .
 fi

@@ -9,6 +9,8 @@ use glam::Vec3;
 use irradiant::gpu_types::{GpuCamera, GpuRay};
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant::raycast::RayCaster;
+use irradiant::ddgi::{Ddgi, DdgiSettings};
+use irradiant::frame::{FrameRenderer, FrameSettings, Technique};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
 use irradiant_gpu::{Profiler, wgpu};
 use rand::{Rng, SeedableRng, rngs::StdRng};
@@ -37,6 +39,13 @@ pub struct BenchArgs {
     /// A quick check that every pass runs (CI): 64×64, 2 iterations, no warm-up.
     #[arg(long)]
     pub smoke: bool,
+    /// Also time the real-time frame with DDGI, for each probe grid listed (e.g.
+    /// 16x8x16,32x8x32; "scene" takes the scene's own volume).
+    #[arg(long, value_delimiter = ',')]
+    pub ddgi_probes: Vec<String>,
+    /// Rays per probe to time DDGI with, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "256")]
+    pub ddgi_rays: Vec<u32>,
 }
 
 #[derive(Serialize)]
@@ -47,6 +56,24 @@ struct PassRecord {
     min_ms: f64,
     rays: Option<u64>,
     mrays_per_s: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct DdgiRecord {
+    scene: String,
+    probes: [u32; 3],
+    rays_per_probe: u32,
+    rays: u64,
+    /// Median milliseconds of each pass of the frame.
+    passes: Vec<(String, f64)>,
+    /// ddgi/trace alone.
+    trace_mrays_per_s: f64,
+    /// ray directions + trace + shade + blends + borders.
+    update_ms: f64,
+    update_mrays_per_s: f64,
+    /// update + resolve: all of the frame's GI work.
+    gi_ms: f64,
+    frame_ms: f64,
 }
 
 #[derive(Serialize)]
@@ -72,6 +99,7 @@ struct BenchRecord {
     iterations: u32,
     scenes: Vec<SceneRecord>,
     passes: Vec<PassRecord>,
+    ddgi: Vec<DdgiRecord>,
 }
 
 pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -89,6 +117,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         iterations,
         scenes: Vec::new(),
         passes: Vec::new(),
+        ddgi: Vec::new(),
     };
     for name in &args.scene {
         let start = Instant::now();
@@ -125,6 +154,17 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             tracer.record(&ctx, encoder, &gpu_scene, &scene.camera, &settings, 1, profiler)
         })?;
         record.passes.push(pass_record(&scene.name, "pathtrace/trace (1 spp)", &times, None));
+
+        for probes in &args.ddgi_probes {
+            let counts = if probes == "scene" {
+                scene.probe_volumes.first().map(|v| v.counts).ok_or_else(|| CliError::Usage(format!("{}: the scene has no probe volume; pass counts such as 16x8x16", scene.name)))?
+            } else {
+                crate::render::parse_counts(probes).map_err(CliError::Usage)?
+            };
+            for &rays in &args.ddgi_rays {
+                record.ddgi.push(time_ddgi(&ctx, &scene, &gpu_scene, counts, rays, size, warmup.max(if args.smoke { 1 } else { 5 }), iterations)?);
+            }
+        }
     }
     print_table(&record);
     if let Some(path) = &args.json {
@@ -161,6 +201,55 @@ fn time_pass(
     Ok(times)
 }
 
+/// Times whole frames (G-buffer, direct, DDGI update and resolve, compose) pass by pass.
+fn time_ddgi(ctx: &GpuContext, scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, counts: [u32; 3], rays: u32, size: (u32, u32), warmup: u32, iterations: u32) -> Result<DdgiRecord, CliError> {
+    let mut volume = scene.probe_volumes.first().cloned().unwrap_or_else(|| crate::render::default_volume(scene));
+    volume.counts = counts;
+    let settings = DdgiSettings { rays_per_probe: rays, ..DdgiSettings::balanced() };
+    let mut frame = FrameRenderer::new(ctx, gpu_scene, size.0, size.1, FrameSettings::default())?;
+    let mut ddgi = Ddgi::new(ctx, gpu_scene, &volume, &settings)?;
+    ddgi.bind_frame(ctx, &frame.buffers);
+    let mut profiler = Profiler::new(ctx, 32);
+    let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
+    for i in 0..warmup + iterations {
+        frame.render(ctx, gpu_scene, &scene.camera, Some(&mut ddgi as &mut dyn Technique), false, Some(&mut profiler))?;
+        ctx.wait()?;
+        let timings = profiler.read(ctx)?;
+        if i < warmup {
+            continue;
+        }
+        for t in timings {
+            match per_pass.iter_mut().find(|(l, _)| *l == t.label) {
+                Some((_, v)) => v.push(t.milliseconds),
+                None => per_pass.push((t.label, vec![t.milliseconds])),
+            }
+        }
+    }
+    let passes: Vec<(String, f64)> = per_pass
+        .into_iter()
+        .map(|(label, mut v)| {
+            v.sort_by(f64::total_cmp);
+            (label, v.get(v.len() / 2).copied().unwrap_or(0.0))
+        })
+        .collect();
+    let ms = |label: &str| passes.iter().find(|(l, _)| l == label).map_or(0.0, |p| p.1);
+    let update: f64 = ["ddgi/ray_directions", "ddgi/trace", "ddgi/shade", "ddgi/blend_irradiance", "ddgi/blend_distance", "ddgi/borders"].iter().map(|l| ms(l)).sum();
+    let total_rays = (counts[0] * counts[1] * counts[2]) as u64 * rays as u64;
+    let gi = update + ms("ddgi/resolve");
+    Ok(DdgiRecord {
+        scene: scene.name.clone(),
+        probes: counts,
+        rays_per_probe: rays,
+        rays: total_rays,
+        trace_mrays_per_s: total_rays as f64 / (ms("ddgi/trace") * 1e-3) / 1e6,
+        update_ms: update,
+        update_mrays_per_s: total_rays as f64 / (update * 1e-3) / 1e6,
+        gi_ms: gi,
+        frame_ms: passes.iter().map(|p| p.1).sum(),
+        passes,
+    })
+}
+
 fn pass_record(scene: &str, label: &str, times: &[f64], rays: Option<u64>) -> PassRecord {
     let mut sorted = times.to_vec();
     sorted.sort_by(f64::total_cmp);
@@ -186,6 +275,22 @@ fn print_table(r: &BenchRecord) {
         let rays = p.rays.map_or("-".into(), |n| n.to_string());
         let rate = p.mrays_per_s.map_or("-".into(), |m| format!("{m:.1}"));
         println!("{:<22} {:<34} {:>10.3} {:>10.3} {:>12} {:>10}", p.scene, p.label, p.median_ms, p.min_ms, rays, rate);
+    }
+    if r.ddgi.is_empty() {
+        return;
+    }
+    let labels: Vec<&str> = r.ddgi[0].passes.iter().map(|(l, _)| l.strip_prefix("ddgi/").or(l.strip_prefix("frame/")).unwrap_or(l)).collect();
+    print!("\n{:<10} {:<10} {:>5} {:>9}", "scene", "probes", "rays", "Mrays");
+    for l in &labels {
+        print!(" {:>12}", l);
+    }
+    println!(" {:>10} {:>12} {:>10} {:>12} {:>9}", "update ms", "update Mr/s", "trace Mr/s", "GI ms", "frame ms");
+    for d in &r.ddgi {
+        print!("{:<10} {:<10} {:>5} {:>9.2}", d.scene, format!("{}x{}x{}", d.probes[0], d.probes[1], d.probes[2]), d.rays_per_probe, d.rays as f64 / 1e6);
+        for (_, ms) in &d.passes {
+            print!(" {:>12.3}", ms);
+        }
+        println!(" {:>10.3} {:>12.0} {:>10.0} {:>12.3} {:>9.3}", d.update_ms, d.update_mrays_per_s, d.trace_mrays_per_s, d.gi_ms, d.frame_ms);
     }
 }
 

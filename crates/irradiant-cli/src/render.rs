@@ -250,7 +250,7 @@ fn ddgi_settings(args: &RenderArgs) -> Result<DdgiSettings, CliError> {
 
 /// A probe volume over the scene's bounds when its manifest names none: about 8 probes along
 /// the longest side.
-fn default_volume(scene: &irradiant_scene::Scene) -> irradiant_scene::ProbeVolumeDesc {
+pub fn default_volume(scene: &irradiant_scene::Scene) -> irradiant_scene::ProbeVolumeDesc {
     let (lo, hi) = scene.bounds();
     let extent = (hi - lo).max(glam::Vec3::splat(1e-3));
     let step = extent.max_element() / 8.0;

@@ -70,8 +70,8 @@ pub struct GpuContext {
     lost: Arc<Mutex<Option<String>>>,
 }
 
-/// Storage buffers one shader stage may bind: the scene takes 7, a pass a few more.
-const STORAGE_BUFFERS_NEEDED: u32 = 12;
+/// Storage buffers one shader stage may bind: the scene takes 7, a DDGI pass up to 7 more.
+const STORAGE_BUFFERS_NEEDED: u32 = 16;
 
 impl GpuContext {
     /// Every adapter wgpu can see (Vulkan only: the backend Irradiant is tested on).

@@ -46,24 +46,33 @@ fn cornell_box_converged_ddgi_is_within_flip_0_1_of_the_path_tracer() {
 }
 
 /// The light-field paper's Figure 10 setup: probes swallowed by cylinders must not darken the
-/// surfaces around the cylinders (the "dark halo").
+/// surfaces around the cylinders (the "dark halo"). A halo is local: measured as the ratio of
+/// DDGI's to the path tracer's indirect light over 8×8-pixel tiles around the cylinders, no
+/// tile may fall far below the typical tile.
 #[test]
 fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("box-cylinders").unwrap().scene;
     let size = (64, 48);
-    let full = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Full)), 120);
-    let classic = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Classic)), 120);
     let reference = path_trace(&ctx, &scene, size, 1024);
-    let mask = region_mask(&full.gbuffer, scene.region("around-cylinders").unwrap());
-    let pt = masked_mean(&path_traced_indirect(&reference, &full), &mask);
-    let (f, c) = (masked_mean(&full.indirect, &mask), masked_mean(&classic.indirect, &mask));
-    eprintln!("box-cylinders indirect luminance around the cylinders: path tracer {pt:.5}, full DDGI {f:.5} ({:+.1} %), classic probes {c:.5} ({:+.1} %)", (f / pt - 1.0) * 100.0, (c / pt - 1.0) * 100.0);
-    // A dark halo is a deficit: the swallowed probes' black interiors pull the surroundings
-    // down. Measured on lavapipe: classic probes −88 %, Chebyshev without the backface-hit
-    // rule −64 %, full DDGI −21 %, and full DDGI with 7×4×7 probes −12 % — what remains shrinks
-    // with probe density, so it is interpolation error, not a halo. Bound: 25 %, and classic
-    // probes at least three times worse.
-    assert!((f / pt - 1.0).abs() < 0.25, "DDGI differs from the path tracer by {:.1} % around the cylinders", (f / pt - 1.0) * 100.0);
-    assert!((c - pt).abs() > 3.0 * (f - pt).abs(), "classic probes should show the dark halo that DDGI removes");
+    let tiles = |settings: &DdgiSettings| {
+        let frames = render_frames(&ctx, &scene, size, Some(settings), 120);
+        let mask = region_mask(&frames.gbuffer, scene.region("around-cylinders").unwrap());
+        let mut ratios = block_ratios(&frames.indirect, &path_traced_indirect(&reference, &frames), &mask, 8);
+        ratios.sort_by(f64::total_cmp);
+        let (worst, median) = (ratios[0], ratios[ratios.len() / 2]);
+        (worst, median)
+    };
+    let full = tiles(&converging(ProbeWeights::Full));
+    let unrelocated = tiles(&DdgiSettings { relocation: false, ..converging(ProbeWeights::Full) });
+    let classic = tiles(&converging(ProbeWeights::Classic));
+    eprintln!(
+        "box-cylinders, DDGI ÷ path tracer indirect over 8×8 tiles around the cylinders (worst, median): full {full:.2?}, without relocation {unrelocated:.2?}, classic {classic:.2?}"
+    );
+    // Seen on lavapipe: full 0.53 / 0.62, without relocation 0.25 / 0.77 (black between the
+    // four cylinders, whose eight cage probes are all swallowed), classic 0.29 / 0.40. Bound:
+    // the worst tile at least 75 % of the median one — no local dark spot.
+    assert!(full.0 >= 0.75 * full.1, "a dark halo: worst tile {:.2} against median {:.2}", full.0, full.1);
+    assert!(unrelocated.0 < 0.75 * unrelocated.1, "without relocation the swallowed probes should show the halo this test exists to catch");
+    assert!(full.1 > classic.1, "full DDGI must be brighter (closer) than classic probes around the cylinders");
 }

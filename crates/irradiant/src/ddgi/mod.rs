@@ -59,9 +59,18 @@ pub struct DdgiSettings {
     /// by more than 25 % / 80 %, and scene-level drops for some frames after a light or an
     /// object changes. Faster response to changes, slightly more flicker.
     pub convergence_heuristics: bool,
+    /// Probe relocation (003 §5): during the volume's first frames, probes inside geometry
+    /// move out through the nearest backface, and probes hugging a surface step away from it
+    /// (never more than 45 % of the spacing). Without it, probes swallowed by geometry darken
+    /// everything around them.
+    pub relocation: bool,
     /// Seed of the per-frame random rotation of the ray set.
     pub seed: u32,
 }
+
+/// Frames of probe relocation at the start (003 §5 uses five: enough for almost every probe,
+/// and no more, so that probes never oscillate through tangent backfaces).
+pub const RELOCATION_FRAMES: u32 = 5;
 
 impl Default for DdgiSettings {
     fn default() -> Self {
@@ -86,6 +95,7 @@ impl DdgiSettings {
             irradiance_gamma: 5.0,
             weights: ProbeWeights::Full,
             convergence_heuristics: true,
+            relocation: true,
             seed: 0,
         }
     }

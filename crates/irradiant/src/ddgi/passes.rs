@@ -3,7 +3,7 @@ use irradiant_gpu::{GpuContext, Profiler, read_buffer_as, wgpu};
 use irradiant_scene::ProbeVolumeDesc;
 
 use super::resources::{DdgiResources, VolumeLayout};
-use super::{DdgiSettings, ProbeWeights};
+use super::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
 use crate::RenderError;
 use crate::frame::FrameBuffers;
 use crate::gpu_scene::GpuScene;
@@ -25,6 +25,7 @@ pub struct Ddgi {
     ray_directions: ComputeStage,
     trace: ComputeStage,
     shade: ComputeStage,
+    relocate: ComputeStage,
     blend_irradiance: ComputeStage,
     blend_distance: ComputeStage,
     borders: ComputeStage,
@@ -36,12 +37,15 @@ pub struct Ddgi {
     frame_groups: Option<(wgpu::BindGroup, wgpu::BindGroup)>,
     /// Active hysteresis reductions: (frames left, irradiance factor, distance factor).
     boosts: Vec<(u32, f32, f32)>,
+    /// Offsets are cleared before the first relocation frame.
+    relocation_pending: bool,
 }
 
 struct UpdateGroups {
     ray_directions: wgpu::BindGroup,
     trace: wgpu::BindGroup,
     shade: wgpu::BindGroup,
+    relocate: wgpu::BindGroup,
     blend_irradiance: wgpu::BindGroup,
     blend_distance: wgpu::BindGroup,
     borders: wgpu::BindGroup,
@@ -64,13 +68,15 @@ impl Ddgi {
             Ok::<_, RenderError>((stage, group_layout))
         };
         let (ray_directions, l_dirs) = make("ddgi/ray_directions", include_str!("ray_directions.wgsl"), &[(0, UNIFORM), (3, STORAGE_WRITE)], &[])?;
-        let (trace, l_trace) = make("ddgi/trace", include_str!("trace.wgsl"), &[(0, UNIFORM), (3, STORAGE_READ), (4, STORAGE_WRITE)], &[])?;
+        let (trace, l_trace) = make("ddgi/trace", include_str!("trace.wgsl"), &[(0, UNIFORM), (3, STORAGE_READ), (4, STORAGE_WRITE), (5, STORAGE_READ)], &[])?;
         let (shade, l_shade) = make(
             "ddgi/shade",
             include_str!("shade.wgsl"),
-            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (3, STORAGE_READ), (4, STORAGE_READ), (6, STORAGE_WRITE)],
+            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (3, STORAGE_READ), (4, STORAGE_READ), (5, STORAGE_READ), (6, STORAGE_WRITE)],
             &[],
         )?;
+        let (relocate, l_relocate) =
+            make("ddgi/relocate", include_str!("relocate.wgsl"), &[(0, UNIFORM), (3, STORAGE_READ), (6, STORAGE_READ), (13, STORAGE_WRITE)], &[])?;
         let irradiance_group = settings.irradiance_texels.max(8);
         let distance_group = settings.distance_texels.max(8);
         let (blend_irradiance, l_bi) = make(
@@ -89,24 +95,25 @@ impl Ddgi {
         let (resolve, frame_layout) = make(
             "ddgi/resolve",
             include_str!("resolve.wgsl"),
-            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (9, STORAGE_READ), (10, STORAGE_WRITE), (11, UNIFORM)],
+            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (5, STORAGE_READ), (9, STORAGE_READ), (10, STORAGE_WRITE), (11, UNIFORM)],
             &[],
         )?;
         let (visualize, visualize_layout) = make(
             "ddgi/visualize",
             include_str!("visualize.wgsl"),
-            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (9, STORAGE_READ), (11, UNIFORM), (12, STORAGE_WRITE)],
+            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (5, STORAGE_READ), (9, STORAGE_READ), (11, UNIFORM), (12, STORAGE_WRITE)],
             &[],
         )?;
         let groups = UpdateGroups {
             ray_directions: bind_at(device, "ddgi/ray_directions", &l_dirs, &[(0, &r.volume), (3, &r.directions)]),
-            trace: bind_at(device, "ddgi/trace", &l_trace, &[(0, &r.volume), (3, &r.directions), (4, &r.hits)]),
+            trace: bind_at(device, "ddgi/trace", &l_trace, &[(0, &r.volume), (3, &r.directions), (4, &r.hits), (5, &r.offsets)]),
             shade: bind_at(
                 device,
                 "ddgi/shade",
                 &l_shade,
-                &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (3, &r.directions), (4, &r.hits), (6, &r.samples)],
+                &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (3, &r.directions), (4, &r.hits), (5, &r.offsets), (6, &r.samples)],
             ),
+            relocate: bind_at(device, "ddgi/relocate", &l_relocate, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (13, &r.offsets)]),
             blend_irradiance: bind_at(device, "ddgi/blend_irradiance", &l_bi, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (7, &r.irradiance)]),
             blend_distance: bind_at(device, "ddgi/blend_distance", &l_bd, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (8, &r.distance)]),
             borders: bind_at(device, "ddgi/borders", &l_borders, &[(0, &r.volume), (7, &r.irradiance), (8, &r.distance)]),
@@ -120,6 +127,7 @@ impl Ddgi {
             ray_directions,
             trace,
             shade,
+            relocate,
             blend_irradiance,
             blend_distance,
             borders,
@@ -130,12 +138,18 @@ impl Ddgi {
             visualize_layout,
             frame_groups: None,
             boosts: Vec::new(),
+            relocation_pending: true,
         })
     }
 
-    /// Starts the probes over (the next update blends with hysteresis 0).
+    /// Starts the probes over (the next update blends with hysteresis 0, relocation reruns).
     pub fn reset(&mut self) {
         self.frame = 0;
+        self.relocation_pending = true;
+    }
+
+    fn relocating(&self) -> bool {
+        self.settings.relocation && self.frame < RELOCATION_FRAMES
     }
 
     pub fn max_ray_distance(&self) -> f32 {
@@ -199,6 +213,10 @@ impl Ddgi {
             frame: self.frame,
             min_spacing: l.min_spacing(),
             convergence_heuristics: s.convergence_heuristics as u32,
+            relocating: self.relocating() as u32,
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         }
     }
 
@@ -216,6 +234,13 @@ impl Ddgi {
         self.ray_directions.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.ray_directions], [self.settings.rays_per_probe.div_ceil(64), 1, 1]);
         self.trace.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.trace], fold_groups(rays.div_ceil(64)));
         self.shade.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.shade], fold_groups(rays.div_ceil(64)));
+        if self.relocating() {
+            if self.relocation_pending {
+                encoder.clear_buffer(&self.resources.offsets, 0, None);
+                self.relocation_pending = false;
+            }
+            self.relocate.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.relocate], fold_groups(self.layout.probe_count.div_ceil(64)));
+        }
         self.record_blend(encoder, scene, profiler);
         self.frame += 1;
         for boost in &mut self.boosts {
@@ -243,13 +268,13 @@ impl Ddgi {
             &ctx.device,
             "ddgi/resolve",
             &self.frame_layout,
-            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (9, &frame.gbuffer), (10, &frame.indirect), (11, &frame.params)],
+            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (5, &r.offsets), (9, &frame.gbuffer), (10, &frame.indirect), (11, &frame.params)],
         );
         let visualize = bind_at(
             &ctx.device,
             "ddgi/visualize",
             &self.visualize_layout,
-            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (9, &frame.gbuffer), (11, &frame.params), (12, &frame.radiance)],
+            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (5, &r.offsets), (9, &frame.gbuffer), (11, &frame.params), (12, &frame.radiance)],
         );
         self.frame_groups = Some((resolve, visualize));
     }
@@ -264,6 +289,12 @@ impl Ddgi {
     pub fn visualize(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers) {
         let (_, group) = self.frame_groups.as_ref().expect("Ddgi::bind_frame before visualize");
         self.visualize.dispatch(encoder, None, &[&scene.bind_group, group], [frame.width.div_ceil(8), frame.height.div_ceil(8), 1]);
+    }
+
+    /// Each probe's relocation offset and the share of its rays that hit backfaces.
+    pub fn read_offsets(&self, ctx: &GpuContext) -> Result<Vec<[f32; 4]>, RenderError> {
+        let offsets: Vec<[f32; 4]> = read_buffer_as(ctx, &self.resources.offsets)?;
+        Ok(offsets[..self.layout.probe_count as usize].to_vec())
     }
 
     /// The atlases, decoded: irradiance as cosine-weighted mean radiance (rgb), distance as

@@ -1,7 +1,7 @@
 // ddgi: the irradiance query at any point of the volume: the 8-probe cage, trilinear ×
 // smooth backface (wrap) × Chebyshev visibility × low-weight crush, with the self-shadow bias,
 // normalised. Shared by the probe rays' shading (ddgi/shade) and the camera (ddgi/resolve).
-#import ddgi_volume
+#import ddgi_probes
 
 @group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
 // per texel: rgb as two packed f16 pairs (value^(1/gamma))

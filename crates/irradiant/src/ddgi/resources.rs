@@ -60,6 +60,8 @@ pub struct DdgiResources {
     pub irradiance: wgpu::Buffer,
     /// Two f32 a texel: mean distance and mean squared distance.
     pub distance: wgpu::Buffer,
+    /// vec4 a probe: relocation offset (xyz) and the share of its rays that hit backfaces (w).
+    pub offsets: wgpu::Buffer,
 }
 
 impl DdgiResources {
@@ -91,6 +93,7 @@ impl DdgiResources {
             samples: storage_buffer(device, sizes[1].0, sizes[1].1),
             irradiance: storage_buffer(device, sizes[2].0, sizes[2].1),
             distance: storage_buffer(device, sizes[3].0, sizes[3].1),
+            offsets: storage_buffer(device, "ddgi/probe_offsets", layout.probe_count as u64 * 16),
         })
     }
 }

@@ -45,11 +45,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     let origin = probe_position(probe);
     let tri = triangles[hit.triangle];
     let face = to_world_normal(instances[hit.instance], cross(tri.e1, tri.e2));
-    if (volume.weights & WEIGHT_BACKFACE_HITS) != 0u && dot(face, dir) > 0.0 {
+    let backface = dot(face, dir) > 0.0;
+    if backface && (volume.weights & WEIGHT_BACKFACE_HITS) != 0u {
         // Inside geometry, or looking at the back of a one-sided wall: no light, and a
         // shortened depth so that the probe reads this direction as shadowed.
         out.radiance = vec3<f32>(0.0);
-        out.distance = -0.2 * hit.t;
+        out.distance = -BACKFACE_DEPTH_SCALE * hit.t;
         samples[index] = out;
         return;
     }
@@ -62,6 +63,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     }
     l += diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, wo);
     out.radiance = l;
-    out.distance = hit.t;
+    // The sign marks backfaces for relocation, whatever the weights.
+    out.distance = select(hit.t, -hit.t, backface);
     samples[index] = out;
 }

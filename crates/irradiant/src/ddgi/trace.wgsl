@@ -1,5 +1,5 @@
 // ddgi/trace: m rays from every probe, closest hit, into the hit buffer.
-#import ddgi_volume
+#import ddgi_probes
 #import ddgi_rays
 #import bvh
 

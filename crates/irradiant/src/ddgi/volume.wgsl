@@ -5,6 +5,7 @@ const WEIGHT_BACKFACE: u32 = 1u;
 const WEIGHT_CHEBYSHEV: u32 = 2u;
 // Production rule (003, §4.1): rays that hit backfaces record no light and 80 % shorter depth.
 const WEIGHT_BACKFACE_HITS: u32 = 4u;
+const BACKFACE_DEPTH_SCALE: f32 = 0.2;
 
 struct GpuDdgiVolume {
     // position of probe (0, 0, 0)
@@ -38,6 +39,11 @@ struct GpuDdgiVolume {
     min_spacing: f32,
     // 1 when the per-texel convergence thresholds (003, §4.3) are on
     convergence_heuristics: u32,
+    // 1 while probes are being relocated (003, §5)
+    relocating: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 fn probe_grid_coord(probe: u32) -> vec3<u32> {
@@ -50,7 +56,8 @@ fn probe_index(coord: vec3<u32>) -> u32 {
     return coord.x + c.x * (coord.y + c.y * coord.z);
 }
 
-fn probe_position(probe: u32) -> vec3<f32> {
+// Where a probe sits on the regular grid, before relocation.
+fn grid_position(probe: u32) -> vec3<f32> {
     return volume.origin + vec3<f32>(probe_grid_coord(probe)) * volume.spacing;
 }
 

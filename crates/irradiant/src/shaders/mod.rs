@@ -18,5 +18,6 @@ pub fn library() -> ShaderLibrary {
         .with("gbuffer_surface", include_str!("../frame/gbuffer_surface.wgsl"))
         .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
         .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
+        .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))
         .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
 }

@@ -104,3 +104,29 @@ pub fn path_traced_indirect(total: &Image, frame: &FrameResult) -> Image {
         .collect();
     Image { width: total.width, height: total.height, pixels }
 }
+
+/// Ratio of two images' mean luminance over each `block`×`block` tile of the masked pixels
+/// (tiles at least half inside the mask): where a technique is locally too dark or too bright.
+pub fn block_ratios(test: &Image, reference: &Image, mask: &[bool], block: u32) -> Vec<f64> {
+    let lum = |p: &[f32; 3]| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
+    let mut ratios = Vec::new();
+    for by in 0..test.height / block {
+        for bx in 0..test.width / block {
+            let (mut t, mut r, mut n) = (0.0, 0.0, 0);
+            for y in by * block..(by + 1) * block {
+                for x in bx * block..(bx + 1) * block {
+                    let i = (y * test.width + x) as usize;
+                    if mask[i] {
+                        t += lum(&test.pixels[i]);
+                        r += lum(&reference.pixels[i]);
+                        n += 1;
+                    }
+                }
+            }
+            if n * 2 >= (block * block) as usize && r > 1e-4 {
+                ratios.push(t / r);
+            }
+        }
+    }
+    ratios
+}

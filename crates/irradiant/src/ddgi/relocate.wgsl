@@ -1,0 +1,73 @@
+// ddgi/relocate: one iteration of the probe-position optimiser of 003 §5 (Listing 4), run for
+// the volume's first frames. A probe that sees more than 25 % backfaces is inside geometry and
+// moves through the closest backface; a probe very close to a front face moves towards the
+// farthest front face. Offsets stay under 45 % of the spacing, so the grid's indexing holds.
+#import ddgi_volume
+#import ddgi_rays
+
+@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(1) @binding(13) var<storage, read_write> offsets: array<vec4<f32>>;
+
+fn within(offset: vec3<f32>, limit: vec3<f32>) -> bool {
+    return all(abs(offset) < limit);
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let probe = id.x + id.y * groups.x * 64u;
+    if probe >= volume.probe_count || volume.relocating == 0u {
+        return;
+    }
+    let m = volume.rays_per_probe;
+    var backfaces = 0u;
+    var closest_back = vec4<f32>(0.0, 0.0, 0.0, 1e30);
+    var closest_front = vec4<f32>(0.0, 0.0, 0.0, 1e30);
+    var farthest_front = vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    for (var r = 0u; r < m; r++) {
+        let d = directions[r].xyz;
+        let distance = samples[probe * m + r].distance;
+        if distance < 0.0 {
+            backfaces++;
+            // ddgi/shade stores a backface hit as minus its distance, shortened by the
+            // backface-hit rule when that is on.
+            let t = -distance / select(1.0, BACKFACE_DEPTH_SCALE, (volume.weights & WEIGHT_BACKFACE_HITS) != 0u);
+            if t < closest_back.w {
+                closest_back = vec4<f32>(d, t);
+            }
+        } else {
+            // A miss counts as a front face at the ray's full length.
+            if distance < closest_front.w {
+                closest_front = vec4<f32>(d, distance);
+            }
+            if distance > farthest_front.w {
+                farthest_front = vec4<f32>(d, distance);
+            }
+        }
+    }
+    let current = offsets[probe].xyz;
+    let limit = 0.45 * volume.spacing;
+    var next = current;
+    if f32(backfaces) > 0.25 * f32(m) {
+        // Inside something: cross the closest backface, as far beyond it as the limit allows
+        // (up to twice its distance).
+        for (var i = 0u; i < 100u; i++) {
+            let candidate = current + closest_back.xyz * closest_back.w * (2.0 - f32(i) * 0.01);
+            if within(candidate, limit) {
+                next = candidate;
+                break;
+            }
+        }
+    } else if closest_front.w < 0.05 * volume.min_spacing && dot(closest_front.xyz, farthest_front.xyz) <= 0.5 {
+        // Touching a surface (its visibility tests would be all self-shadow): step towards open
+        // space, no further than to 5 % of the spacing. A probe merely near a wall stays: the
+        // irradiance field is not extrapolated past the outermost probes, so they belong close
+        // to the walls.
+        let candidate = current + farthest_front.xyz * min(0.05 * volume.min_spacing, farthest_front.w);
+        if within(candidate, limit) {
+            next = candidate;
+        }
+    }
+    offsets[probe] = vec4<f32>(next, f32(backfaces) / f32(m));
+}
