@@ -46,7 +46,7 @@ pub struct RenderArgs {
     /// mesh (.obj, .gltf, .glb).
     #[arg(long, default_value = "cornell")]
     pub scene: String,
-    #[arg(long, value_enum, default_value = "path")]
+    #[arg(long, value_enum, default_value = "ddgi")]
     pub technique: Technique,
     /// Settings preset; --spp and --max-bounces override it.
     #[arg(long, value_enum, default_value = "balanced")]
@@ -70,11 +70,15 @@ pub struct RenderArgs {
     /// Clamp instead of the filmic curve.
     #[arg(long)]
     pub no_filmic: bool,
-    /// Real-time techniques: frames to simulate (the scene animates at --fps); the last one is
-    /// written.
-    #[arg(long, default_value = "60")]
+    /// Animation time, in seconds, of the image written. The path tracer renders the scene as
+    /// it is at this time; a real-time technique's frames lead up to it at --fps (frame i of N
+    /// at time − (N − 1 − i) / fps, held at 0), so the default shows the scene at rest.
+    #[arg(long, default_value = "0")]
+    pub time: f32,
+    /// Real-time techniques: frames to simulate; the last one is written.
+    #[arg(long, default_value = "120")]
     pub frames: u32,
-    /// Simulated frames per second (animation time of frame i is i / fps).
+    /// Simulated frames per second.
     #[arg(long, default_value = "60")]
     pub fps: f32,
     /// Write every frame, numbered: OUT stem + "-0001.png", …
@@ -125,6 +129,9 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     if !(args.fps.is_finite() && args.fps > 0.0) {
         return Err(CliError::Usage(format!("--fps {} must be a positive number", args.fps)));
     }
+    if !(args.time.is_finite() && args.time >= 0.0) {
+        return Err(CliError::Usage(format!("--time {} must be a number of seconds ≥ 0", args.time)));
+    }
     if let Some(dir) = &args.ddgi.dump_atlas {
         if !dir.is_dir() {
             return Err(CliError::Io { path: dir.clone(), message: "the atlas folder does not exist; create it first".into() });
@@ -140,6 +147,9 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let ctx = GpuContext::new(adapter)?;
     let (width, height) = args.size;
     let mut gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings::default())?;
+    if args.technique == Technique::Path {
+        gpu_scene.update(&ctx, &scene.pose_at(args.time));
+    }
     let tone = ToneSettings { exposure: args.exposure, filmic: !args.no_filmic };
     let image = match args.technique {
         Technique::Path => {
@@ -170,9 +180,11 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             };
             let bar = ProgressBar::new(args.frames as u64);
             bar.set_style(ProgressStyle::with_template("{spinner} frame {pos}/{len} [{elapsed_precise} < {eta}] {wide_bar}").unwrap());
-            let mut pose = scene.pose_at(0.0);
+            let frame_time = |i: u32| (args.time - (args.frames - 1 - i) as f32 / args.fps).max(0.0);
+            let mut pose = scene.pose_at(frame_time(0));
+            gpu_scene.update(&ctx, &pose);
             for i in 0..args.frames {
-                let next = scene.pose_at(i as f32 / args.fps);
+                let next = scene.pose_at(frame_time(i));
                 apply_pose(&ctx, &mut gpu_scene, &mut frame, ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique), &pose, &next);
                 pose = next;
                 frame.render(&ctx, &gpu_scene, &scene.camera, ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique), args.ddgi.show_probes, None)?;

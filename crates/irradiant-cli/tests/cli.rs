@@ -28,6 +28,10 @@ fn unknown_scenes_and_techniques_are_refused() {
     fails_with(&["render", "--scene", "cornel"], "not a built-in scene");
     fails_with(&["render", "--scene", "/nonexistent/x.obj"], "/nonexistent/x.obj");
     fails_with(&["render", "--technique", "magic"], "invalid value 'magic'");
+    fails_with(&["render", "--frames", "0"], "--frames 0");
+    fails_with(&["render", "--time=-1"], "--time");
+    fails_with(&["render", "--probes", "0x4x4"], "probe count");
+    fails_with(&["render", "--hysteresis", "1.5"], "hysteresis");
 }
 
 #[test]
@@ -59,27 +63,38 @@ fn an_unknown_adapter_lists_the_present_ones() {
     assert!(stderr.contains("no-such-gpu-xyz") && (stderr.contains("Adapters present") || stderr.contains("no GPU adapter")), "{stderr}");
 }
 
-/// Needs the test adapter: a real render of each output kind, and the smoke benchmark.
+/// Needs the test adapter: each technique and output kind, a frame sequence, the probe view,
+/// the atlas dump and the smoke benchmark.
 #[test]
-fn renders_png_and_exr_and_runs_the_smoke_bench() {
+fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
     let dir = std::env::temp_dir().join(format!("irradiant-cli-render-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let png = dir.join("c.png");
-    let exr = dir.join("c.exr");
-    let (ok, _, stderr) = irradiant(&["render", "--size", "32x24", "--spp", "4", "--out", png.to_str().unwrap()]);
+    let path = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    let (ok, _, stderr) = irradiant(&["render", "--technique", "path", "--size", "32x24", "--spp", "4", "--out", &path("c.png")]);
     if !ok && stderr.contains("no GPU adapter") && std::env::var("CI").as_deref() != Ok("true") {
         eprintln!("SKIPPED: no GPU adapter");
         return;
     }
     assert!(ok, "{stderr}");
-    assert!(std::fs::metadata(&png).unwrap().len() > 100);
-    let (ok, _, stderr) = irradiant(&["render", "--size", "32x24", "--spp", "4", "--out", exr.to_str().unwrap()]);
+    let renders: [&[&str]; 4] = [
+        &["render", "--technique", "path", "--size", "32x24", "--spp", "4", "--out", &path("c.exr")],
+        &["render", "--size", "32x24", "--frames", "3", "--show-probes", "--dump-atlas", &path(""), "--out", &path("ddgi.exr")],
+        &["render", "--scene", "two-rooms", "--technique", "none", "--size", "32x24", "--frames", "2", "--sequence", "--out", &path("seq.png")],
+        &["render", "--scene", "two-rooms", "--weights", "classic", "--probes", "3x2x2", "--rays", "16", "--size", "32x24", "--frames", "2", "--out", &path("classic.png")],
+    ];
+    for args in renders {
+        let (ok, _, stderr) = irradiant(args);
+        assert!(ok, "irradiant {args:?}: {stderr}");
+    }
+    for file in ["c.png", "c.exr", "ddgi.exr", "irradiance.png", "irradiance.exr", "distance.png", "distance.exr", "seq-0001.png", "seq-0002.png", "classic.png"] {
+        assert!(std::fs::metadata(dir.join(file)).map(|m| m.len() > 50).unwrap_or(false), "{file} was not written");
+    }
+    let json = path("bench.json");
+    let (ok, stdout, stderr) = irradiant(&["bench", "--smoke", "--ddgi-probes", "scene", "--ddgi-rays", "32", "--json", &json]);
     assert!(ok, "{stderr}");
-    assert!(std::fs::metadata(&exr).unwrap().len() > 100);
-    let json = dir.join("bench.json");
-    let (ok, stdout, stderr) = irradiant(&["bench", "--smoke", "--json", json.to_str().unwrap()]);
-    assert!(ok, "{stderr}");
-    assert!(stdout.contains("raycast/trace (diffuse)") && stdout.contains("pathtrace/trace"), "{stdout}");
+    assert!(stdout.contains("raycast/trace (diffuse)") && stdout.contains("pathtrace/trace") && stdout.contains("blend_irradiance"), "{stdout}");
     let record: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(record["passes"].as_array().unwrap().len() >= 4);
+    let ddgi = &record["ddgi"][0];
+    assert!(ddgi["passes"].as_array().unwrap().len() >= 9, "{ddgi}");
 }
