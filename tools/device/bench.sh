@@ -19,9 +19,9 @@ $bin bench --scene $sibenik --size 1920x1080 --iterations 30 --ddgi-probes 16x8x
 $bin bench --scene cornell,two-rooms,$sponza --size 1920x1080 --iterations 30 --ddgi-probes scene --ddgi-rays 128,256 --json "$OUT/ddgi-scenes.json" | tee -a "$OUT/ddgi.txt"
 if [ "${RENDER:-1}" = 1 ]; then
     img=$(mktemp -d)
-    $bin render --scene cornell --spp 4096 --size 512x512 --out "$img/cornell.png"
-    $bin render --scene $sponza --spp 2048 --size 640x400 --out "$img/sponza.png"
-    $bin render --scene $sibenik --spp 2048 --size 640x400 --out "$img/sibenik.png"
+    $bin render --scene cornell --technique path --spp 4096 --size 512x512 --out "$img/cornell.png"
+    $bin render --scene $sponza --technique path --spp 2048 --size 640x400 --out "$img/sponza.png"
+    $bin render --scene $sibenik --technique path --spp 2048 --size 640x400 --out "$img/sibenik.png"
     $bin render --scene cornell --technique ddgi --frames 200 --size 512x512 --out "$img/cornell-ddgi.png"
     $bin render --scene cornell --technique ddgi --frames 200 --size 512x512 --show-probes --out "$img/cornell-ddgi-probes.png" --dump-atlas "$img"
     $bin render --scene $sponza --technique ddgi --frames 300 --size 640x400 --out "$img/sponza-ddgi.png"
@@ -29,9 +29,12 @@ if [ "${RENDER:-1}" = 1 ]; then
     for w in classic backface chebyshev full; do
         $bin render --scene two-rooms --technique ddgi --weights $w --frames 300 --size 480x360 --out "$img/two-rooms-$w.png"
     done
-    $bin render --scene two-rooms --spp 4096 --size 480x360 --out "$img/two-rooms-path.png"
+    $bin render --scene two-rooms --technique path --spp 4096 --size 480x360 --out "$img/two-rooms-path.png"
     $bin render --scene box-cylinders --technique ddgi --weights classic --frames 300 --size 480x360 --out "$img/box-cylinders-classic.png"
     $bin render --scene box-cylinders --technique ddgi --frames 300 --size 480x360 --out "$img/box-cylinders-ddgi.png"
-    $bin render --scene box-cylinders --spp 4096 --size 480x360 --out "$img/box-cylinders-path.png"
+    $bin render --scene box-cylinders --technique path --spp 4096 --size 480x360 --out "$img/box-cylinders-path.png"
+    $bin render --scene $sibenik --technique none --frames 2 --size 640x400 --out "$img/sibenik-direct.png"
+    # An animation: the lamp walks down Sibenik's nave; 4 s at 30 frames a second.
+    $bin render --scene $sibenik --time 4 --fps 30 --frames 121 --size 320x200 --sequence --out "$img/anim/sibenik.png" 2>/dev/null || { mkdir -p "$img/anim" && $bin render --scene $sibenik --time 4 --fps 30 --frames 121 --size 320x200 --sequence --out "$img/anim/sibenik.png"; }
     tar -C "$img" -cf "$OUT/images.tar" .
 fi

@@ -67,6 +67,9 @@ pub struct GpuScene {
     pub instance_order: Vec<u32>,
     /// Last uploaded transforms, in scene order (motion vectors).
     previous_transforms: Vec<Mat4>,
+    /// Depth of the top-level traversal stack: enough for any tree over the instances that
+    /// PLOC builds in practice (it is rebuilt each frame, so its depth varies).
+    tlas_stack: u32,
     pub triangle_sources: Vec<TriangleSource>,
     pub stats: GpuSceneStats,
 }
@@ -81,8 +84,8 @@ pub struct GpuSceneStats {
     pub gpu_bytes: u64,
 }
 
-/// Must match BLAS_STACK_SIZE in bvh.wgsl.
-const BLAS_STACK_SIZE: u32 = 64;
+/// Deepest tree traversal supports: deeper means a degenerate mesh.
+const MAX_STACK: u32 = 128;
 
 impl GpuScene {
     pub fn new(ctx: &GpuContext, scene: &Scene, settings: &GpuSceneSettings) -> Result<Self, RenderError> {
@@ -133,9 +136,9 @@ impl GpuScene {
             }
             mesh_emitters.push(emissive);
         }
-        if max_depth > BLAS_STACK_SIZE {
+        if max_depth > MAX_STACK {
             return Err(RenderError::Scene(format!(
-                "a mesh's BVH is {max_depth} levels deep, more than the traversal stack's {BLAS_STACK_SIZE}; split the mesh or use --bvh-quality quality"
+                "a mesh's BVH is {max_depth} levels deep, more than traversal supports ({MAX_STACK}); the mesh is degenerate (e.g. thousands of triangles on one point)"
             )));
         }
         let tlas_base = nodes.len() as u32;
@@ -231,6 +234,7 @@ impl GpuScene {
             sky: scene.sky,
             instance_order: Vec::new(),
             previous_transforms: Vec::new(),
+            tlas_stack: (2 * (scene.instances.len().max(2) as f32).log2().ceil() as u32 + 4).min(scene.instances.len() as u32 + 2),
             stats: GpuSceneStats {
                 triangles: triangles.len(),
                 bvh_nodes: nodes.len(),
@@ -246,6 +250,14 @@ impl GpuScene {
         Ok(gpu_scene)
     }
 
+    /// Constants every shader that traces rays needs: traversal stacks as deep as the trees.
+    pub fn shader_constants(&self) -> Vec<(&'static str, String)> {
+        vec![
+            ("BLAS_STACK_SIZE", format!("{}u", self.stats.max_blas_depth.max(2))),
+            ("TLAS_STACK_SIZE", format!("{}u", self.tlas_stack)),
+        ]
+    }
+
     /// Uploads what animation changes: instance transforms, the top-level BVH, lights and the
     /// emitter table. Cheap (no bottom-level work).
     pub fn update(&mut self, ctx: &GpuContext, pose: &Pose) {
@@ -259,6 +271,9 @@ impl GpuScene {
             boxes.push(transform_bounds(bounds, transform));
         }
         let tlas = build_tlas(&boxes);
+        if tlas.depth > self.tlas_stack {
+            tracing::warn!("top-level BVH depth {} exceeds its traversal stack ({}): some instances may be missed this frame", tlas.depth, self.tlas_stack);
+        }
         // The top level's leaves index instances in TLAS order: reorder instances to match.
         let ordered: Vec<GpuInstance> = tlas.instance_order.iter().map(|&i| instances[i as usize]).collect();
         let mut tlas_nodes = tlas.nodes.clone();

@@ -39,6 +39,21 @@ impl ComputeStage {
         Ok(Self { label, pipeline })
     }
 
+    /// A stage that traces rays: the scene's bind group layout is group 0 and its shader
+    /// constants (traversal stack depths) are defined.
+    pub fn tracing(
+        ctx: &GpuContext,
+        scene: &crate::GpuScene,
+        label: &'static str,
+        source: &str,
+        constants: &[(&str, String)],
+        group: &wgpu::BindGroupLayout,
+    ) -> Result<Self, RenderError> {
+        let mut all = scene.shader_constants();
+        all.extend(constants.iter().cloned());
+        Self::new(ctx, label, source, &all, &[&scene.layout, group])
+    }
+
     /// Records one dispatch in its own compute pass (so that it gets its own timestamps).
     pub fn dispatch(
         &self,

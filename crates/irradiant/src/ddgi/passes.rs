@@ -64,7 +64,7 @@ impl Ddgi {
         // 9 gbuffer, 10 indirect, 11 frame, 12 radiance.
         let make = |label: &'static str, source: &str, entries: &[(u32, wgpu::BufferBindingType)], constants: &[(&str, String)]| {
             let group_layout = buffer_layout(device, label, entries);
-            let stage = ComputeStage::new(ctx, label, source, constants, &[&scene.layout, &group_layout])?;
+            let stage = ComputeStage::tracing(ctx, scene, label, source, constants, &group_layout)?;
             Ok::<_, RenderError>((stage, group_layout))
         };
         let (ray_directions, l_dirs) = make("ddgi/ray_directions", include_str!("ray_directions.wgsl"), &[(0, UNIFORM), (3, STORAGE_WRITE)], &[])?;

@@ -158,8 +158,8 @@ impl FrameRenderer {
         );
         let b = &buffers;
         Ok(Self {
-            gbuffer: ComputeStage::new(ctx, "frame/gbuffer", include_str!("gbuffer.wgsl"), &[], &[&scene.layout, &l_gbuffer])?,
-            direct: ComputeStage::new(ctx, "frame/direct", include_str!("direct.wgsl"), &[], &[&scene.layout, &l_direct])?,
+            gbuffer: ComputeStage::tracing(ctx, scene, "frame/gbuffer", include_str!("gbuffer.wgsl"), &[], &l_gbuffer)?,
+            direct: ComputeStage::tracing(ctx, scene, "frame/direct", include_str!("direct.wgsl"), &[], &l_direct)?,
             compose: ComputeStage::new(ctx, "frame/compose", include_str!("compose.wgsl"), &[], &[&l_compose])?,
             tonemapper: Tonemapper::new(ctx)?,
             gbuffer_group: bind_at(device, "frame/gbuffer", &l_gbuffer, &[(0, &b.params), (1, &b.gbuffer)]),

@@ -29,7 +29,7 @@ impl PathTracer {
                 buffer_entry(1, STORAGE_WRITE), // accumulation
             ],
         });
-        let stage = ComputeStage::new(ctx, "pathtrace/trace", include_str!("trace.wgsl"), &[], &[&scene.layout, &layout])?;
+        let stage = ComputeStage::tracing(ctx, scene, "pathtrace/trace", include_str!("trace.wgsl"), &[], &layout)?;
         let accumulation = storage_buffer(&ctx.device, "pathtrace/accumulation", 16 * width as u64 * height as u64);
         Ok(Self { stage, layout, accumulation, width, height, samples_done: 0 })
     }

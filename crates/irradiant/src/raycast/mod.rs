@@ -31,7 +31,7 @@ impl RayCaster {
                 buffer_entry(2, STORAGE_WRITE), // hits
             ],
         });
-        let stage = ComputeStage::new(ctx, "raycast/trace", include_str!("trace.wgsl"), &[], &[&scene.layout, &layout])?;
+        let stage = ComputeStage::tracing(ctx, scene, "raycast/trace", include_str!("trace.wgsl"), &[], &layout)?;
         Ok(Self { stage, layout })
     }
 

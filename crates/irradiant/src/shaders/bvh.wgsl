@@ -3,9 +3,8 @@
 // pushed on a per-thread stack; leaves are intersected as soon as their box is hit.
 #import scene
 
-// Deepest bottom-level tree, checked on the CPU when the scene is uploaded.
-const BLAS_STACK_SIZE: u32 = 64u;
-const TLAS_STACK_SIZE: u32 = 32u;
+// BLAS_STACK_SIZE and TLAS_STACK_SIZE come from GpuScene::shader_constants: the stacks are
+// exactly as deep as the scene's trees, which keeps per-thread memory small.
 const NO_HIT: f32 = 3.0e38;
 // Rays never reach beyond this, so an absent child's box (a point at 1e30) is never hit.
 const RAY_FAR: f32 = 1.0e20;
