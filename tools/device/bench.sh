@@ -35,6 +35,7 @@ if [ "${RENDER:-1}" = 1 ]; then
     $bin render --scene box-cylinders --technique path --spp 4096 --size 480x360 --out "$img/box-cylinders-path.png"
     $bin render --scene $sibenik --technique none --frames 2 --size 640x400 --out "$img/sibenik-direct.png"
     # An animation: the lamp walks down Sibenik's nave; 4 s at 30 frames a second.
-    $bin render --scene $sibenik --time 4 --fps 30 --frames 121 --size 320x200 --sequence --out "$img/anim/sibenik.png" 2>/dev/null || { mkdir -p "$img/anim" && $bin render --scene $sibenik --time 4 --fps 30 --frames 121 --size 320x200 --sequence --out "$img/anim/sibenik.png"; }
+    mkdir -p "$img/anim"
+    $bin render --scene $sibenik --time 4 --fps 30 --frames 121 --size 320x200 --sequence --out "$img/anim/sibenik.png"
     tar -C "$img" -cf "$OUT/images.tar" .
 fi
