@@ -80,18 +80,24 @@ fn a_moving_object_changes_the_indirect_light_as_a_fresh_render_would() {
     }
     scene.meshes.push(mesh);
     scene.instances.push(Instance { name: "block".into(), mesh: block, transform: Mat4::from_translation(Vec3::new(-0.6, 1.5, 0.0)) });
-    scene.regions.push(irradiant_scene::Region { name: "floor".into(), min: Vec3::new(-1.0, -0.01, -1.0), max: Vec3::new(1.0, 0.01, 1.0) });
+    // The walls and floor around where the block arrives: their indirect light changes most.
+    scene.regions.push(irradiant_scene::Region { name: "right".into(), min: Vec3::new(0.2, -0.01, -1.0), max: Vec3::new(1.01, 2.0, 1.0) });
     let settings = DdgiSettings { rays_per_probe: 128, ..DdgiSettings::balanced() };
     let mut moving = scene.clone();
     moving.animations.push(Animation {
         target: AnimationTarget::Instance("block".into()),
         tracks: Tracks { translation: vec![(0.0, Vec3::ZERO), (0.5, Vec3::ZERO), (0.5001, Vec3::new(1.2, 0.0, 0.0))], ..Default::default() },
     });
-    let over_time = indirect_over_time(&ctx, &moving, &settings, 30 + 60, "floor");
+    let over_time = indirect_over_time(&ctx, &moving, &settings, 30 + 80, "right");
     let mut moved = scene.clone();
     moved.instances.last_mut().unwrap().transform = Mat4::from_translation(Vec3::new(0.6, 1.5, 0.0));
-    let fresh = indirect_over_time(&ctx, &moved, &settings, 60, "floor");
-    let (before, after, target) = (over_time[29], *over_time.last().unwrap(), *fresh.last().unwrap());
-    eprintln!("floor indirect: before the move {before:.5}, 60 frames after {after:.5}, fresh render with the block moved {target:.5}");
-    assert!((after / target - 1.0).abs() < 0.05, "60 frames after the move the indirect light should match a fresh render");
+    let fresh = indirect_over_time(&ctx, &moved, &settings, 80, "right");
+    // Means over 10 frames, so that the probes' per-frame noise does not decide the test.
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let (before, after, target) = (mean(&over_time[20..30]), mean(&over_time[100..110]), mean(&fresh[70..80]));
+    eprintln!("indirect light right of the box: before the move {before:.5}, 70–80 frames after {after:.5}, fresh render with the block there {target:.5}");
+    assert!((before / target - 1.0).abs() > 0.1, "the move should change the indirect light there by more than 10 %");
+    // Bound: within a third of the change the move caused (the rest is the hysteresis lag and
+    // probe noise at 128 rays).
+    assert!((after - target).abs() < (before - target).abs() / 3.0, "80 frames after the move the indirect light should be close to a fresh render's");
 }
