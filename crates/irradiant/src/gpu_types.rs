@@ -274,7 +274,8 @@ pub struct GpuDdgiVolume {
     pub convergence_heuristics: u32,
     /// 1 while probes are being relocated (the volume's first frames).
     pub relocating: u32,
-    pub _pad0: u32,
+    /// 1: probe rays shade every punctual light; 0: one chosen at random.
+    pub all_lights: u32,
     pub _pad1: u32,
     pub _pad2: u32,
 }
@@ -317,7 +318,7 @@ pub fn all_layouts() -> Vec<Expected> {
         gpu_layout!(GpuRayCastParams { ray_count, any_hit, _pad0, _pad1 }),
         gpu_layout!(GpuFrameParams { camera, previous_camera, width, height, frame_index, area_light_samples, seed, accumulated_frames, _pad0, _pad1 }),
         gpu_layout!(GpuGBufferTexel { position, depth, normal, roughness, geometric_normal, metallic, albedo, specular, emission, _pad0, motion, _pad1 }),
-        gpu_layout!(GpuDdgiVolume { origin, probe_count, spacing, rays_per_probe, counts, probes_per_row, ray_rotation0, ray_rotation1, ray_rotation2, irradiance_texels, distance_texels, irradiance_hysteresis, distance_hysteresis, max_ray_distance, self_shadow_bias, distance_exponent, irradiance_gamma, weights, frame, min_spacing, convergence_heuristics, relocating, _pad0, _pad1, _pad2 }),
+        gpu_layout!(GpuDdgiVolume { origin, probe_count, spacing, rays_per_probe, counts, probes_per_row, ray_rotation0, ray_rotation1, ray_rotation2, irradiance_texels, distance_texels, irradiance_hysteresis, distance_hysteresis, max_ray_distance, self_shadow_bias, distance_exponent, irradiance_gamma, weights, frame, min_spacing, convergence_heuristics, relocating, all_lights, _pad1, _pad2 }),
         gpu_layout!(GpuDdgiRayHit { t, triangle, instance, bary }),
         gpu_layout!(GpuDdgiRaySample { radiance, distance }),
     ]

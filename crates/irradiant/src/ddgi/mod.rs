@@ -64,6 +64,11 @@ pub struct DdgiSettings {
     /// (never more than 45 % of the spacing). Without it, probes swallowed by geometry darken
     /// everything around them.
     pub relocation: bool,
+    /// Probe rays shade every punctual light (one shadow ray each) instead of one light chosen
+    /// at random (weighted by the light count). One light keeps the shading cost at one shadow
+    /// ray per probe ray however many lights there are; the extra noise grows with the light
+    /// count and the hysteresis averages it away.
+    pub shade_all_lights: bool,
     /// Seed of the per-frame random rotation of the ray set.
     pub seed: u32,
 }
@@ -96,11 +101,12 @@ impl DdgiSettings {
             weights: ProbeWeights::Full,
             convergence_heuristics: true,
             relocation: true,
+            shade_all_lights: false,
             seed: 0,
         }
     }
     pub fn quality() -> Self {
-        Self { rays_per_probe: 512, hysteresis: 0.98, distance_hysteresis: 0.98, ..Self::balanced() }
+        Self { rays_per_probe: 512, hysteresis: 0.98, distance_hysteresis: 0.98, shade_all_lights: true, ..Self::balanced() }
     }
 
     /// Refuses settings that cannot work, saying which and why.

@@ -214,7 +214,7 @@ impl Ddgi {
             min_spacing: l.min_spacing(),
             convergence_heuristics: s.convergence_heuristics as u32,
             relocating: self.relocating() as u32,
-            _pad0: 0,
+            all_lights: s.shade_all_lights as u32,
             _pad1: 0,
             _pad2: 0,
         }

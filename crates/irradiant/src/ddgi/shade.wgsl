@@ -56,9 +56,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     }
     let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, unpack2x16unorm(hit.bary));
     let wo = -dir;
-    var l = direct_punctual(s, wo);
+    var rng = rng_seed(index, volume.frame, 0x68bc21ebu);
+    var l: vec3<f32>;
+    if volume.all_lights != 0u {
+        l = direct_punctual(s, wo);
+    } else {
+        l = direct_punctual_one(s, wo, rand(&rng));
+    }
     if scene_info.emitter_count > 0u {
-        var rng = rng_seed(index, volume.frame, 0x68bc21ebu);
         l += emitter_light(s, wo, &rng);
     }
     l += diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, wo);

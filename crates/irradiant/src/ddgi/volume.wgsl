@@ -41,7 +41,8 @@ struct GpuDdgiVolume {
     convergence_heuristics: u32,
     // 1 while probes are being relocated (003, §5)
     relocating: u32,
-    _pad0: u32,
+    // 1: probe rays shade every punctual light; 0: one, chosen at random
+    all_lights: u32,
     _pad1: u32,
     _pad2: u32,
 }
