@@ -46,6 +46,9 @@ pub struct BenchArgs {
     /// Rays per probe to time DDGI with, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "256")]
     pub ddgi_rays: Vec<u32>,
+    /// DDGI probe rays shade every punctual light instead of one chosen at random.
+    #[arg(long)]
+    pub ddgi_shade_all_lights: bool,
 }
 
 #[derive(Serialize)]
@@ -162,7 +165,8 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 crate::render::parse_counts(probes).map_err(CliError::Usage)?
             };
             for &rays in &args.ddgi_rays {
-                record.ddgi.push(time_ddgi(&ctx, &scene, &gpu_scene, counts, rays, size, warmup.max(if args.smoke { 1 } else { 5 }), iterations)?);
+                let settings = DdgiSettings { rays_per_probe: rays, shade_all_lights: args.ddgi_shade_all_lights, ..DdgiSettings::balanced() };
+                record.ddgi.push(time_ddgi(&ctx, &scene, &gpu_scene, counts, &settings, size, warmup.max(if args.smoke { 1 } else { 5 }), iterations)?);
             }
         }
     }
@@ -202,12 +206,13 @@ fn time_pass(
 }
 
 /// Times whole frames (G-buffer, direct, DDGI update and resolve, compose) pass by pass.
-fn time_ddgi(ctx: &GpuContext, scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, counts: [u32; 3], rays: u32, size: (u32, u32), warmup: u32, iterations: u32) -> Result<DdgiRecord, CliError> {
+#[allow(clippy::too_many_arguments)]
+fn time_ddgi(ctx: &GpuContext, scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, counts: [u32; 3], settings: &DdgiSettings, size: (u32, u32), warmup: u32, iterations: u32) -> Result<DdgiRecord, CliError> {
     let mut volume = scene.probe_volumes.first().cloned().unwrap_or_else(|| crate::render::default_volume(scene));
     volume.counts = counts;
-    let settings = DdgiSettings { rays_per_probe: rays, ..DdgiSettings::balanced() };
+    let rays = settings.rays_per_probe;
     let mut frame = FrameRenderer::new(ctx, gpu_scene, size.0, size.1, FrameSettings::default())?;
-    let mut ddgi = Ddgi::new(ctx, gpu_scene, &volume, &settings)?;
+    let mut ddgi = Ddgi::new(ctx, gpu_scene, &volume, settings)?;
     ddgi.bind_frame(ctx, &frame.buffers);
     let mut profiler = Profiler::new(ctx, 32);
     let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
