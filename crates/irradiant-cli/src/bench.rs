@@ -49,6 +49,9 @@ pub struct BenchArgs {
     /// DDGI probe rays shade every punctual light instead of one chosen at random.
     #[arg(long)]
     pub ddgi_shade_all_lights: bool,
+    /// Keep traversal stacks in workgroup memory instead of private memory.
+    #[arg(long)]
+    pub stack_in_workgroup: bool,
 }
 
 #[derive(Serialize)]
@@ -126,7 +129,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         let start = Instant::now();
         let scene = irradiant_scene::load(name)?.scene;
         let load_ms = start.elapsed().as_secs_f64() * 1e3;
-        let gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings::default())?;
+        let gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings { stack_in_workgroup: args.stack_in_workgroup, ..GpuSceneSettings::default() })?;
         record.scenes.push(SceneRecord {
             scene: scene.name.clone(),
             triangles: gpu_scene.stats.triangles,

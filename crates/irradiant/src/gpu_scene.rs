@@ -21,23 +21,26 @@ pub struct GpuSceneSettings {
     pub texture_size: u32,
     /// BVH build effort: faster builds or faster rays.
     pub bvh_quality: BuildQuality,
+    /// Where each thread keeps its bottom-level traversal stack: private (per-thread) memory,
+    /// or a slice of workgroup memory. Which is faster depends on the GPU; see BENCHMARKS.md.
+    pub stack_in_workgroup: bool,
 }
 
 impl Default for GpuSceneSettings {
     fn default() -> Self {
-        Self { texture_size: 512, bvh_quality: BuildQuality::Balanced }
+        Self { texture_size: 512, bvh_quality: BuildQuality::Balanced, stack_in_workgroup: false }
     }
 }
 
 impl GpuSceneSettings {
     pub fn fast() -> Self {
-        Self { texture_size: 256, bvh_quality: BuildQuality::Fast }
+        Self { texture_size: 256, bvh_quality: BuildQuality::Fast, ..Self::default() }
     }
     pub fn balanced() -> Self {
         Self::default()
     }
     pub fn quality() -> Self {
-        Self { texture_size: 1024, bvh_quality: BuildQuality::Quality }
+        Self { texture_size: 1024, bvh_quality: BuildQuality::Quality, ..Self::default() }
     }
 }
 
@@ -70,6 +73,7 @@ pub struct GpuScene {
     /// Depth of the top-level traversal stack: enough for any tree over the instances that
     /// PLOC builds in practice (it is rebuilt each frame, so its depth varies).
     tlas_stack: u32,
+    stack_in_workgroup: bool,
     pub triangle_sources: Vec<TriangleSource>,
     pub stats: GpuSceneStats,
 }
@@ -234,6 +238,7 @@ impl GpuScene {
             sky: scene.sky,
             instance_order: Vec::new(),
             previous_transforms: Vec::new(),
+            stack_in_workgroup: settings.stack_in_workgroup,
             tlas_stack: (2 * (scene.instances.len().max(2) as f32).log2().ceil() as u32 + 4).min(scene.instances.len() as u32 + 2),
             stats: GpuSceneStats {
                 triangles: triangles.len(),
@@ -255,6 +260,7 @@ impl GpuScene {
         vec![
             ("BLAS_STACK_SIZE", format!("{}u", self.stats.max_blas_depth.max(2))),
             ("TLAS_STACK_SIZE", format!("{}u", self.tlas_stack)),
+            ("STACK_IN_WORKGROUP", format!("{}u", self.stack_in_workgroup as u32)),
         ]
     }
 

@@ -68,10 +68,16 @@ fn random_rays(rng: &mut StdRng, n: usize) -> Vec<GpuRay> {
 
 #[test]
 fn gpu_hits_match_cpu_brute_force_over_instanced_meshes() {
+    for stack_in_workgroup in [false, true] {
+        hits_match_brute_force(irradiant::GpuSceneSettings { stack_in_workgroup, ..Default::default() });
+    }
+}
+
+fn hits_match_brute_force(settings: irradiant::GpuSceneSettings) {
     let Some(ctx) = common::gpu() else { return };
     let mut rng = StdRng::seed_from_u64(11);
     let scene = test_scene(&mut rng);
-    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
+    let gpu_scene = GpuScene::new(&ctx, &scene, &settings).unwrap();
     let caster = RayCaster::new(&ctx, &gpu_scene).unwrap();
     let rays = random_rays(&mut rng, 2000);
     let hits = caster.trace(&ctx, &gpu_scene, &rays, false).unwrap();

@@ -7,7 +7,8 @@
 @group(1) @binding(1) var<storage, read_write> gbuffer: array<GpuGBufferTexel>;
 
 @compute @workgroup_size(8, 8, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+    bvh_thread(local_index);
     if id.x >= params.width || id.y >= params.height {
         return;
     }

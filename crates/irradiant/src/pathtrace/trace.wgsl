@@ -95,7 +95,8 @@ fn trace_path(pixel: vec2<u32>, rng: ptr<function, u32>) -> vec3<f32> {
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+    bvh_thread(local_index);
     if id.x >= params.width || id.y >= params.height {
         return;
     }

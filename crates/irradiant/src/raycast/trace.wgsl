@@ -28,7 +28,8 @@ struct GpuRayCastParams {
 @group(1) @binding(2) var<storage, read_write> hits: array<GpuRayHit>;
 
 @compute @workgroup_size(64, 1, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+    bvh_thread(local_index);
     // 2D dispatch for ray counts above 65535 × 64.
     let index = id.x + id.y * groups.x * 64u;
     if index >= params.ray_count {

@@ -5,6 +5,17 @@
 
 // BLAS_STACK_SIZE and TLAS_STACK_SIZE come from GpuScene::shader_constants: the stacks are
 // exactly as deep as the scene's trees, which keeps per-thread memory small.
+// STACK_IN_WORKGROUP (0 or 1, also from there) puts the bottom-level stack in workgroup memory,
+// a slice per thread; every tracing kernel runs 64 threads a workgroup and calls
+// bvh_thread(local_invocation_index) first.
+
+const STACK_THREADS: u32 = 64u;
+var<workgroup> blas_stack_memory: array<u32, STACK_THREADS * BLAS_STACK_SIZE * STACK_IN_WORKGROUP + 1u>;
+var<private> bvh_stack_base: u32;
+
+fn bvh_thread(local_index: u32) {
+    bvh_stack_base = local_index * BLAS_STACK_SIZE;
+}
 const NO_HIT: f32 = 3.0e38;
 // Rays never reach beyond this, so an absent child's box (a point at 1e30) is never hit.
 const RAY_FAR: f32 = 1.0e20;
@@ -88,7 +99,12 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_h
             let a_first = ta <= tb;
             node = select(n.b_first, n.a_first, a_first);
             if sp < BLAS_STACK_SIZE {
-                stack[sp] = select(n.a_first, n.b_first, a_first);
+                let far = select(n.a_first, n.b_first, a_first);
+                if STACK_IN_WORKGROUP == 1u {
+                    blas_stack_memory[bvh_stack_base + sp] = far;
+                } else {
+                    stack[sp] = far;
+                }
                 sp++;
             }
         } else if go_a {
@@ -100,7 +116,11 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_h
                 break;
             }
             sp--;
-            node = stack[sp];
+            if STACK_IN_WORKGROUP == 1u {
+                node = blas_stack_memory[bvh_stack_base + sp];
+            } else {
+                node = stack[sp];
+            }
         }
     }
     return false;
