@@ -22,7 +22,8 @@ pub struct GpuSceneSettings {
     /// BVH build effort: faster builds or faster rays.
     pub bvh_quality: BuildQuality,
     /// Where each thread keeps its bottom-level traversal stack: private (per-thread) memory,
-    /// or a slice of workgroup memory. Which is faster depends on the GPU; see BENCHMARKS.md.
+    /// or a slice of workgroup memory. Which is faster depends on the GPU: on an H200 the
+    /// workgroup stack is 1.4–1.7× slower (BENCHMARKS.md), so private is the default.
     pub stack_in_workgroup: bool,
 }
 
