@@ -12,7 +12,13 @@ pub struct CpuHit {
 
 /// Möller–Trumbore, two-sided; returns the distance along `dir` (not normalised) if it lies in
 /// (t_min, t_max).
-pub fn intersect_triangle(origin: Vec3, dir: Vec3, tri: &[Vec3; 3], t_min: f32, t_max: f32) -> Option<f32> {
+pub fn intersect_triangle(
+    origin: Vec3,
+    dir: Vec3,
+    tri: &[Vec3; 3],
+    t_min: f32,
+    t_max: f32,
+) -> Option<f32> {
     let e1 = tri[1] - tri[0];
     let e2 = tri[2] - tri[0];
     let p = dir.cross(e2);
@@ -36,25 +42,42 @@ pub fn intersect_triangle(origin: Vec3, dir: Vec3, tri: &[Vec3; 3], t_min: f32, 
 }
 
 /// The closest hit by testing every triangle.
-pub fn brute_force_closest_hit(origin: Vec3, dir: Vec3, triangles: &[[Vec3; 3]], t_max: f32) -> Option<CpuHit> {
+pub fn brute_force_closest_hit(
+    origin: Vec3,
+    dir: Vec3,
+    triangles: &[[Vec3; 3]],
+    t_max: f32,
+) -> Option<CpuHit> {
     let mut best: Option<CpuHit> = None;
     for (i, tri) in triangles.iter().enumerate() {
         let limit = best.map_or(t_max, |b| b.t);
         if let Some(t) = intersect_triangle(origin, dir, tri, 0.0, limit) {
-            best = Some(CpuHit { t, triangle: i as u32 });
+            best = Some(CpuHit {
+                t,
+                triangle: i as u32,
+            });
         }
     }
     best
 }
 
 /// Closest hit by walking packed nodes the way the WGSL traversal does: checks the packing.
-pub fn traverse_packed(nodes: &[GpuBvhNode], order: &[u32], origin: Vec3, dir: Vec3, triangles: &[[Vec3; 3]]) -> Option<CpuHit> {
+pub fn traverse_packed(
+    nodes: &[GpuBvhNode],
+    order: &[u32],
+    origin: Vec3,
+    dir: Vec3,
+    triangles: &[[Vec3; 3]],
+) -> Option<CpuHit> {
     let mut best: Option<CpuHit> = None;
     let mut stack = vec![0u32];
     let inv = dir.recip();
     while let Some(index) = stack.pop() {
         let n = &nodes[index as usize];
-        for (lo, hi, first, count) in [(n.a_min, n.a_max, n.a_first, n.a_count), (n.b_min, n.b_max, n.b_first, n.b_count)] {
+        for (lo, hi, first, count) in [
+            (n.a_min, n.a_max, n.a_first, n.a_count),
+            (n.b_min, n.b_max, n.b_first, n.b_count),
+        ] {
             let t_max = best.map_or(1e20, |b| b.t);
             if first == crate::ABSENT || !slab(origin, inv, Vec3::from(lo), Vec3::from(hi), t_max) {
                 continue;
@@ -65,7 +88,9 @@ pub fn traverse_packed(nodes: &[GpuBvhNode], order: &[u32], origin: Vec3, dir: V
                 for slot in first..first + count {
                     let triangle = order[slot as usize];
                     let limit = best.map_or(f32::INFINITY, |b| b.t);
-                    if let Some(t) = intersect_triangle(origin, dir, &triangles[triangle as usize], 0.0, limit) {
+                    if let Some(t) =
+                        intersect_triangle(origin, dir, &triangles[triangle as usize], 0.0, limit)
+                    {
                         best = Some(CpuHit { t, triangle });
                     }
                 }

@@ -80,12 +80,25 @@ pub struct Blas {
 pub fn build_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> Blas {
     let tris: Vec<Triangle> = triangles
         .iter()
-        .map(|t| Triangle { v0: t[0].into(), v1: t[1].into(), v2: t[2].into() })
+        .map(|t| Triangle {
+            v0: t[0].into(),
+            v1: t[1].into(),
+            v2: t[2].into(),
+        })
         .collect();
-    let bvh = obvhs::bvh2::builder::build_bvh2_from_tris(&tris, quality.params(), &mut Duration::default());
+    let bvh = obvhs::bvh2::builder::build_bvh2_from_tris(
+        &tris,
+        quality.params(),
+        &mut Duration::default(),
+    );
     let (nodes, triangle_order, depth) = pack(&bvh);
     let root = bvh.nodes[0].aabb;
-    Blas { nodes, triangle_order, bounds: (Vec3::from(root.min), Vec3::from(root.max)), depth }
+    Blas {
+        nodes,
+        triangle_order,
+        bounds: (Vec3::from(root.min), Vec3::from(root.max)),
+        depth,
+    }
 }
 
 /// The top-level BVH over instance boxes. Leaf `first` indexes the returned `instance_order`.
@@ -97,13 +110,20 @@ pub struct Tlas {
 }
 
 pub fn build_tlas(instance_bounds: &[(Vec3, Vec3)]) -> Tlas {
-    let boxes: Vec<Aabb> = instance_bounds.iter().map(|(lo, hi)| Aabb::new(Vec3A::from(*lo), Vec3A::from(*hi))).collect();
+    let boxes: Vec<Aabb> = instance_bounds
+        .iter()
+        .map(|(lo, hi)| Aabb::new(Vec3A::from(*lo), Vec3A::from(*hi)))
+        .collect();
     let mut params = BvhBuildParams::medium_build();
     // One instance a leaf: instances overlap much more than triangles do.
     params.max_prims_per_leaf = 1;
     let bvh = obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut Duration::default());
     let (nodes, instance_order, depth) = pack(&bvh);
-    Tlas { nodes, instance_order, depth }
+    Tlas {
+        nodes,
+        instance_order,
+        depth,
+    }
 }
 
 /// World-space bounds of a box under an affine transform (the 8 corners).
@@ -138,7 +158,9 @@ fn pack(bvh: &Bvh2) -> (Vec<GpuBvhNode>, Vec<u32>, u32) {
     if root.is_leaf() {
         // A one-leaf tree: an inner root with the leaf as child a and no child b.
         let first = order.len() as u32;
-        order.extend_from_slice(&bvh.primitive_indices[root.first_index as usize..][..root.prim_count as usize]);
+        order.extend_from_slice(
+            &bvh.primitive_indices[root.first_index as usize..][..root.prim_count as usize],
+        );
         nodes.push(GpuBvhNode {
             a_min: root.aabb.min.into(),
             a_first: first,
@@ -162,8 +184,15 @@ fn pack(bvh: &Bvh2) -> (Vec<GpuBvhNode>, Vec<u32>, u32) {
             let node = &bvh.nodes[first_child + k];
             if node.is_leaf() {
                 let first = order.len() as u32;
-                order.extend_from_slice(&bvh.primitive_indices[node.first_index as usize..][..node.prim_count as usize]);
-                *child = (first, node.prim_count, node.aabb.min.into(), node.aabb.max.into());
+                order.extend_from_slice(
+                    &bvh.primitive_indices[node.first_index as usize..][..node.prim_count as usize],
+                );
+                *child = (
+                    first,
+                    node.prim_count,
+                    node.aabb.min.into(),
+                    node.aabb.max.into(),
+                );
             } else {
                 let packed = nodes.len();
                 nodes.push(GpuBvhNode::zeroed());

@@ -6,8 +6,18 @@ use super::*;
 fn random_soup(rng: &mut StdRng, count: usize) -> Vec<[Vec3; 3]> {
     (0..count)
         .map(|_| {
-            let c = Vec3::new(rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0));
-            let mut v = || c + Vec3::new(rng.random_range(-0.5..0.5), rng.random_range(-0.5..0.5), rng.random_range(-0.5..0.5));
+            let c = Vec3::new(
+                rng.random_range(-5.0..5.0),
+                rng.random_range(-5.0..5.0),
+                rng.random_range(-5.0..5.0),
+            );
+            let mut v = || {
+                c + Vec3::new(
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-0.5..0.5),
+                )
+            };
             [v(), v(), v()]
         })
         .collect()
@@ -15,7 +25,11 @@ fn random_soup(rng: &mut StdRng, count: usize) -> Vec<[Vec3; 3]> {
 
 fn random_direction(rng: &mut StdRng) -> Vec3 {
     loop {
-        let d = Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        let d = Vec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        );
         if d.length_squared() > 0.01 && d.length_squared() <= 1.0 {
             return d.normalize();
         }
@@ -25,16 +39,28 @@ fn random_direction(rng: &mut StdRng) -> Vec3 {
 #[test]
 fn packed_tree_finds_the_same_hits_as_brute_force() {
     let mut rng = StdRng::seed_from_u64(7);
-    for quality in [BuildQuality::Fast, BuildQuality::Balanced, BuildQuality::Quality] {
+    for quality in [
+        BuildQuality::Fast,
+        BuildQuality::Balanced,
+        BuildQuality::Quality,
+    ] {
         let tris = random_soup(&mut rng, 2000);
         let blas = build_blas(&tris, quality);
         let mut hits = 0;
         for _ in 0..500 {
-            let o = Vec3::new(rng.random_range(-6.0..6.0), rng.random_range(-6.0..6.0), rng.random_range(-6.0..6.0));
+            let o = Vec3::new(
+                rng.random_range(-6.0..6.0),
+                rng.random_range(-6.0..6.0),
+                rng.random_range(-6.0..6.0),
+            );
             let d = random_direction(&mut rng);
             let expected = brute_force_closest_hit(o, d, &tris, f32::INFINITY);
             let got = traverse_packed(&blas.nodes, &blas.triangle_order, o, d, &tris);
-            assert_eq!(expected.map(|h| h.triangle), got.map(|h| h.triangle), "{quality:?}");
+            assert_eq!(
+                expected.map(|h| h.triangle),
+                got.map(|h| h.triangle),
+                "{quality:?}"
+            );
             hits += expected.is_some() as u32;
         }
         assert!(hits > 100, "the test rays should mostly hit ({hits})");
@@ -53,10 +79,16 @@ fn every_triangle_is_referenced_and_boxes_nest() {
     assert!(seen.iter().all(|&s| s));
     // Every leaf box contains its triangles.
     for n in &blas.nodes {
-        for (lo, hi, first, count) in [(n.a_min, n.a_max, n.a_first, n.a_count), (n.b_min, n.b_max, n.b_first, n.b_count)] {
+        for (lo, hi, first, count) in [
+            (n.a_min, n.a_max, n.a_first, n.a_count),
+            (n.b_min, n.b_max, n.b_first, n.b_count),
+        ] {
             for slot in first..first + count {
                 for v in tris[blas.triangle_order[slot as usize] as usize] {
-                    assert!(v.cmpge(Vec3::from(lo) - 1e-5).all() && v.cmple(Vec3::from(hi) + 1e-5).all());
+                    assert!(
+                        v.cmpge(Vec3::from(lo) - 1e-5).all()
+                            && v.cmple(Vec3::from(hi) + 1e-5).all()
+                    );
                 }
             }
         }
@@ -71,7 +103,13 @@ fn a_single_triangle_packs_into_one_node_with_an_absent_sibling() {
     assert_eq!(blas.nodes.len(), 1);
     assert_eq!(blas.nodes[0].a_count, 1);
     assert_eq!((blas.nodes[0].b_first, blas.nodes[0].b_count), (ABSENT, 0));
-    let hit = traverse_packed(&blas.nodes, &blas.triangle_order, Vec3::new(0.2, 0.2, 1.0), -Vec3::Z, &tri);
+    let hit = traverse_packed(
+        &blas.nodes,
+        &blas.triangle_order,
+        Vec3::new(0.2, 0.2, 1.0),
+        -Vec3::Z,
+        &tri,
+    );
     assert!((hit.unwrap().t - 1.0).abs() < 1e-6);
 }
 
@@ -83,7 +121,13 @@ fn offset_shifts_inner_and_leaf_indices_separately() {
     let mut shifted = blas.clone();
     shifted.offset(1000, 50_000);
     for (a, b) in blas.nodes.iter().zip(&shifted.nodes) {
-        let expect = |first: u32, count: u32| if count == 0 { first + 1000 } else { first + 50_000 };
+        let expect = |first: u32, count: u32| {
+            if count == 0 {
+                first + 1000
+            } else {
+                first + 50_000
+            }
+        };
         assert_eq!(b.a_first, expect(a.a_first, a.a_count));
         assert_eq!(b.b_first, expect(a.b_first, a.b_count));
     }
@@ -91,7 +135,9 @@ fn offset_shifts_inner_and_leaf_indices_separately() {
 
 #[test]
 fn tlas_covers_every_instance() {
-    let boxes: Vec<(Vec3, Vec3)> = (0..37).map(|i| (Vec3::splat(i as f32), Vec3::splat(i as f32 + 0.5))).collect();
+    let boxes: Vec<(Vec3, Vec3)> = (0..37)
+        .map(|i| (Vec3::splat(i as f32), Vec3::splat(i as f32 + 0.5)))
+        .collect();
     let tlas = build_tlas(&boxes);
     let mut order = tlas.instance_order.clone();
     order.sort();

@@ -6,11 +6,11 @@ use std::time::Instant;
 
 use clap::Args;
 use glam::Vec3;
+use irradiant::ddgi::{Ddgi, DdgiSettings};
+use irradiant::frame::{FrameRenderer, FrameSettings, Technique};
 use irradiant::gpu_types::{GpuCamera, GpuRay};
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant::raycast::RayCaster;
-use irradiant::ddgi::{Ddgi, DdgiSettings};
-use irradiant::frame::{FrameRenderer, FrameSettings, Technique};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
 use irradiant_gpu::{Profiler, wgpu};
 use rand::{Rng, SeedableRng, rngs::StdRng};
@@ -109,15 +109,26 @@ struct BenchRecord {
 }
 
 pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
-    let (size, iterations, warmup) = if args.smoke { ((64, 64), 2, 0) } else { (args.size, args.iterations.max(1), args.warmup) };
+    let (size, iterations, warmup) = if args.smoke {
+        ((64, 64), 2, 0)
+    } else {
+        (args.size, args.iterations.max(1), args.warmup)
+    };
     let ctx = GpuContext::new(adapter)?;
     let mut record = BenchRecord {
         adapter: ctx.info.name.clone(),
         backend: ctx.info.backend.clone(),
         driver: format!("{} {}", ctx.info.driver, ctx.info.driver_info),
-        timing: if ctx.info.timestamps { "GPU timestamp queries" } else { "wall clock (no timestamp queries)" },
+        timing: if ctx.info.timestamps {
+            "GPU timestamp queries"
+        } else {
+            "wall clock (no timestamp queries)"
+        },
         commit: env!("IRRADIANT_COMMIT"),
-        date_unix: std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0),
+        date_unix: std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map(|d| d.as_secs())
+            .unwrap_or(0),
         command: std::env::args().collect::<Vec<_>>().join(" "),
         size: [size.0, size.1],
         iterations,
@@ -129,7 +140,14 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         let start = Instant::now();
         let scene = irradiant_scene::load(name)?.scene;
         let load_ms = start.elapsed().as_secs_f64() * 1e3;
-        let gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings { stack_in_workgroup: args.stack_in_workgroup, ..GpuSceneSettings::default() })?;
+        let gpu_scene = GpuScene::new(
+            &ctx,
+            &scene,
+            &GpuSceneSettings {
+                stack_in_workgroup: args.stack_in_workgroup,
+                ..GpuSceneSettings::default()
+            },
+        )?;
         record.scenes.push(SceneRecord {
             scene: scene.name.clone(),
             triangles: gpu_scene.stats.triangles,
@@ -141,42 +159,105 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         let caster = RayCaster::new(&ctx, &gpu_scene)?;
         let primary = primary_rays(&scene, size);
         let primary_batch = caster.upload(&ctx, &primary, false);
-        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| caster.record(encoder, &gpu_scene, &primary_batch, profiler))?;
-        record.passes.push(pass_record(&scene.name, "raycast/trace (primary)", &times, Some(primary.len() as u64)));
+        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| {
+            caster.record(encoder, &gpu_scene, &primary_batch, profiler)
+        })?;
+        record.passes.push(pass_record(
+            &scene.name,
+            "raycast/trace (primary)",
+            &times,
+            Some(primary.len() as u64),
+        ));
 
         let hits = caster.trace(&ctx, &gpu_scene, &primary, false)?;
         let diffuse = diffuse_rays(&scene, &gpu_scene, &primary, &hits);
         let diffuse_batch = caster.upload(&ctx, &diffuse, false);
-        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| caster.record(encoder, &gpu_scene, &diffuse_batch, profiler))?;
-        record.passes.push(pass_record(&scene.name, "raycast/trace (diffuse)", &times, Some(diffuse.len() as u64)));
+        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| {
+            caster.record(encoder, &gpu_scene, &diffuse_batch, profiler)
+        })?;
+        record.passes.push(pass_record(
+            &scene.name,
+            "raycast/trace (diffuse)",
+            &times,
+            Some(diffuse.len() as u64),
+        ));
 
         let shadow_batch = caster.upload(&ctx, &diffuse, true);
-        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| caster.record(encoder, &gpu_scene, &shadow_batch, profiler))?;
-        record.passes.push(pass_record(&scene.name, "raycast/trace (diffuse, any hit)", &times, Some(diffuse.len() as u64)));
+        let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| {
+            caster.record(encoder, &gpu_scene, &shadow_batch, profiler)
+        })?;
+        record.passes.push(pass_record(
+            &scene.name,
+            "raycast/trace (diffuse, any hit)",
+            &times,
+            Some(diffuse.len() as u64),
+        ));
 
         let mut tracer = PathTracer::new(&ctx, &gpu_scene, size.0, size.1)?;
-        let settings = PathTraceSettings { samples_per_pixel: 1, samples_per_dispatch: 1, ..PathTraceSettings::balanced() };
+        let settings = PathTraceSettings {
+            samples_per_pixel: 1,
+            samples_per_dispatch: 1,
+            ..PathTraceSettings::balanced()
+        };
         let times = time_pass(&ctx, warmup, iterations, |encoder, profiler| {
-            tracer.record(&ctx, encoder, &gpu_scene, &scene.camera, &settings, 1, profiler)
+            tracer.record(
+                &ctx,
+                encoder,
+                &gpu_scene,
+                &scene.camera,
+                &settings,
+                1,
+                profiler,
+            )
         })?;
-        record.passes.push(pass_record(&scene.name, "pathtrace/trace (1 spp)", &times, None));
+        record.passes.push(pass_record(
+            &scene.name,
+            "pathtrace/trace (1 spp)",
+            &times,
+            None,
+        ));
 
         for probes in &args.ddgi_probes {
             let counts = if probes == "scene" {
-                scene.probe_volumes.first().map(|v| v.counts).ok_or_else(|| CliError::Usage(format!("{}: the scene has no probe volume; pass counts such as 16x8x16", scene.name)))?
+                scene
+                    .probe_volumes
+                    .first()
+                    .map(|v| v.counts)
+                    .ok_or_else(|| {
+                        CliError::Usage(format!(
+                            "{}: the scene has no probe volume; pass counts such as 16x8x16",
+                            scene.name
+                        ))
+                    })?
             } else {
                 crate::render::parse_counts(probes).map_err(CliError::Usage)?
             };
             for &rays in &args.ddgi_rays {
-                let settings = DdgiSettings { rays_per_probe: rays, shade_all_lights: args.ddgi_shade_all_lights, ..DdgiSettings::balanced() };
-                record.ddgi.push(time_ddgi(&ctx, &scene, &gpu_scene, counts, &settings, size, warmup.max(if args.smoke { 1 } else { 5 }), iterations)?);
+                let settings = DdgiSettings {
+                    rays_per_probe: rays,
+                    shade_all_lights: args.ddgi_shade_all_lights,
+                    ..DdgiSettings::balanced()
+                };
+                record.ddgi.push(time_ddgi(
+                    &ctx,
+                    &scene,
+                    &gpu_scene,
+                    counts,
+                    &settings,
+                    size,
+                    warmup.max(if args.smoke { 1 } else { 5 }),
+                    iterations,
+                )?);
             }
         }
     }
     print_table(&record);
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&record).expect("bench records serialise");
-        std::fs::write(path, text).map_err(|e| CliError::Io { path: path.clone(), message: e.to_string() })?;
+        std::fs::write(path, text).map_err(|e| CliError::Io {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
         println!("wrote {}", path.display());
     }
     Ok(())
@@ -193,8 +274,19 @@ fn time_pass(
     let mut profiler = Profiler::new(ctx, 1);
     let mut times = Vec::new();
     for i in 0..warmup + iterations {
-        let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench") });
-        record_pass(&mut encoder, if profiler.enabled() { Some(&mut profiler) } else { None });
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("bench"),
+            });
+        record_pass(
+            &mut encoder,
+            if profiler.enabled() {
+                Some(&mut profiler)
+            } else {
+                None
+            },
+        );
         profiler.resolve(&mut encoder);
         let start = Instant::now();
         ctx.queue.submit([encoder.finish()]);
@@ -210,8 +302,21 @@ fn time_pass(
 
 /// Times whole frames (G-buffer, direct, DDGI update and resolve, compose) pass by pass.
 #[allow(clippy::too_many_arguments)]
-fn time_ddgi(ctx: &GpuContext, scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, counts: [u32; 3], settings: &DdgiSettings, size: (u32, u32), warmup: u32, iterations: u32) -> Result<DdgiRecord, CliError> {
-    let mut volume = scene.probe_volumes.first().cloned().unwrap_or_else(|| crate::render::default_volume(scene));
+fn time_ddgi(
+    ctx: &GpuContext,
+    scene: &irradiant_scene::Scene,
+    gpu_scene: &GpuScene,
+    counts: [u32; 3],
+    settings: &DdgiSettings,
+    size: (u32, u32),
+    warmup: u32,
+    iterations: u32,
+) -> Result<DdgiRecord, CliError> {
+    let mut volume = scene
+        .probe_volumes
+        .first()
+        .cloned()
+        .unwrap_or_else(|| crate::render::default_volume(scene));
     volume.counts = counts;
     let rays = settings.rays_per_probe;
     let mut frame = FrameRenderer::new(ctx, gpu_scene, size.0, size.1, FrameSettings::default())?;
@@ -220,7 +325,14 @@ fn time_ddgi(ctx: &GpuContext, scene: &irradiant_scene::Scene, gpu_scene: &GpuSc
     let mut profiler = Profiler::new(ctx, 32);
     let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
     for i in 0..warmup + iterations {
-        frame.render(ctx, gpu_scene, &scene.camera, Some(&mut ddgi as &mut dyn Technique), false, Some(&mut profiler))?;
+        frame.render(
+            ctx,
+            gpu_scene,
+            &scene.camera,
+            Some(&mut ddgi as &mut dyn Technique),
+            false,
+            Some(&mut profiler),
+        )?;
         ctx.wait()?;
         let timings = profiler.read(ctx)?;
         if i < warmup {
@@ -241,7 +353,17 @@ fn time_ddgi(ctx: &GpuContext, scene: &irradiant_scene::Scene, gpu_scene: &GpuSc
         })
         .collect();
     let ms = |label: &str| passes.iter().find(|(l, _)| l == label).map_or(0.0, |p| p.1);
-    let update: f64 = ["ddgi/ray_directions", "ddgi/trace", "ddgi/shade", "ddgi/blend_irradiance", "ddgi/blend_distance", "ddgi/borders"].iter().map(|l| ms(l)).sum();
+    let update: f64 = [
+        "ddgi/ray_directions",
+        "ddgi/trace",
+        "ddgi/shade",
+        "ddgi/blend_irradiance",
+        "ddgi/blend_distance",
+        "ddgi/borders",
+    ]
+    .iter()
+    .map(|l| ms(l))
+    .sum();
     let total_rays = (counts[0] * counts[1] * counts[2]) as u64 * rays as u64;
     let gi = update + ms("ddgi/resolve");
     Ok(DdgiRecord {
@@ -273,46 +395,96 @@ fn pass_record(scene: &str, label: &str, times: &[f64], rays: Option<u64>) -> Pa
 }
 
 fn print_table(r: &BenchRecord) {
-    println!("adapter: {} ({}, driver {}); timing: {}; commit {}", r.adapter, r.backend, r.driver, r.timing, r.commit);
-    println!("{:<22} {:>10} {:>10} {:>12} {:>10}", "scene", "triangles", "BVH nodes", "BVH build ms", "load ms");
+    println!(
+        "adapter: {} ({}, driver {}); timing: {}; commit {}",
+        r.adapter, r.backend, r.driver, r.timing, r.commit
+    );
+    println!(
+        "{:<22} {:>10} {:>10} {:>12} {:>10}",
+        "scene", "triangles", "BVH nodes", "BVH build ms", "load ms"
+    );
     for s in &r.scenes {
-        println!("{:<22} {:>10} {:>10} {:>12.1} {:>10.1}", s.scene, s.triangles, s.bvh_nodes, s.bvh_build_ms, s.scene_load_ms);
+        println!(
+            "{:<22} {:>10} {:>10} {:>12.1} {:>10.1}",
+            s.scene, s.triangles, s.bvh_nodes, s.bvh_build_ms, s.scene_load_ms
+        );
     }
-    println!("\n{:<22} {:<34} {:>10} {:>10} {:>12} {:>10}", "scene", "pass", "median ms", "min ms", "rays", "Mrays/s");
+    println!(
+        "\n{:<22} {:<34} {:>10} {:>10} {:>12} {:>10}",
+        "scene", "pass", "median ms", "min ms", "rays", "Mrays/s"
+    );
     for p in &r.passes {
         let rays = p.rays.map_or("-".into(), |n| n.to_string());
         let rate = p.mrays_per_s.map_or("-".into(), |m| format!("{m:.1}"));
-        println!("{:<22} {:<34} {:>10.3} {:>10.3} {:>12} {:>10}", p.scene, p.label, p.median_ms, p.min_ms, rays, rate);
+        println!(
+            "{:<22} {:<34} {:>10.3} {:>10.3} {:>12} {:>10}",
+            p.scene, p.label, p.median_ms, p.min_ms, rays, rate
+        );
     }
     if r.ddgi.is_empty() {
         return;
     }
-    let labels: Vec<&str> = r.ddgi[0].passes.iter().map(|(l, _)| l.strip_prefix("ddgi/").or(l.strip_prefix("frame/")).unwrap_or(l)).collect();
-    print!("\n{:<10} {:<10} {:>5} {:>9}", "scene", "probes", "rays", "Mrays");
+    let labels: Vec<&str> = r.ddgi[0]
+        .passes
+        .iter()
+        .map(|(l, _)| {
+            l.strip_prefix("ddgi/")
+                .or(l.strip_prefix("frame/"))
+                .unwrap_or(l)
+        })
+        .collect();
+    print!(
+        "\n{:<10} {:<10} {:>5} {:>9}",
+        "scene", "probes", "rays", "Mrays"
+    );
     for l in &labels {
         print!(" {:>12}", l);
     }
-    println!(" {:>10} {:>12} {:>10} {:>12} {:>9}", "update ms", "update Mr/s", "trace Mr/s", "GI ms", "frame ms");
+    println!(
+        " {:>10} {:>12} {:>10} {:>12} {:>9}",
+        "update ms", "update Mr/s", "trace Mr/s", "GI ms", "frame ms"
+    );
     for d in &r.ddgi {
-        print!("{:<10} {:<10} {:>5} {:>9.2}", d.scene, format!("{}x{}x{}", d.probes[0], d.probes[1], d.probes[2]), d.rays_per_probe, d.rays as f64 / 1e6);
+        print!(
+            "{:<10} {:<10} {:>5} {:>9.2}",
+            d.scene,
+            format!("{}x{}x{}", d.probes[0], d.probes[1], d.probes[2]),
+            d.rays_per_probe,
+            d.rays as f64 / 1e6
+        );
         for (_, ms) in &d.passes {
             print!(" {:>12.3}", ms);
         }
-        println!(" {:>10.3} {:>12.0} {:>10.0} {:>12.3} {:>9.3}", d.update_ms, d.update_mrays_per_s, d.trace_mrays_per_s, d.gi_ms, d.frame_ms);
+        println!(
+            " {:>10.3} {:>12.0} {:>10.0} {:>12.3} {:>9.3}",
+            d.update_ms, d.update_mrays_per_s, d.trace_mrays_per_s, d.gi_ms, d.frame_ms
+        );
     }
 }
 
 /// One ray through each pixel centre.
 fn primary_rays(scene: &irradiant_scene::Scene, (w, h): (u32, u32)) -> Vec<GpuRay> {
     let cam = GpuCamera::new(&scene.camera, w, h);
-    let (forward, right, up) = (Vec3::from(cam.forward), Vec3::from(cam.right), Vec3::from(cam.up));
+    let (forward, right, up) = (
+        Vec3::from(cam.forward),
+        Vec3::from(cam.right),
+        Vec3::from(cam.up),
+    );
     let mut rays = Vec::with_capacity((w * h) as usize);
     for y in 0..h {
         for x in 0..w {
             let ndc_x = (x as f32 + 0.5) / w as f32 * 2.0 - 1.0;
             let ndc_y = 1.0 - (y as f32 + 0.5) / h as f32 * 2.0;
-            let dir = (forward + right * ndc_x * cam.tan_half_fov_y * cam.aspect + up * ndc_y * cam.tan_half_fov_y).normalize();
-            rays.push(GpuRay { origin: cam.position, t_max: 1e20, dir: dir.into(), _pad: 0 });
+            let dir = (forward
+                + right * ndc_x * cam.tan_half_fov_y * cam.aspect
+                + up * ndc_y * cam.tan_half_fov_y)
+                .normalize();
+            rays.push(GpuRay {
+                origin: cam.position,
+                t_max: 1e20,
+                dir: dir.into(),
+                _pad: 0,
+            });
         }
     }
     rays
@@ -321,10 +493,19 @@ fn primary_rays(scene: &irradiant_scene::Scene, (w, h): (u32, u32)) -> Vec<GpuRa
 /// Incoherent secondary rays: from each primary hit, a cosine-distributed direction about the
 /// surface normal (what a path tracer's or DDGI's bounce rays look like). Pixels whose primary
 /// ray missed shoot a uniformly random ray from the camera instead, keeping the count.
-fn diffuse_rays(scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, primary: &[GpuRay], hits: &[irradiant::gpu_types::GpuRayHit]) -> Vec<GpuRay> {
+fn diffuse_rays(
+    scene: &irradiant_scene::Scene,
+    gpu_scene: &GpuScene,
+    primary: &[GpuRay],
+    hits: &[irradiant::gpu_types::GpuRayHit],
+) -> Vec<GpuRay> {
     let mut rng = StdRng::seed_from_u64(1);
     let mut unit = || loop {
-        let v = Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        let v = Vec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        );
         let l = v.length_squared();
         if l > 1e-4 && l <= 1.0 {
             break v / l.sqrt();
@@ -337,11 +518,19 @@ fn diffuse_rays(scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, primary: &
             let o = Vec3::from(ray.origin);
             let d = Vec3::from(ray.dir);
             if hit.t < 0.0 {
-                return GpuRay { origin: ray.origin, t_max: 1e20, dir: unit().into(), _pad: 0 };
+                return GpuRay {
+                    origin: ray.origin,
+                    t_max: 1e20,
+                    dir: unit().into(),
+                    _pad: 0,
+                };
             }
-            let instance = &scene.instances[gpu_scene.instance_order[hit.instance as usize] as usize];
+            let instance =
+                &scene.instances[gpu_scene.instance_order[hit.instance as usize] as usize];
             let (mesh, t) = gpu_scene.triangle_sources[hit.triangle as usize];
-            let [a, b, c] = scene.meshes[mesh as usize].triangle(t as usize).map(|p| instance.transform.transform_point3(p));
+            let [a, b, c] = scene.meshes[mesh as usize]
+                .triangle(t as usize)
+                .map(|p| instance.transform.transform_point3(p));
             let mut n = (b - a).cross(c - a).normalize();
             if n.dot(d) > 0.0 {
                 n = -n;
@@ -350,7 +539,12 @@ fn diffuse_rays(scene: &irradiant_scene::Scene, gpu_scene: &GpuScene, primary: &
             // Cosine distribution: normal plus a uniform point on the unit sphere.
             let dir = (n + unit()).normalize_or(n);
             let origin = p + n * 1e-4 * p.abs().max_element().max(1.0);
-            GpuRay { origin: origin.into(), t_max: 1e20, dir: dir.into(), _pad: 0 }
+            GpuRay {
+                origin: origin.into(),
+                t_max: 1e20,
+                dir: dir.into(),
+                _pad: 0,
+            }
         })
         .collect()
 }

@@ -10,7 +10,10 @@ pub fn run(choice: &AdapterChoice) -> Result<(), CliError> {
     }
     for (i, a) in adapters.iter().enumerate() {
         let info = a.get_info();
-        println!("  {i}: {} ({:?}, {:?}, driver {} {})", info.name, info.backend, info.device_type, info.driver, info.driver_info);
+        println!(
+            "  {i}: {} ({:?}, {:?}, driver {} {})",
+            info.name, info.backend, info.device_type, info.driver, info.driver_info
+        );
     }
     let ctx = GpuContext::new(choice)?;
     let i = &ctx.info;
@@ -18,11 +21,27 @@ pub fn run(choice: &AdapterChoice) -> Result<(), CliError> {
     println!("  backend                 {}", i.backend);
     println!("  device type             {}", i.device_type);
     println!("  driver                  {} {}", i.driver, i.driver_info);
-    println!("  timestamp queries       {}", if i.timestamps { "yes (bench times each pass)" } else { "no (bench falls back to wall-clock time)" });
-    println!("  storage buffer binding  {} MiB", i.max_storage_buffer_binding_size >> 20);
+    println!(
+        "  timestamp queries       {}",
+        if i.timestamps {
+            "yes (bench times each pass)"
+        } else {
+            "no (bench falls back to wall-clock time)"
+        }
+    );
+    println!(
+        "  storage buffer binding  {} MiB",
+        i.max_storage_buffer_binding_size >> 20
+    );
     println!("  buffer size             {} MiB", i.max_buffer_size >> 20);
-    println!("  storage buffers/stage   {}", i.max_storage_buffers_per_shader_stage);
-    println!("  workgroup size x        {}", i.max_compute_workgroup_size_x);
+    println!(
+        "  storage buffers/stage   {}",
+        i.max_storage_buffers_per_shader_stage
+    );
+    println!(
+        "  workgroup size x        {}",
+        i.max_compute_workgroup_size_x
+    );
     println!("  hardware ray tracing    not used (Irradiant traces rays in compute shaders)");
     Ok(())
 }

@@ -33,12 +33,19 @@ enum Command {
 
 fn main() -> ExitCode {
     tracing_subscriber::fmt()
-        .with_env_filter(tracing_subscriber::EnvFilter::try_from_env("IRRADIANT_LOG").unwrap_or_else(|_| "warn".into()))
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_env("IRRADIANT_LOG")
+                .unwrap_or_else(|_| "warn".into()),
+        )
         .with_writer(std::io::stderr)
         .without_time()
         .init();
     let cli = Cli::parse();
-    let adapter = cli.adapter.as_deref().map(irradiant::AdapterChoice::parse).unwrap_or_else(irradiant::AdapterChoice::from_env);
+    let adapter = cli
+        .adapter
+        .as_deref()
+        .map(irradiant::AdapterChoice::parse)
+        .unwrap_or_else(irradiant::AdapterChoice::from_env);
     let result = match cli.command {
         Command::Info => info::run(&adapter),
         Command::Render(args) => render::run(&args, &adapter),
@@ -65,5 +72,8 @@ pub enum CliError {
     #[error("{0}")]
     Usage(String),
     #[error("{path}: {message}")]
-    Io { path: std::path::PathBuf, message: String },
+    Io {
+        path: std::path::PathBuf,
+        message: String,
+    },
 }

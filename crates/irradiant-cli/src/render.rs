@@ -3,7 +3,10 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use irradiant::ddgi::{Ddgi, DdgiSettings, ProbeWeights};
-use irradiant::frame::{FrameRenderer, FrameSettings, Technique as FrameTechnique, ToneSettings, Tonemapper, apply_pose, write_png};
+use irradiant::frame::{
+    FrameRenderer, FrameSettings, Technique as FrameTechnique, ToneSettings, Tonemapper,
+    apply_pose, write_png,
+};
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
 
@@ -111,30 +114,57 @@ pub struct DdgiArgs {
 }
 
 pub fn parse_counts(text: &str) -> Result<[u32; 3], String> {
-    let parts: Vec<_> = text.split(['x', 'X']).map(|p| p.trim().parse::<u32>()).collect();
+    let parts: Vec<_> = text
+        .split(['x', 'X'])
+        .map(|p| p.trim().parse::<u32>())
+        .collect();
     match parts.as_slice() {
-        [Ok(x), Ok(y), Ok(z)] if (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(x) && (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(y) && (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(z) => Ok([*x, *y, *z]),
-        _ => Err(format!("'{text}' is not a probe count: write XxYxZ with 1…{} each, e.g. 8x4x8", irradiant_scene::MAX_PROBES_PER_AXIS)),
+        [Ok(x), Ok(y), Ok(z)]
+            if (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(x)
+                && (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(y)
+                && (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(z) =>
+        {
+            Ok([*x, *y, *z])
+        }
+        _ => Err(format!(
+            "'{text}' is not a probe count: write XxYxZ with 1…{} each, e.g. 8x4x8",
+            irradiant_scene::MAX_PROBES_PER_AXIS
+        )),
     }
 }
 
 pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     check_output(&args.out, &["png", "exr"])?;
     if !(args.exposure.is_finite() && args.exposure > 0.0) {
-        return Err(CliError::Usage(format!("--exposure {} must be a positive number", args.exposure)));
+        return Err(CliError::Usage(format!(
+            "--exposure {} must be a positive number",
+            args.exposure
+        )));
     }
     if args.technique != Technique::Path && (args.frames == 0 || args.frames > 100_000) {
-        return Err(CliError::Usage(format!("--frames {} is out of range: use 1…100000", args.frames)));
+        return Err(CliError::Usage(format!(
+            "--frames {} is out of range: use 1…100000",
+            args.frames
+        )));
     }
     if !(args.fps.is_finite() && args.fps > 0.0) {
-        return Err(CliError::Usage(format!("--fps {} must be a positive number", args.fps)));
+        return Err(CliError::Usage(format!(
+            "--fps {} must be a positive number",
+            args.fps
+        )));
     }
     if !(args.time.is_finite() && args.time >= 0.0) {
-        return Err(CliError::Usage(format!("--time {} must be a number of seconds ≥ 0", args.time)));
+        return Err(CliError::Usage(format!(
+            "--time {} must be a number of seconds ≥ 0",
+            args.time
+        )));
     }
     if let Some(dir) = &args.ddgi.dump_atlas {
         if !dir.is_dir() {
-            return Err(CliError::Io { path: dir.clone(), message: "the atlas folder does not exist; create it first".into() });
+            return Err(CliError::Io {
+                path: dir.clone(),
+                message: "the atlas folder does not exist; create it first".into(),
+            });
         }
     }
     let settings = path_settings(args)?;
@@ -150,25 +180,41 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     if args.technique == Technique::Path {
         gpu_scene.update(&ctx, &scene.pose_at(args.time));
     }
-    let tone = ToneSettings { exposure: args.exposure, filmic: !args.no_filmic };
+    let tone = ToneSettings {
+        exposure: args.exposure,
+        filmic: !args.no_filmic,
+    };
     let image = match args.technique {
         Technique::Path => {
             let mut tracer = PathTracer::new(&ctx, &gpu_scene, width, height)?;
             let bar = ProgressBar::new(settings.samples_per_pixel as u64);
-            bar.set_style(ProgressStyle::with_template("{spinner} path tracing {pos}/{len} spp [{elapsed_precise} < {eta}] {wide_bar}").unwrap());
-            let image = tracer.render(&ctx, &gpu_scene, &scene.camera, &settings, |done, _| bar.set_position(done as u64))?;
+            bar.set_style(
+                ProgressStyle::with_template(
+                    "{spinner} path tracing {pos}/{len} spp [{elapsed_precise} < {eta}] {wide_bar}",
+                )
+                .unwrap(),
+            );
+            let image = tracer.render(&ctx, &gpu_scene, &scene.camera, &settings, |done, _| {
+                bar.set_position(done as u64)
+            })?;
             bar.finish_and_clear();
             if is_png(&args.out) {
-                let rgba = Tonemapper::new(&ctx)?.run(&ctx, &tracer.accumulation, width, height, &tone)?;
+                let rgba =
+                    Tonemapper::new(&ctx)?.run(&ctx, &tracer.accumulation, width, height, &tone)?;
                 write_png(&args.out, &rgba, width, height)?;
             }
             image
         }
         Technique::None | Technique::Ddgi => {
-            let mut frame = FrameRenderer::new(&ctx, &gpu_scene, width, height, FrameSettings::default())?;
+            let mut frame =
+                FrameRenderer::new(&ctx, &gpu_scene, width, height, FrameSettings::default())?;
             let mut ddgi = match args.technique {
                 Technique::Ddgi => {
-                    let mut volume = scene.probe_volumes.first().cloned().unwrap_or_else(|| default_volume(&scene));
+                    let mut volume = scene
+                        .probe_volumes
+                        .first()
+                        .cloned()
+                        .unwrap_or_else(|| default_volume(&scene));
                     if let Some(counts) = args.ddgi.probes {
                         volume.counts = counts;
                     }
@@ -179,15 +225,35 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 _ => None,
             };
             let bar = ProgressBar::new(args.frames as u64);
-            bar.set_style(ProgressStyle::with_template("{spinner} frame {pos}/{len} [{elapsed_precise} < {eta}] {wide_bar}").unwrap());
-            let frame_time = |i: u32| (args.time - (args.frames - 1 - i) as f32 / args.fps).max(0.0);
+            bar.set_style(
+                ProgressStyle::with_template(
+                    "{spinner} frame {pos}/{len} [{elapsed_precise} < {eta}] {wide_bar}",
+                )
+                .unwrap(),
+            );
+            let frame_time =
+                |i: u32| (args.time - (args.frames - 1 - i) as f32 / args.fps).max(0.0);
             let mut pose = scene.pose_at(frame_time(0));
             gpu_scene.update(&ctx, &pose);
             for i in 0..args.frames {
                 let next = scene.pose_at(frame_time(i));
-                apply_pose(&ctx, &mut gpu_scene, &mut frame, ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique), &pose, &next);
+                apply_pose(
+                    &ctx,
+                    &mut gpu_scene,
+                    &mut frame,
+                    ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique),
+                    &pose,
+                    &next,
+                );
                 pose = next;
-                frame.render(&ctx, &gpu_scene, &scene.camera, ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique), args.ddgi.show_probes, None)?;
+                frame.render(
+                    &ctx,
+                    &gpu_scene,
+                    &scene.camera,
+                    ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique),
+                    args.ddgi.show_probes,
+                    None,
+                )?;
                 if args.sequence {
                     write_frame(&ctx, &frame, &numbered(&args.out, i + 1), &tone)?;
                 }
@@ -211,7 +277,17 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         Technique::Path => format!("{} spp", settings.samples_per_pixel),
         _ => format!("{:?} after {} frames", args.technique, args.frames).to_lowercase(),
     };
-    println!("{}: {} {}x{}, {what} on {} — mean radiance ({:.4}, {:.4}, {:.4})", args.out.display(), scene.name, width, height, ctx.info.name, m[0], m[1], m[2]);
+    println!(
+        "{}: {} {}x{}, {what} on {} — mean radiance ({:.4}, {:.4}, {:.4})",
+        args.out.display(),
+        scene.name,
+        width,
+        height,
+        ctx.info.name,
+        m[0],
+        m[1],
+        m[2]
+    );
     Ok(())
 }
 
@@ -223,13 +299,17 @@ fn path_settings(args: &RenderArgs) -> Result<PathTraceSettings, CliError> {
     };
     if let Some(spp) = args.spp {
         if spp == 0 || spp > 1 << 20 {
-            return Err(CliError::Usage(format!("--spp {spp} is out of range: use 1…1048576")));
+            return Err(CliError::Usage(format!(
+                "--spp {spp} is out of range: use 1…1048576"
+            )));
         }
         settings.samples_per_pixel = spp;
     }
     if let Some(b) = args.max_bounces {
         if b > 1024 {
-            return Err(CliError::Usage(format!("--max-bounces {b} is out of range: use 0…1024")));
+            return Err(CliError::Usage(format!(
+                "--max-bounces {b} is out of range: use 0…1024"
+            )));
         }
         settings.max_bounces = b;
     }
@@ -256,7 +336,8 @@ fn ddgi_settings(args: &RenderArgs) -> Result<DdgiSettings, CliError> {
         s.hysteresis = h;
     }
     s.seed = args.seed;
-    s.validate().map_err(|e| CliError::Usage(format!("DDGI settings: {e}")))?;
+    s.validate()
+        .map_err(|e| CliError::Usage(format!("DDGI settings: {e}")))?;
     Ok(s)
 }
 
@@ -266,20 +347,45 @@ pub fn default_volume(scene: &irradiant_scene::Scene) -> irradiant_scene::ProbeV
     let (lo, hi) = scene.bounds();
     let extent = (hi - lo).max(glam::Vec3::splat(1e-3));
     let step = extent.max_element() / 8.0;
-    let counts = (extent / step).ceil().as_uvec3().max(glam::UVec3::splat(2)).min(glam::UVec3::splat(32));
+    let counts = (extent / step)
+        .ceil()
+        .as_uvec3()
+        .max(glam::UVec3::splat(2))
+        .min(glam::UVec3::splat(32));
     let inset = extent / counts.as_vec3() * 0.5;
-    irradiant_scene::ProbeVolumeDesc { name: "auto".into(), min: lo + inset, max: hi - inset, counts: counts.into() }
+    irradiant_scene::ProbeVolumeDesc {
+        name: "auto".into(),
+        min: lo + inset,
+        max: hi - inset,
+        counts: counts.into(),
+    }
 }
 
 fn numbered(out: &Path, index: u32) -> PathBuf {
-    let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "frame".into());
-    let ext = out.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_else(|| "png".into());
+    let stem = out
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "frame".into());
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "png".into());
     out.with_file_name(format!("{stem}-{index:04}.{ext}"))
 }
 
-fn write_frame(ctx: &GpuContext, frame: &FrameRenderer, path: &Path, tone: &ToneSettings) -> Result<(), CliError> {
+fn write_frame(
+    ctx: &GpuContext,
+    frame: &FrameRenderer,
+    path: &Path,
+    tone: &ToneSettings,
+) -> Result<(), CliError> {
     if is_png(path) {
-        write_png(path, &frame.tonemapped(ctx, tone)?, frame.buffers.width, frame.buffers.height)?;
+        write_png(
+            path,
+            &frame.tonemapped(ctx, tone)?,
+            frame.buffers.width,
+            frame.buffers.height,
+        )?;
     } else {
         frame.image(ctx)?.write_exr(path)?;
     }
@@ -287,5 +393,6 @@ fn write_frame(ctx: &GpuContext, frame: &FrameRenderer, path: &Path, tone: &Tone
 }
 
 fn is_png(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
 }

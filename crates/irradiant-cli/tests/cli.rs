@@ -4,16 +4,30 @@
 use std::process::Command;
 
 fn irradiant(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_irradiant")).args(args).env("XDG_RUNTIME_DIR", "/tmp").output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_irradiant"))
+        .args(args)
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .output()
+        .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(!stderr.contains("panicked"), "irradiant {args:?} panicked:\n{stderr}");
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), stderr)
+    assert!(
+        !stderr.contains("panicked"),
+        "irradiant {args:?} panicked:\n{stderr}"
+    );
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr,
+    )
 }
 
 fn fails_with(args: &[&str], expected: &str) {
     let (ok, _, stderr) = irradiant(args);
     assert!(!ok, "irradiant {args:?} should fail");
-    assert!(stderr.contains(expected), "irradiant {args:?}: expected '{expected}' in:\n{stderr}");
+    assert!(
+        stderr.contains(expected),
+        "irradiant {args:?}: expected '{expected}' in:\n{stderr}"
+    );
 }
 
 #[test]
@@ -26,7 +40,10 @@ fn absurd_sizes_are_refused() {
 #[test]
 fn unknown_scenes_and_techniques_are_refused() {
     fails_with(&["render", "--scene", "cornel"], "not a built-in scene");
-    fails_with(&["render", "--scene", "/nonexistent/x.obj"], "/nonexistent/x.obj");
+    fails_with(
+        &["render", "--scene", "/nonexistent/x.obj"],
+        "/nonexistent/x.obj",
+    );
     fails_with(&["render", "--technique", "magic"], "invalid value 'magic'");
     fails_with(&["render", "--frames", "0"], "--frames 0");
     fails_with(&["render", "--time=-1"], "--time");
@@ -36,7 +53,10 @@ fn unknown_scenes_and_techniques_are_refused() {
 
 #[test]
 fn bad_outputs_are_refused_before_rendering() {
-    fails_with(&["render", "--out", "/nonexistent-dir/x.png"], "does not exist");
+    fails_with(
+        &["render", "--out", "/nonexistent-dir/x.png"],
+        "does not exist",
+    );
     fails_with(&["render", "--out", "x.bmp"], "unsupported output type");
 }
 
@@ -53,14 +73,21 @@ fn a_malformed_manifest_names_the_file() {
     std::fs::create_dir_all(&dir).unwrap();
     let manifest = dir.join("broken.toml");
     std::fs::write(&manifest, "[mesh\n").unwrap();
-    fails_with(&["render", "--scene", manifest.to_str().unwrap()], "broken.toml");
+    fails_with(
+        &["render", "--scene", manifest.to_str().unwrap()],
+        "broken.toml",
+    );
 }
 
 #[test]
 fn an_unknown_adapter_lists_the_present_ones() {
     let (ok, _, stderr) = irradiant(&["--adapter", "no-such-gpu-xyz", "info"]);
     assert!(!ok);
-    assert!(stderr.contains("no-such-gpu-xyz") && (stderr.contains("Adapters present") || stderr.contains("no GPU adapter")), "{stderr}");
+    assert!(
+        stderr.contains("no-such-gpu-xyz")
+            && (stderr.contains("Adapters present") || stderr.contains("no GPU adapter")),
+        "{stderr}"
+    );
 }
 
 /// Needs the test adapter: each technique and output kind, a frame sequence, the probe view,
@@ -70,30 +97,121 @@ fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
     let dir = std::env::temp_dir().join(format!("irradiant-cli-render-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = |name: &str| dir.join(name).to_string_lossy().into_owned();
-    let (ok, _, stderr) = irradiant(&["render", "--technique", "path", "--size", "32x24", "--spp", "4", "--out", &path("c.png")]);
+    let (ok, _, stderr) = irradiant(&[
+        "render",
+        "--technique",
+        "path",
+        "--size",
+        "32x24",
+        "--spp",
+        "4",
+        "--out",
+        &path("c.png"),
+    ]);
     if !ok && stderr.contains("no GPU adapter") && std::env::var("CI").as_deref() != Ok("true") {
         eprintln!("SKIPPED: no GPU adapter");
         return;
     }
     assert!(ok, "{stderr}");
     let renders: [&[&str]; 4] = [
-        &["render", "--technique", "path", "--size", "32x24", "--spp", "4", "--out", &path("c.exr")],
-        &["render", "--size", "32x24", "--frames", "3", "--show-probes", "--dump-atlas", &path(""), "--out", &path("ddgi.exr")],
-        &["render", "--scene", "two-rooms", "--technique", "none", "--size", "32x24", "--frames", "2", "--sequence", "--out", &path("seq.png")],
-        &["render", "--scene", "two-rooms", "--weights", "classic", "--probes", "3x2x2", "--rays", "16", "--size", "32x24", "--frames", "2", "--out", &path("classic.png")],
+        &[
+            "render",
+            "--technique",
+            "path",
+            "--size",
+            "32x24",
+            "--spp",
+            "4",
+            "--out",
+            &path("c.exr"),
+        ],
+        &[
+            "render",
+            "--size",
+            "32x24",
+            "--frames",
+            "3",
+            "--show-probes",
+            "--dump-atlas",
+            &path(""),
+            "--out",
+            &path("ddgi.exr"),
+        ],
+        &[
+            "render",
+            "--scene",
+            "two-rooms",
+            "--technique",
+            "none",
+            "--size",
+            "32x24",
+            "--frames",
+            "2",
+            "--sequence",
+            "--out",
+            &path("seq.png"),
+        ],
+        &[
+            "render",
+            "--scene",
+            "two-rooms",
+            "--weights",
+            "classic",
+            "--probes",
+            "3x2x2",
+            "--rays",
+            "16",
+            "--size",
+            "32x24",
+            "--frames",
+            "2",
+            "--out",
+            &path("classic.png"),
+        ],
     ];
     for args in renders {
         let (ok, _, stderr) = irradiant(args);
         assert!(ok, "irradiant {args:?}: {stderr}");
     }
-    for file in ["c.png", "c.exr", "ddgi.exr", "irradiance.png", "irradiance.exr", "distance.png", "distance.exr", "seq-0001.png", "seq-0002.png", "classic.png"] {
-        assert!(std::fs::metadata(dir.join(file)).map(|m| m.len() > 50).unwrap_or(false), "{file} was not written");
+    for file in [
+        "c.png",
+        "c.exr",
+        "ddgi.exr",
+        "irradiance.png",
+        "irradiance.exr",
+        "distance.png",
+        "distance.exr",
+        "seq-0001.png",
+        "seq-0002.png",
+        "classic.png",
+    ] {
+        assert!(
+            std::fs::metadata(dir.join(file))
+                .map(|m| m.len() > 50)
+                .unwrap_or(false),
+            "{file} was not written"
+        );
     }
     let json = path("bench.json");
-    let (ok, stdout, stderr) = irradiant(&["bench", "--smoke", "--ddgi-probes", "scene", "--ddgi-rays", "32", "--json", &json]);
+    let (ok, stdout, stderr) = irradiant(&[
+        "bench",
+        "--smoke",
+        "--ddgi-probes",
+        "scene",
+        "--ddgi-rays",
+        "32",
+        "--json",
+        &json,
+    ]);
     assert!(ok, "{stderr}");
-    assert!(stdout.contains("raycast/trace (diffuse)") && stdout.contains("pathtrace/trace") && stdout.contains("blend_irradiance"), "{stdout}");
-    let record: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(
+        stdout.contains("raycast/trace (diffuse)")
+            && stdout.contains("pathtrace/trace")
+            && stdout.contains("blend_irradiance"),
+        "{stdout}"
+    );
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(record["passes"].as_array().unwrap().len() >= 4);
     let ddgi = &record["ddgi"][0];
     assert!(ddgi["passes"].as_array().unwrap().len() >= 9, "{ddgi}");

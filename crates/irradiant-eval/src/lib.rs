@@ -10,7 +10,12 @@ pub enum MetricError {
     #[error("the images differ in size: {0}×{1} against {2}×{3}; render both at the same --size")]
     SizeMismatch(u32, u32, u32, u32),
     #[error("an image of {width}×{height} needs {expected} values, got {got}")]
-    WrongLength { width: u32, height: u32, expected: usize, got: usize },
+    WrongLength {
+        width: u32,
+        height: u32,
+        expected: usize,
+        got: usize,
+    },
 }
 
 /// FLIP of a test image against a reference: the per-pixel error map (0…1) and its pooled
@@ -27,11 +32,21 @@ pub struct Flip {
 
 /// LDR-FLIP of two sRGB8 RGB images of `width`×`height`, at the default viewing distance
 /// (67 pixels per degree: a 0.7 m wide 4K monitor at 0.7 m).
-pub fn flip(reference_srgb8: &[u8], test_srgb8: &[u8], width: u32, height: u32) -> Result<Flip, MetricError> {
+pub fn flip(
+    reference_srgb8: &[u8],
+    test_srgb8: &[u8],
+    width: u32,
+    height: u32,
+) -> Result<Flip, MetricError> {
     let expected = 3 * width as usize * height as usize;
     for got in [reference_srgb8.len(), test_srgb8.len()] {
         if got != expected {
-            return Err(MetricError::WrongLength { width, height, expected, got });
+            return Err(MetricError::WrongLength {
+                width,
+                height,
+                expected,
+                got,
+            });
         }
     }
     let reference = nv_flip::FlipImageRgb8::with_data(width, height, reference_srgb8);
@@ -48,7 +63,12 @@ pub fn flip(reference_srgb8: &[u8], test_srgb8: &[u8], width: u32, height: u32) 
 
 fn check(a: &[[f32; 3]], b: &[[f32; 3]]) -> Result<(), MetricError> {
     if a.len() != b.len() {
-        return Err(MetricError::WrongLength { width: a.len() as u32, height: 1, expected: a.len(), got: b.len() });
+        return Err(MetricError::WrongLength {
+            width: a.len() as u32,
+            height: 1,
+            expected: a.len(),
+            got: b.len(),
+        });
     }
     Ok(())
 }
@@ -57,10 +77,23 @@ fn check(a: &[[f32; 3]], b: &[[f32; 3]]) -> Result<(), MetricError> {
 /// (HDR images have no fixed peak). Infinite for identical images.
 pub fn psnr(reference: &[[f32; 3]], test: &[[f32; 3]]) -> Result<f64, MetricError> {
     check(reference, test)?;
-    let peak = reference.iter().flatten().fold(0f32, |m, v| m.max(*v)).max(1e-12) as f64;
-    let mse = reference.iter().flatten().zip(test.iter().flatten()).map(|(r, t)| ((r - t) as f64).powi(2)).sum::<f64>()
+    let peak = reference
+        .iter()
+        .flatten()
+        .fold(0f32, |m, v| m.max(*v))
+        .max(1e-12) as f64;
+    let mse = reference
+        .iter()
+        .flatten()
+        .zip(test.iter().flatten())
+        .map(|(r, t)| ((r - t) as f64).powi(2))
+        .sum::<f64>()
         / (3 * reference.len()).max(1) as f64;
-    Ok(if mse == 0.0 { f64::INFINITY } else { 10.0 * (peak * peak / mse).log10() })
+    Ok(if mse == 0.0 {
+        f64::INFINITY
+    } else {
+        10.0 * (peak * peak / mse).log10()
+    })
 }
 
 /// Relative MSE: mean over pixels and channels of (t − r)² / (r² + ε), ε = 0.01, the form
@@ -95,8 +128,16 @@ mod tests {
         let base = vec![128u8; 32 * 32 * 3];
         let small: Vec<u8> = base.iter().map(|v| v + 10).collect();
         let large: Vec<u8> = base.iter().map(|v| v + 100).collect();
-        let (fs, fl) = (flip(&base, &small, 32, 32).unwrap(), flip(&base, &large, 32, 32).unwrap());
-        assert!(fs.mean > 0.0 && fl.mean > fs.mean, "{} {}", fs.mean, fl.mean);
+        let (fs, fl) = (
+            flip(&base, &small, 32, 32).unwrap(),
+            flip(&base, &large, 32, 32).unwrap(),
+        );
+        assert!(
+            fs.mean > 0.0 && fl.mean > fs.mean,
+            "{} {}",
+            fs.mean,
+            fl.mean
+        );
         assert_eq!(fl.error_map_rgb8.len(), 32 * 32 * 3);
         let r = vec![[0.5f32; 3]; 100];
         let a: Vec<[f32; 3]> = r.iter().map(|p| p.map(|v| v * 1.1)).collect();
@@ -108,7 +149,10 @@ mod tests {
 
     #[test]
     fn mismatched_sizes_are_errors() {
-        assert!(matches!(flip(&[0; 12], &[0; 12], 3, 3), Err(MetricError::WrongLength { .. })));
+        assert!(matches!(
+            flip(&[0; 12], &[0; 12], 3, 3),
+            Err(MetricError::WrongLength { .. })
+        ));
         assert!(psnr(&[[0.0; 3]; 2], &[[0.0; 3]; 3]).is_err());
     }
 }

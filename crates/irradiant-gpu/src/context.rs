@@ -6,15 +6,23 @@ use wgpu::{Adapter, Backends, Device, Features, Limits, Queue};
 
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
-    #[error("no GPU adapter found ({tried}). Install a Vulkan driver; with no GPU, Mesa's software driver works: `sudo apt-get install mesa-vulkan-drivers` (Debian/Ubuntu).")]
+    #[error(
+        "no GPU adapter found ({tried}). Install a Vulkan driver; with no GPU, Mesa's software driver works: `sudo apt-get install mesa-vulkan-drivers` (Debian/Ubuntu)."
+    )]
     NoAdapter { tried: String },
-    #[error("no adapter matches '{wanted}'. Adapters present: {present}. Pass an index or a part of a name from this list (--adapter or IRRADIANT_ADAPTER).")]
+    #[error(
+        "no adapter matches '{wanted}'. Adapters present: {present}. Pass an index or a part of a name from this list (--adapter or IRRADIANT_ADAPTER)."
+    )]
     NoMatchingAdapter { wanted: String, present: String },
-    #[error("the adapter '{adapter}' cannot run Irradiant: {reason}. Pick another adapter with --adapter (see `irradiant info`).")]
+    #[error(
+        "the adapter '{adapter}' cannot run Irradiant: {reason}. Pick another adapter with --adapter (see `irradiant info`)."
+    )]
     Unsuitable { adapter: String, reason: String },
     #[error("GPU error in {what}: {message}")]
     Validation { what: String, message: String },
-    #[error("the GPU device was lost ({0}). The driver reset it or ran out of memory; try a smaller size or fewer samples per frame.")]
+    #[error(
+        "the GPU device was lost ({0}). The driver reset it or ran out of memory; try a smaller size or fewer samples per frame."
+    )]
     DeviceLost(String),
     #[error("waiting for the GPU failed: {0}")]
     Poll(String),
@@ -33,13 +41,18 @@ pub enum AdapterChoice {
 impl AdapterChoice {
     /// `IRRADIANT_ADAPTER`, if set, else [`AdapterChoice::Auto`].
     pub fn from_env() -> Self {
-        std::env::var("IRRADIANT_ADAPTER").map(|s| Self::parse(&s)).unwrap_or_default()
+        std::env::var("IRRADIANT_ADAPTER")
+            .map(|s| Self::parse(&s))
+            .unwrap_or_default()
     }
 
     pub fn parse(text: &str) -> Self {
         match text.trim() {
             "" | "auto" => Self::Auto,
-            t => t.parse().map(Self::Index).unwrap_or_else(|_| Self::Name(t.to_owned())),
+            t => t
+                .parse()
+                .map(Self::Index)
+                .unwrap_or_else(|_| Self::Name(t.to_owned())),
         }
     }
 }
@@ -87,7 +100,14 @@ impl GpuContext {
 
     pub fn new(choice: &AdapterChoice) -> Result<Self, GpuError> {
         let (instance, adapters) = Self::adapters();
-        let names = || adapters.iter().enumerate().map(|(i, a)| format!("{i}: {}", a.get_info().name)).collect::<Vec<_>>().join(", ");
+        let names = || {
+            adapters
+                .iter()
+                .enumerate()
+                .map(|(i, a)| format!("{i}: {}", a.get_info().name))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
         let adapter = match choice {
             AdapterChoice::Auto => {
                 // Prefer real GPUs over software ones.
@@ -101,24 +121,40 @@ impl GpuContext {
                 adapters.iter().min_by_key(|a| rank(a)).cloned()
             }
             AdapterChoice::Index(i) => {
-                Some(adapters.get(*i).cloned().ok_or_else(|| GpuError::NoMatchingAdapter { wanted: i.to_string(), present: names() })?)
+                Some(
+                    adapters
+                        .get(*i)
+                        .cloned()
+                        .ok_or_else(|| GpuError::NoMatchingAdapter {
+                            wanted: i.to_string(),
+                            present: names(),
+                        })?,
+                )
             }
             AdapterChoice::Name(n) => Some(
                 adapters
                     .iter()
                     .find(|a| a.get_info().name.to_lowercase().contains(&n.to_lowercase()))
                     .cloned()
-                    .ok_or_else(|| GpuError::NoMatchingAdapter { wanted: n.clone(), present: names() })?,
+                    .ok_or_else(|| GpuError::NoMatchingAdapter {
+                        wanted: n.clone(),
+                        present: names(),
+                    })?,
             ),
         };
-        let adapter = adapter.ok_or_else(|| GpuError::NoAdapter { tried: "Vulkan".into() })?;
+        let adapter = adapter.ok_or_else(|| GpuError::NoAdapter {
+            tried: "Vulkan".into(),
+        })?;
         Self::from_adapter(instance, adapter)
     }
 
     fn from_adapter(instance: wgpu::Instance, adapter: Adapter) -> Result<Self, GpuError> {
         let adapter_info = adapter.get_info();
         let available = adapter.limits();
-        let unsuitable = |reason: String| GpuError::Unsuitable { adapter: adapter_info.name.clone(), reason };
+        let unsuitable = |reason: String| GpuError::Unsuitable {
+            adapter: adapter_info.name.clone(),
+            reason,
+        };
         if available.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
             return Err(unsuitable(format!(
                 "it allows {} storage buffers per shader stage and Irradiant needs {STORAGE_BUFFERS_NEEDED}",
@@ -127,7 +163,8 @@ impl GpuContext {
         }
         let features = adapter.features() & Features::TIMESTAMP_QUERY;
         let limits = Limits {
-            max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED.max(Limits::default().max_storage_buffers_per_shader_stage),
+            max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED
+                .max(Limits::default().max_storage_buffers_per_shader_stage),
             // Large scenes (Sibenik, Sponza) need big node and triangle buffers.
             max_storage_buffer_binding_size: available.max_storage_buffer_binding_size,
             max_buffer_size: available.max_buffer_size,
@@ -145,7 +182,9 @@ impl GpuContext {
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = errors.clone();
         // wgpu's default handler panics; Irradiant reports errors as values instead.
-        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| sink.lock().unwrap().push(e.to_string())));
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            sink.lock().unwrap().push(e.to_string())
+        }));
         let lost = Arc::new(Mutex::new(None));
         let lost_sink = lost.clone();
         device.set_device_lost_callback(move |reason, message| {
@@ -163,7 +202,15 @@ impl GpuContext {
             max_compute_workgroup_size_x: limits.max_compute_workgroup_size_x,
             max_storage_buffers_per_shader_stage: limits.max_storage_buffers_per_shader_stage,
         };
-        Ok(Self { instance, adapter, device, queue, info, errors, lost })
+        Ok(Self {
+            instance,
+            adapter,
+            device,
+            queue,
+            info,
+            errors,
+            lost,
+        })
     }
 
     /// Reports the first error the device raised since the last check, or its loss.
@@ -174,7 +221,10 @@ impl GpuContext {
         let mut errors = self.errors.lock().unwrap();
         if let Some(message) = errors.first().cloned() {
             errors.clear();
-            return Err(GpuError::Validation { what: what.to_owned(), message });
+            return Err(GpuError::Validation {
+                what: what.to_owned(),
+                message,
+            });
         }
         Ok(())
     }
@@ -182,7 +232,10 @@ impl GpuContext {
     /// Blocks until the GPU has finished all submitted work.
     pub fn wait(&self) -> Result<(), GpuError> {
         self.device
-            .poll(wgpu::PollType::Wait { submission_index: None, timeout: None })
+            .poll(wgpu::PollType::Wait {
+                submission_index: None,
+                timeout: None,
+            })
             .map_err(|e| GpuError::Poll(e.to_string()))?;
         self.check("GPU work")
     }
@@ -192,7 +245,10 @@ impl GpuContext {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let value = build(&self.device);
         match pollster::block_on(scope.pop()) {
-            Some(e) => Err(GpuError::Validation { what: what.to_owned(), message: e.to_string() }),
+            Some(e) => Err(GpuError::Validation {
+                what: what.to_owned(),
+                message: e.to_string(),
+            }),
             None => Ok(value),
         }
     }

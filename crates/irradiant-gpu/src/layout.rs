@@ -23,10 +23,14 @@ pub type Expected = (&'static str, usize, Vec<(&'static str, usize)>);
 
 /// Compares each expected layout with the struct of the same name in `wgsl`.
 pub fn check_struct_layouts(wgsl: &str, expected: &[Expected]) -> Result<(), StructLayoutError> {
-    let module = naga::front::wgsl::parse_str(wgsl).map_err(|e| StructLayoutError(e.emit_to_string(wgsl)))?;
+    let module = naga::front::wgsl::parse_str(wgsl)
+        .map_err(|e| StructLayoutError(e.emit_to_string(wgsl)))?;
     let mut problems = Vec::new();
     for (name, size, fields) in expected {
-        let found = module.types.iter().find(|(_, t)| t.name.as_deref() == Some(*name));
+        let found = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(*name));
         let Some((_, ty)) = found else {
             problems.push(format!("{name}: no WGSL struct of that name"));
             continue;
@@ -38,12 +42,21 @@ pub fn check_struct_layouts(wgsl: &str, expected: &[Expected]) -> Result<(), Str
         if *span as usize != *size {
             problems.push(format!("{name}: Rust size {size}, WGSL size {span}"));
         }
-        let wgsl_fields: Vec<(String, usize)> = members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize)).collect();
-        let rust_fields: Vec<(String, usize)> = fields.iter().map(|(n, o)| (n.to_string(), *o)).collect();
+        let wgsl_fields: Vec<(String, usize)> = members
+            .iter()
+            .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+            .collect();
+        let rust_fields: Vec<(String, usize)> =
+            fields.iter().map(|(n, o)| (n.to_string(), *o)).collect();
         if wgsl_fields != rust_fields {
-            problems.push(format!("{name}: fields differ\n  Rust: {rust_fields:?}\n  WGSL: {wgsl_fields:?}"));
+            problems.push(format!(
+                "{name}: fields differ\n  Rust: {rust_fields:?}\n  WGSL: {wgsl_fields:?}"
+            ));
         }
     }
-    if problems.is_empty() { Ok(()) } else { Err(StructLayoutError(problems.join("\n"))) }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(StructLayoutError(problems.join("\n")))
+    }
 }
-

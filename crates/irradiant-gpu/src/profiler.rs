@@ -22,7 +22,11 @@ impl Profiler {
     pub fn new(ctx: &GpuContext, capacity: u32) -> Self {
         let enabled = ctx.info.timestamps;
         let query_set = enabled.then(|| {
-            ctx.device.create_query_set(&wgpu::QuerySetDescriptor { label: Some("profiler/timestamps"), ty: wgpu::QueryType::Timestamp, count: capacity * 2 })
+            ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("profiler/timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: capacity * 2,
+            })
         });
         let resolve = enabled.then(|| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -32,7 +36,13 @@ impl Profiler {
                 mapped_at_creation: false,
             })
         });
-        Self { query_set, resolve, capacity, labels: Vec::new(), period_ns: ctx.queue.get_timestamp_period() as f64 }
+        Self {
+            query_set,
+            resolve,
+            capacity,
+            labels: Vec::new(),
+            period_ns: ctx.queue.get_timestamp_period() as f64,
+        }
     }
 
     pub fn enabled(&self) -> bool {
@@ -67,7 +77,9 @@ impl Profiler {
     /// Reads the timings of the submitted frame and starts a new one.
     pub fn read(&mut self, ctx: &GpuContext) -> Result<Vec<PassTiming>, GpuError> {
         let labels = std::mem::take(&mut self.labels);
-        let Some(buffer) = &self.resolve else { return Ok(Vec::new()) };
+        let Some(buffer) = &self.resolve else {
+            return Ok(Vec::new());
+        };
         if labels.is_empty() {
             return Ok(Vec::new());
         }
@@ -78,7 +90,9 @@ impl Profiler {
             .enumerate()
             .map(|(i, label)| PassTiming {
                 label,
-                milliseconds: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * self.period_ns * 1e-6,
+                milliseconds: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64
+                    * self.period_ns
+                    * 1e-6,
             })
             .collect())
     }

@@ -29,31 +29,59 @@ impl ShaderLibrary {
     }
 
     fn get(&self, name: &str) -> Option<&'static str> {
-        self.modules.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+        self.modules
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, s)| *s)
     }
 }
 
 /// Resolves imports and constants, and validates the result with naga.
-pub fn compose(label: &str, source: &str, library: &ShaderLibrary, constants: &[(&str, String)]) -> Result<String, ShaderError> {
+pub fn compose(
+    label: &str,
+    source: &str,
+    library: &ShaderLibrary,
+    constants: &[(&str, String)],
+) -> Result<String, ShaderError> {
     let mut out = String::new();
     for (name, value) in constants {
         out.push_str(&format!("const {name} = {value};\n"));
     }
     let mut included = HashSet::new();
     include(label, source, library, &mut included, &mut out)?;
-    let module = naga::front::wgsl::parse_str(&out).map_err(|e| ShaderError::Invalid { shader: label.to_owned(), message: e.emit_to_string(&out) })?;
-    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
-        .validate(&module)
-        .map_err(|e| ShaderError::Invalid { shader: label.to_owned(), message: e.emit_to_string(&out) })?;
+    let module = naga::front::wgsl::parse_str(&out).map_err(|e| ShaderError::Invalid {
+        shader: label.to_owned(),
+        message: e.emit_to_string(&out),
+    })?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map_err(|e| ShaderError::Invalid {
+        shader: label.to_owned(),
+        message: e.emit_to_string(&out),
+    })?;
     Ok(out)
 }
 
-fn include(label: &str, source: &str, library: &ShaderLibrary, included: &mut HashSet<String>, out: &mut String) -> Result<(), ShaderError> {
+fn include(
+    label: &str,
+    source: &str,
+    library: &ShaderLibrary,
+    included: &mut HashSet<String>,
+    out: &mut String,
+) -> Result<(), ShaderError> {
     for line in source.lines() {
         if let Some(name) = line.trim().strip_prefix("#import ") {
             let name = name.trim();
             if included.insert(name.to_owned()) {
-                let module = library.get(name).ok_or_else(|| ShaderError::UnknownModule { shader: label.to_owned(), module: name.to_owned() })?;
+                let module = library
+                    .get(name)
+                    .ok_or_else(|| ShaderError::UnknownModule {
+                        shader: label.to_owned(),
+                        module: name.to_owned(),
+                    })?;
                 include(label, module, library, included, out)?;
             }
         } else {
@@ -82,7 +110,13 @@ mod tests {
     #[test]
     fn unknown_imports_and_bad_wgsl_are_errors() {
         let lib = ShaderLibrary::default();
-        assert!(matches!(compose("t", "#import nope", &lib, &[]), Err(ShaderError::UnknownModule { .. })));
-        assert!(matches!(compose("t", "fn f() -> u32 { return 1.0; }", &lib, &[]), Err(ShaderError::Invalid { .. })));
+        assert!(matches!(
+            compose("t", "#import nope", &lib, &[]),
+            Err(ShaderError::UnknownModule { .. })
+        ));
+        assert!(matches!(
+            compose("t", "fn f() -> u32 { return 1.0; }", &lib, &[]),
+            Err(ShaderError::Invalid { .. })
+        ));
     }
 }

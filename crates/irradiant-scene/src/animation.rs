@@ -21,14 +21,21 @@ impl Scene {
         };
         for animation in &self.animations {
             let tracks = &animation.tracks;
-            let offset = sample(&tracks.translation, time, Vec3::ZERO, |a, b, t| a.lerp(b, t));
-            let scale = sample(&tracks.intensity_scale, time, 1.0, |a, b, t| a + (b - a) * t);
-            let angle = sample(&tracks.rotation_y_degrees, time, 0.0, |a, b, t| a + (b - a) * t);
+            let offset = sample(&tracks.translation, time, Vec3::ZERO, |a, b, t| {
+                a.lerp(b, t)
+            });
+            let scale = sample(&tracks.intensity_scale, time, 1.0, |a, b, t| {
+                a + (b - a) * t
+            });
+            let angle = sample(&tracks.rotation_y_degrees, time, 0.0, |a, b, t| {
+                a + (b - a) * t
+            });
             match &animation.target {
                 AnimationTarget::Light(name) => {
                     for light in pose.lights.iter_mut().filter(|l| &l.name == name) {
                         light.position += offset;
-                        light.direction = Mat4::from_rotation_y(angle.to_radians()).transform_vector3(light.direction);
+                        light.direction = Mat4::from_rotation_y(angle.to_radians())
+                            .transform_vector3(light.direction);
                         light.intensity *= scale;
                         if scale <= 0.0 {
                             light.enabled = false;
@@ -36,10 +43,16 @@ impl Scene {
                     }
                 }
                 AnimationTarget::Instance(name) => {
-                    for (i, instance) in self.instances.iter().enumerate().filter(|(_, i)| &i.name == name) {
+                    for (i, instance) in self
+                        .instances
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, i)| &i.name == name)
+                    {
                         let rest = instance.transform;
-                        pose.instance_transforms[i] =
-                            Mat4::from_translation(offset) * rest * Mat4::from_rotation_y(angle.to_radians());
+                        pose.instance_transforms[i] = Mat4::from_translation(offset)
+                            * rest
+                            * Mat4::from_rotation_y(angle.to_radians());
                     }
                 }
             }
@@ -49,7 +62,9 @@ impl Scene {
 }
 
 fn sample<T: Copy>(keys: &[(f32, T)], time: f32, rest: T, lerp: impl Fn(T, T, f32) -> T) -> T {
-    let Some(first) = keys.first() else { return rest };
+    let Some(first) = keys.first() else {
+        return rest;
+    };
     if time <= first.0 {
         return first.1;
     }
@@ -58,7 +73,11 @@ fn sample<T: Copy>(keys: &[(f32, T)], time: f32, rest: T, lerp: impl Fn(T, T, f3
         let (t1, v1) = pair[1];
         if time <= t1 {
             let span = t1 - t0;
-            return if span > 0.0 { lerp(v0, v1, (time - t0) / span) } else { v1 };
+            return if span > 0.0 {
+                lerp(v0, v1, (time - t0) / span)
+            } else {
+                v1
+            };
         }
     }
     keys[keys.len() - 1].1

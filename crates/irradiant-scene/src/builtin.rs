@@ -8,10 +8,22 @@ use crate::model::{
 
 /// Names accepted by [`builtin`], with a line each for `--help` and error messages.
 pub const BUILTIN_SCENES: &[(&str, &str)] = &[
-    ("cornell", "the classic Cornell box with its area light (the default scene)"),
-    ("two-rooms", "a lit room and a dark room joined by a door: the light-leak test"),
-    ("box-cylinders", "a closed box with four cylinders that swallow probes: the dark-leak test"),
-    ("furnace", "a white diffuse sphere under a uniform white sky: the white-furnace test"),
+    (
+        "cornell",
+        "the classic Cornell box with its area light (the default scene)",
+    ),
+    (
+        "two-rooms",
+        "a lit room and a dark room joined by a door: the light-leak test",
+    ),
+    (
+        "box-cylinders",
+        "a closed box with four cylinders that swallow probes: the dark-leak test",
+    ),
+    (
+        "furnace",
+        "a white diffuse sphere under a uniform white sky: the white-furnace test",
+    ),
 ];
 
 pub fn builtin(name: &str) -> Option<Scene> {
@@ -32,7 +44,13 @@ struct Builder {
 
 impl Builder {
     fn new(name: &str) -> Self {
-        Self { mesh: Mesh { name: name.into(), ..Default::default() }, materials: Vec::new() }
+        Self {
+            mesh: Mesh {
+                name: name.into(),
+                ..Default::default()
+            },
+            materials: Vec::new(),
+        }
     }
 
     fn material(&mut self, name: &str, albedo: Vec3, emission: Vec3) -> u32 {
@@ -61,7 +79,10 @@ impl Builder {
 
     /// An axis-aligned box, faces pointing out.
     fn cuboid(&mut self, lo: Vec3, hi: Vec3, material: u32) {
-        self.transformed_box(Mat4::from_translation((lo + hi) * 0.5) * Mat4::from_scale(hi - lo), material);
+        self.transformed_box(
+            Mat4::from_translation((lo + hi) * 0.5) * Mat4::from_scale(hi - lo),
+            material,
+        );
     }
 
     /// The unit cube [-0.5, 0.5]³ under `transform`, faces pointing out.
@@ -93,7 +114,9 @@ impl Builder {
             let top = center + Vec3::Y * height;
             let base = self.mesh.positions.len() as u32;
             self.mesh.positions.extend([top, b0, b1, center, a1, a0]);
-            self.mesh.indices.extend([base, base + 1, base + 2, base + 3, base + 4, base + 5]);
+            self.mesh
+                .indices
+                .extend([base, base + 1, base + 2, base + 3, base + 4, base + 5]);
             self.mesh.triangle_materials.extend([material, material]);
         }
     }
@@ -102,7 +125,11 @@ impl Builder {
         Scene {
             name: name.into(),
             meshes: vec![self.mesh],
-            instances: vec![Instance { name: name.into(), mesh: 0, transform: Mat4::IDENTITY }],
+            instances: vec![Instance {
+                name: name.into(),
+                mesh: 0,
+                transform: Mat4::IDENTITY,
+            }],
             materials: self.materials,
             camera,
             ..Default::default()
@@ -119,15 +146,62 @@ pub fn cornell() -> Scene {
     let green = b.material("green", Vec3::new(0.14, 0.45, 0.091), Vec3::ZERO);
     let light = b.material("light", Vec3::splat(0.78), Vec3::new(17.0, 12.0, 4.0));
     let v = Vec3::new;
-    b.quad([v(-1., 0., 1.), v(1., 0., 1.), v(1., 0., -1.), v(-1., 0., -1.)], white); // floor
-    b.quad([v(-1., 2., 1.), v(-1., 2., -1.), v(1., 2., -1.), v(1., 2., 1.)], white); // ceiling
-    b.quad([v(-1., 0., -1.), v(1., 0., -1.), v(1., 2., -1.), v(-1., 2., -1.)], white); // back
-    b.quad([v(-1., 0., 1.), v(-1., 0., -1.), v(-1., 2., -1.), v(-1., 2., 1.)], red); // left
-    b.quad([v(1., 0., -1.), v(1., 0., 1.), v(1., 2., 1.), v(1., 2., -1.)], green); // right
-    b.quad([v(-0.24, 1.98, 0.16), v(-0.24, 1.98, -0.22), v(0.23, 1.98, -0.22), v(0.23, 1.98, 0.16)], light);
-    let short = Mat4::from_translation(v(0.33, 0.3, 0.37)) * Mat4::from_rotation_y(-0.29) * Mat4::from_scale(Vec3::splat(0.6));
+    b.quad(
+        [
+            v(-1., 0., 1.),
+            v(1., 0., 1.),
+            v(1., 0., -1.),
+            v(-1., 0., -1.),
+        ],
+        white,
+    ); // floor
+    b.quad(
+        [
+            v(-1., 2., 1.),
+            v(-1., 2., -1.),
+            v(1., 2., -1.),
+            v(1., 2., 1.),
+        ],
+        white,
+    ); // ceiling
+    b.quad(
+        [
+            v(-1., 0., -1.),
+            v(1., 0., -1.),
+            v(1., 2., -1.),
+            v(-1., 2., -1.),
+        ],
+        white,
+    ); // back
+    b.quad(
+        [
+            v(-1., 0., 1.),
+            v(-1., 0., -1.),
+            v(-1., 2., -1.),
+            v(-1., 2., 1.),
+        ],
+        red,
+    ); // left
+    b.quad(
+        [v(1., 0., -1.), v(1., 0., 1.), v(1., 2., 1.), v(1., 2., -1.)],
+        green,
+    ); // right
+    b.quad(
+        [
+            v(-0.24, 1.98, 0.16),
+            v(-0.24, 1.98, -0.22),
+            v(0.23, 1.98, -0.22),
+            v(0.23, 1.98, 0.16),
+        ],
+        light,
+    );
+    let short = Mat4::from_translation(v(0.33, 0.3, 0.37))
+        * Mat4::from_rotation_y(-0.29)
+        * Mat4::from_scale(Vec3::splat(0.6));
     b.transformed_box(short, white);
-    let tall = Mat4::from_translation(v(-0.335, 0.6, -0.29)) * Mat4::from_rotation_y(0.3) * Mat4::from_scale(v(0.6, 1.2, 0.6));
+    let tall = Mat4::from_translation(v(-0.335, 0.6, -0.29))
+        * Mat4::from_rotation_y(0.3)
+        * Mat4::from_scale(v(0.6, 1.2, 0.6));
     b.transformed_box(tall, white);
     let mut scene = b.into_scene("cornell", Camera::default());
     scene.probe_volumes.push(ProbeVolumeDesc {
@@ -149,7 +223,11 @@ pub fn two_rooms() -> Scene {
     let v = Vec3::new;
     let t = 0.1;
     b.cuboid(v(-4.0 - t, -t, -2.0 - t), v(4.0 + t, 0.0, 2.0 + t), floor);
-    b.cuboid(v(-4.0 - t, 3.0, -2.0 - t), v(4.0 + t, 3.0 + t, 2.0 + t), white);
+    b.cuboid(
+        v(-4.0 - t, 3.0, -2.0 - t),
+        v(4.0 + t, 3.0 + t, 2.0 + t),
+        white,
+    );
     b.cuboid(v(-4.0 - t, 0.0, -2.0 - t), v(4.0 + t, 3.0, -2.0), white);
     b.cuboid(v(-4.0 - t, 0.0, 2.0), v(4.0 + t, 3.0, 2.0 + t), white);
     b.cuboid(v(-4.0 - t, 0.0, -2.0), v(-4.0, 3.0, 2.0), white);
@@ -159,7 +237,12 @@ pub fn two_rooms() -> Scene {
     b.cuboid(v(-h, 0.0, -2.0), v(h, 3.0, -0.5), white);
     b.cuboid(v(-h, 0.0, 0.5), v(h, 3.0, 2.0), white);
     b.cuboid(v(-h, 2.0, -0.5), v(h, 3.0, 0.5), white);
-    let camera = Camera { position: v(3.6, 1.6, 1.7), target: v(0.0, 1.0, -0.3), up: Vec3::Y, fov_y_degrees: 60.0 };
+    let camera = Camera {
+        position: v(3.6, 1.6, 1.7),
+        target: v(0.0, 1.0, -0.3),
+        up: Vec3::Y,
+        fov_y_degrees: 60.0,
+    };
     let mut scene = b.into_scene("two-rooms", camera);
     scene.lights.push(Light {
         name: "lamp".into(),
@@ -172,9 +255,22 @@ pub fn two_rooms() -> Scene {
     });
     // Probes span the rooms up to 10–20 cm from the walls (irradiance is not extrapolated past
     // the outermost probes), and straddle the dividing wall at x = ±0.43.
-    scene.probe_volumes.push(ProbeVolumeDesc { name: "rooms".into(), min: v(-3.9, 0.2, -1.9), max: v(3.9, 2.8, 1.9), counts: [10, 4, 5] });
-    scene.regions.push(Region { name: "dark-room".into(), min: v(h, 0.0, -2.0), max: v(4.0, 3.0, 2.0) });
-    scene.regions.push(Region { name: "lit-room".into(), min: v(-4.0, 0.0, -2.0), max: v(-h, 3.0, 2.0) });
+    scene.probe_volumes.push(ProbeVolumeDesc {
+        name: "rooms".into(),
+        min: v(-3.9, 0.2, -1.9),
+        max: v(3.9, 2.8, 1.9),
+        counts: [10, 4, 5],
+    });
+    scene.regions.push(Region {
+        name: "dark-room".into(),
+        min: v(h, 0.0, -2.0),
+        max: v(4.0, 3.0, 2.0),
+    });
+    scene.regions.push(Region {
+        name: "lit-room".into(),
+        min: v(-4.0, 0.0, -2.0),
+        max: v(-h, 3.0, 2.0),
+    });
     scene
 }
 
@@ -188,7 +284,11 @@ pub fn box_cylinders() -> Scene {
     let v = Vec3::new;
     let t = 0.1;
     b.cuboid(v(-3.0 - t, -t, -3.0 - t), v(3.0 + t, 0.0, 3.0 + t), white);
-    b.cuboid(v(-3.0 - t, 3.0, -3.0 - t), v(3.0 + t, 3.0 + t, 3.0 + t), white);
+    b.cuboid(
+        v(-3.0 - t, 3.0, -3.0 - t),
+        v(3.0 + t, 3.0 + t, 3.0 + t),
+        white,
+    );
     b.cuboid(v(-3.0 - t, 0.0, -3.0 - t), v(3.0 + t, 3.0, -3.0), white);
     b.cuboid(v(-3.0 - t, 0.0, 3.0), v(3.0 + t, 3.0, 3.0 + t), white);
     b.cuboid(v(-3.0 - t, 0.0, -3.0), v(-3.0, 3.0, 3.0), white);
@@ -196,7 +296,12 @@ pub fn box_cylinders() -> Scene {
     for (x, z) in [(-0.75, -0.75), (0.75, -0.75), (-0.75, 0.75), (0.75, 0.75)] {
         b.cylinder(v(x, 0.0, z), 0.35, 3.0, 24, column);
     }
-    let camera = Camera { position: v(0.0, 1.6, 2.9), target: v(0.0, 1.0, -1.0), up: Vec3::Y, fov_y_degrees: 70.0 };
+    let camera = Camera {
+        position: v(0.0, 1.6, 2.9),
+        target: v(0.0, 1.0, -1.0),
+        up: Vec3::Y,
+        fov_y_degrees: 70.0,
+    };
     let mut scene = b.into_scene("box-cylinders", camera);
     scene.lights.push(Light {
         name: "lamp".into(),
@@ -207,8 +312,17 @@ pub fn box_cylinders() -> Scene {
         intensity: 8.0,
         enabled: true,
     });
-    scene.probe_volumes.push(ProbeVolumeDesc { name: "box".into(), min: v(-2.25, 0.375, -2.25), max: v(2.25, 2.625, 2.25), counts: [4, 4, 4] });
-    scene.regions.push(Region { name: "around-cylinders".into(), min: v(-1.5, 0.0, -1.5), max: v(1.5, 3.0, 1.5) });
+    scene.probe_volumes.push(ProbeVolumeDesc {
+        name: "box".into(),
+        min: v(-2.25, 0.375, -2.25),
+        max: v(2.25, 2.625, 2.25),
+        counts: [4, 4, 4],
+    });
+    scene.regions.push(Region {
+        name: "around-cylinders".into(),
+        min: v(-1.5, 0.0, -1.5),
+        max: v(1.5, 3.0, 1.5),
+    });
     scene
 }
 
@@ -221,18 +335,40 @@ pub fn furnace() -> Scene {
     let point = |r: u32, s: u32| {
         let theta = r as f32 / rings as f32 * std::f32::consts::PI;
         let phi = s as f32 / segments as f32 * std::f32::consts::TAU;
-        Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
+        Vec3::new(
+            theta.sin() * phi.cos(),
+            theta.cos(),
+            -theta.sin() * phi.sin(),
+        )
     };
     for r in 0..rings {
         for s in 0..segments {
-            b.quad([point(r, s), point(r + 1, s), point(r + 1, s + 1), point(r, s + 1)], white);
+            b.quad(
+                [
+                    point(r, s),
+                    point(r + 1, s),
+                    point(r + 1, s + 1),
+                    point(r, s + 1),
+                ],
+                white,
+            );
         }
     }
-    let camera = Camera { position: Vec3::new(0.0, 0.0, 4.0), target: Vec3::ZERO, up: Vec3::Y, fov_y_degrees: 40.0 };
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 4.0),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        fov_y_degrees: 40.0,
+    };
     let mut scene = b.into_scene("furnace", camera);
     scene.sky = Vec3::ONE;
     // Probes around the sphere, none inside it (the inner ones sit at |p| = 1.15).
-    scene.probe_volumes.push(ProbeVolumeDesc { name: "around".into(), min: Vec3::splat(-2.0), max: Vec3::splat(2.0), counts: [4, 4, 4] });
+    scene.probe_volumes.push(ProbeVolumeDesc {
+        name: "around".into(),
+        min: Vec3::splat(-2.0),
+        max: Vec3::splat(2.0),
+        counts: [4, 4, 4],
+    });
     scene.materials[0].base_color = Vec4::ONE;
     scene
 }

@@ -14,5 +14,10 @@ pub fn camera_for_bounds(scene: &Scene) -> Camera {
     let radius = ((hi - lo) * 0.5).length().max(1e-3);
     let fov_y_degrees: f32 = 45.0;
     let distance = radius / (fov_y_degrees.to_radians() * 0.5).sin();
-    Camera { position: center + Vec3::Z * distance, target: center, up: Vec3::Y, fov_y_degrees }
+    Camera {
+        position: center + Vec3::Z * distance,
+        target: center,
+        up: Vec3::Y,
+        fov_y_degrees,
+    }
 }

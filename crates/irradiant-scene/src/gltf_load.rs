@@ -11,9 +11,14 @@ use crate::model::{AlphaMode, Camera, Instance, Light, LightKind, Material, Mesh
 use crate::obj::file_stem;
 
 pub fn load_gltf(path: &Path, warnings: &mut Vec<String>) -> Result<Scene> {
-    let (document, buffers, images) =
-        gltf::import(path).map_err(|e| SceneError::Gltf { path: path.to_owned(), message: e.to_string() })?;
-    let mut scene = Scene { name: file_stem(path), ..Default::default() };
+    let (document, buffers, images) = gltf::import(path).map_err(|e| SceneError::Gltf {
+        path: path.to_owned(),
+        message: e.to_string(),
+    })?;
+    let mut scene = Scene {
+        name: file_stem(path),
+        ..Default::default()
+    };
 
     for (i, image) in images.iter().enumerate() {
         scene.textures.push(convert_image(image, i, path, warnings));
@@ -22,9 +27,15 @@ pub fn load_gltf(path: &Path, warnings: &mut Vec<String>) -> Result<Scene> {
         scene.materials.push(convert_material(&material, &document));
     }
     let default_material = scene.materials.len() as u32;
-    scene.materials.push(Material { specular: 1.0, ..Default::default() });
+    scene.materials.push(Material {
+        specular: 1.0,
+        ..Default::default()
+    });
 
-    let Some(root) = document.default_scene().or_else(|| document.scenes().next()) else {
+    let Some(root) = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    else {
         return Err(SceneError::Invalid {
             path: path.to_owned(),
             problem: "the file has no scene".into(),
@@ -38,11 +49,24 @@ pub fn load_gltf(path: &Path, warnings: &mut Vec<String>) -> Result<Scene> {
         let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
         if let Some(mesh) = node.mesh() {
             let index = *mesh_of_gltf_mesh.entry(mesh.index()).or_insert_with(|| {
-                scene.meshes.push(convert_mesh(&mesh, &buffers, default_material, path, warnings));
+                scene.meshes.push(convert_mesh(
+                    &mesh,
+                    &buffers,
+                    default_material,
+                    path,
+                    warnings,
+                ));
                 scene.meshes.len() as u32 - 1
             });
-            let name = node.name().map(str::to_owned).unwrap_or_else(|| format!("node{}", node.index()));
-            scene.instances.push(Instance { name, mesh: index, transform: world });
+            let name = node
+                .name()
+                .map(str::to_owned)
+                .unwrap_or_else(|| format!("node{}", node.index()));
+            scene.instances.push(Instance {
+                name,
+                mesh: index,
+                transform: world,
+            });
         }
         if let Some(light) = node.light() {
             scene.lights.push(convert_light(&light, &node, world));
@@ -77,22 +101,38 @@ fn convert_material(m: &gltf::Material, _document: &gltf::Document) -> Material 
     Material {
         name: m.name().unwrap_or("material").to_owned(),
         base_color: Vec4::from(pbr.base_color_factor()),
-        base_color_texture: pbr.base_color_texture().map(|t| t.texture().source().index() as u32),
+        base_color_texture: pbr
+            .base_color_texture()
+            .map(|t| t.texture().source().index() as u32),
         emission: Vec3::from(m.emissive_factor()) * strength,
         metallic: pbr.metallic_factor(),
         roughness: pbr.roughness_factor(),
         specular: 1.0,
         alpha_mode: match m.alpha_mode() {
-            gltf::material::AlphaMode::Mask => AlphaMode::Mask { cutoff: m.alpha_cutoff().unwrap_or(0.5) },
+            gltf::material::AlphaMode::Mask => AlphaMode::Mask {
+                cutoff: m.alpha_cutoff().unwrap_or(0.5),
+            },
             // Blending is approximated as opaque: a path tracer has no draw order.
             _ => AlphaMode::Opaque,
         },
     }
 }
 
-fn convert_mesh(mesh: &gltf::Mesh, buffers: &[gltf::buffer::Data], default_material: u32, path: &Path, warnings: &mut Vec<String>) -> Mesh {
-    let name = mesh.name().map(str::to_owned).unwrap_or_else(|| format!("mesh{}", mesh.index()));
-    let mut out = Mesh { name: name.clone(), ..Default::default() };
+fn convert_mesh(
+    mesh: &gltf::Mesh,
+    buffers: &[gltf::buffer::Data],
+    default_material: u32,
+    path: &Path,
+    warnings: &mut Vec<String>,
+) -> Mesh {
+    let name = mesh
+        .name()
+        .map(str::to_owned)
+        .unwrap_or_else(|| format!("mesh{}", mesh.index()));
+    let mut out = Mesh {
+        name: name.clone(),
+        ..Default::default()
+    };
     let mut has_normals = true;
     let mut has_uvs = false;
     let mut primitives = Vec::new();
@@ -102,17 +142,25 @@ fn convert_mesh(mesh: &gltf::Mesh, buffers: &[gltf::buffer::Data], default_mater
             continue;
         }
         let reader = primitive.reader(|b| Some(&buffers[b.index()]));
-        let Some(positions) = reader.read_positions() else { continue };
+        let Some(positions) = reader.read_positions() else {
+            continue;
+        };
         let positions: Vec<Vec3> = positions.map(Vec3::from).collect();
         let normals: Option<Vec<Vec3>> = reader.read_normals().map(|n| n.map(Vec3::from).collect());
-        let uvs: Option<Vec<Vec2>> = reader.read_tex_coords(0).map(|t| t.into_f32().map(Vec2::from).collect());
+        let uvs: Option<Vec<Vec2>> = reader
+            .read_tex_coords(0)
+            .map(|t| t.into_f32().map(Vec2::from).collect());
         let indices: Vec<u32> = match reader.read_indices() {
             Some(i) => i.into_u32().collect(),
             None => (0..positions.len() as u32).collect(),
         };
         has_normals &= normals.is_some();
         has_uvs |= uvs.is_some();
-        let material = primitive.material().index().map(|i| i as u32).unwrap_or(default_material);
+        let material = primitive
+            .material()
+            .index()
+            .map(|i| i as u32)
+            .unwrap_or(default_material);
         primitives.push((positions, normals, uvs, indices, material));
     }
     for (positions, normals, uvs, indices, material) in primitives {
@@ -125,23 +173,37 @@ fn convert_mesh(mesh: &gltf::Mesh, buffers: &[gltf::buffer::Data], default_mater
         if has_uvs {
             out.uvs.extend(uvs.unwrap_or_else(|| vec![Vec2::ZERO; n]));
         }
-        out.triangle_materials.extend(std::iter::repeat_n(material, indices.len() / 3));
-        out.indices.extend(indices.iter().take(indices.len() / 3 * 3).map(|i| base + i));
+        out.triangle_materials
+            .extend(std::iter::repeat_n(material, indices.len() / 3));
+        out.indices
+            .extend(indices.iter().take(indices.len() / 3 * 3).map(|i| base + i));
     }
     out
 }
 
-fn convert_light(light: &gltf::khr_lights_punctual::Light, node: &gltf::Node, world: Mat4) -> Light {
+fn convert_light(
+    light: &gltf::khr_lights_punctual::Light,
+    node: &gltf::Node,
+    world: Mat4,
+) -> Light {
     use gltf::khr_lights_punctual::Kind;
     let kind = match light.kind() {
         Kind::Point => LightKind::Point,
         Kind::Directional => LightKind::Directional,
-        Kind::Spot { inner_cone_angle, outer_cone_angle } => {
-            LightKind::Spot { inner_angle: inner_cone_angle, outer_angle: outer_cone_angle }
-        }
+        Kind::Spot {
+            inner_cone_angle,
+            outer_cone_angle,
+        } => LightKind::Spot {
+            inner_angle: inner_cone_angle,
+            outer_angle: outer_cone_angle,
+        },
     };
     Light {
-        name: light.name().or(node.name()).map(str::to_owned).unwrap_or_else(|| format!("light{}", light.index())),
+        name: light
+            .name()
+            .or(node.name())
+            .map(str::to_owned)
+            .unwrap_or_else(|| format!("light{}", light.index())),
         kind,
         position: world.transform_point3(Vec3::ZERO),
         direction: world.transform_vector3(-Vec3::Z).normalize_or(-Vec3::Y),
@@ -151,7 +213,12 @@ fn convert_light(light: &gltf::khr_lights_punctual::Light, node: &gltf::Node, wo
     }
 }
 
-fn convert_image(image: &gltf::image::Data, index: usize, path: &Path, warnings: &mut Vec<String>) -> Texture {
+fn convert_image(
+    image: &gltf::image::Data,
+    index: usize,
+    path: &Path,
+    warnings: &mut Vec<String>,
+) -> Texture {
     use gltf::image::Format;
     let texels = (image.width * image.height) as usize;
     let mut rgba8 = Vec::with_capacity(texels * 4);
@@ -161,8 +228,16 @@ fn convert_image(image: &gltf::image::Data, index: usize, path: &Path, warnings:
         Format::R8G8B8 => 3,
         Format::R8G8B8A8 => 4,
         other => {
-            warnings.push(format!("{}: image {index} has format {other:?}, which is not supported; it is drawn white", path.display()));
-            return Texture { name: format!("image{index}"), width: 1, height: 1, rgba8: vec![255; 4] };
+            warnings.push(format!(
+                "{}: image {index} has format {other:?}, which is not supported; it is drawn white",
+                path.display()
+            ));
+            return Texture {
+                name: format!("image{index}"),
+                width: 1,
+                height: 1,
+                rgba8: vec![255; 4],
+            };
         }
     };
     for texel in image.pixels.chunks_exact(channels).take(texels) {
@@ -174,5 +249,10 @@ fn convert_image(image: &gltf::image::Data, index: usize, path: &Path, warnings:
         };
         rgba8.extend_from_slice(&rgba);
     }
-    Texture { name: format!("image{index}"), width: image.width, height: image.height, rgba8 }
+    Texture {
+        name: format!("image{index}"),
+        width: image.width,
+        height: image.height,
+        rgba8,
+    }
 }

@@ -21,7 +21,10 @@ pub use animation::Pose;
 pub use builtin::{BUILTIN_SCENES, builtin};
 pub use error::{Result, SceneError};
 pub use framing::camera_for_bounds;
-pub use manifest::{AnimationDesc, CameraDesc, LightDesc, LightKindDesc, Manifest, MeshRef, ProbeVolumeManifest, RegionDesc};
+pub use manifest::{
+    AnimationDesc, CameraDesc, LightDesc, LightKindDesc, Manifest, MeshRef, ProbeVolumeManifest,
+    RegionDesc,
+};
 pub use model::*;
 pub use validate::MAX_PROBES_PER_AXIS;
 
@@ -40,7 +43,10 @@ pub fn load(spec: &str) -> Result<Loaded> {
     let mut scene = match extension.as_deref() {
         None => builtin(spec).ok_or_else(|| unknown(spec))?,
         Some("toml") => {
-            let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { path: path.to_owned(), source })?;
+            let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+                path: path.to_owned(),
+                source,
+            })?;
             let manifest = Manifest::parse(&text, path, &mut warnings)?;
             let mut scene = match builtin(&manifest.mesh.path) {
                 Some(scene) => scene,
@@ -80,6 +86,10 @@ fn load_mesh_file(path: &Path, warnings: &mut Vec<String>) -> Result<Scene> {
 fn unknown(name: &str) -> SceneError {
     SceneError::Unknown {
         name: name.to_owned(),
-        builtins: BUILTIN_SCENES.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+        builtins: BUILTIN_SCENES
+            .iter()
+            .map(|(n, _)| *n)
+            .collect::<Vec<_>>()
+            .join(", "),
     }
 }

@@ -55,7 +55,11 @@ pub struct Manifest {
     /// Lights added to those the mesh file brings (glTF lights are kept).
     #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDesc>,
-    #[serde(default, rename = "probe_volume", skip_serializing_if = "Vec::is_empty")]
+    #[serde(
+        default,
+        rename = "probe_volume",
+        skip_serializing_if = "Vec::is_empty"
+    )]
     pub probe_volumes: Vec<ProbeVolumeManifest>,
     #[serde(default, rename = "region", skip_serializing_if = "Vec::is_empty")]
     pub regions: Vec<RegionDesc>,
@@ -152,11 +156,18 @@ impl Manifest {
     /// Parses TOML; unknown keys are returned as warnings (a typo must not pass silently, and
     /// a newer manifest must still load in an older build).
     pub fn parse(text: &str, path: &Path, warnings: &mut Vec<String>) -> Result<Manifest> {
-        let deserializer = toml::Deserializer::parse(text)
-            .map_err(|e| SceneError::Manifest { path: path.to_owned(), message: e.to_string() })?;
+        let deserializer = toml::Deserializer::parse(text).map_err(|e| SceneError::Manifest {
+            path: path.to_owned(),
+            message: e.to_string(),
+        })?;
         let mut unknown = Vec::new();
-        let manifest: Manifest = serde_ignored::deserialize(deserializer, |key| unknown.push(key.to_string()))
-            .map_err(|e| SceneError::Manifest { path: path.to_owned(), message: e.to_string() })?;
+        let manifest: Manifest =
+            serde_ignored::deserialize(deserializer, |key| unknown.push(key.to_string())).map_err(
+                |e| SceneError::Manifest {
+                    path: path.to_owned(),
+                    message: e.to_string(),
+                },
+            )?;
         for key in unknown {
             warnings.push(format!("{}: unknown key '{key}' ignored (see scenes/README.md for the keys a manifest takes)", path.display()));
         }
@@ -178,9 +189,10 @@ impl Manifest {
         if let Some(name) = &self.name {
             scene.name = name.clone();
         }
-        let placement = Mat4::from_translation(self.mesh.translation.map(Vec3::from).unwrap_or(Vec3::ZERO))
-            * Mat4::from_rotation_y(self.mesh.rotation_y_degrees.unwrap_or(0.0).to_radians())
-            * Mat4::from_scale(Vec3::splat(self.mesh.scale.unwrap_or(1.0)));
+        let placement =
+            Mat4::from_translation(self.mesh.translation.map(Vec3::from).unwrap_or(Vec3::ZERO))
+                * Mat4::from_rotation_y(self.mesh.rotation_y_degrees.unwrap_or(0.0).to_radians())
+                * Mat4::from_scale(Vec3::splat(self.mesh.scale.unwrap_or(1.0)));
         for instance in &mut scene.instances {
             instance.transform = placement * instance.transform;
         }
@@ -208,16 +220,28 @@ impl Manifest {
             };
             let needs_position = kind != LightKind::Directional;
             if needs_position && l.position.is_none() {
-                return Err(invalid(path, format!("light '{}' has no position", l.name), "Add `position = [x, y, z]` to it."));
+                return Err(invalid(
+                    path,
+                    format!("light '{}' has no position", l.name),
+                    "Add `position = [x, y, z]` to it.",
+                ));
             }
             if !needs_position && l.direction.is_none() {
-                return Err(invalid(path, format!("light '{}' has no direction", l.name), "Add `direction = [x, y, z]` (the way the light travels)."));
+                return Err(invalid(
+                    path,
+                    format!("light '{}' has no direction", l.name),
+                    "Add `direction = [x, y, z]` (the way the light travels).",
+                ));
             }
             scene.lights.push(Light {
                 name: l.name.clone(),
                 kind,
                 position: l.position.map(Vec3::from).unwrap_or(Vec3::ZERO),
-                direction: l.direction.map(Vec3::from).unwrap_or(-Vec3::Y).normalize_or(-Vec3::Y),
+                direction: l
+                    .direction
+                    .map(Vec3::from)
+                    .unwrap_or(-Vec3::Y)
+                    .normalize_or(-Vec3::Y),
                 color: l.color.map(Vec3::from).unwrap_or(Vec3::ONE),
                 intensity: l.intensity,
                 enabled: l.enabled.unwrap_or(true),
@@ -232,36 +256,71 @@ impl Manifest {
             });
         }
         for r in &self.regions {
-            scene.regions.push(Region { name: r.name.clone(), min: r.min.into(), max: r.max.into() });
+            scene.regions.push(Region {
+                name: r.name.clone(),
+                min: r.min.into(),
+                max: r.max.into(),
+            });
         }
         for a in &self.animations {
             let target = match (&a.light, &a.instance) {
                 (Some(light), None) => {
                     if !scene.lights.iter().any(|l| &l.name == light) {
-                        return Err(invalid(path, format!("animation names light '{light}', which the scene does not have"), "Use the `name` of one of the scene's lights."));
+                        return Err(invalid(
+                            path,
+                            format!(
+                                "animation names light '{light}', which the scene does not have"
+                            ),
+                            "Use the `name` of one of the scene's lights.",
+                        ));
                     }
                     AnimationTarget::Light(light.clone())
                 }
                 (None, Some(instance)) => {
                     if !scene.instances.iter().any(|i| &i.name == instance) {
-                        let names: Vec<_> = scene.instances.iter().map(|i| i.name.as_str()).take(8).collect();
-                        return Err(invalid(path, format!("animation names instance '{instance}', which the scene does not have"), &format!("Use one of: {}.", names.join(", "))));
+                        let names: Vec<_> = scene
+                            .instances
+                            .iter()
+                            .map(|i| i.name.as_str())
+                            .take(8)
+                            .collect();
+                        return Err(invalid(
+                            path,
+                            format!(
+                                "animation names instance '{instance}', which the scene does not have"
+                            ),
+                            &format!("Use one of: {}.", names.join(", ")),
+                        ));
                     }
                     AnimationTarget::Instance(instance.clone())
                 }
-                _ => return Err(invalid(path, "an [[animation]] must name exactly one of `light` or `instance`".into(), "Add `light = \"name\"` or `instance = \"name\"`.")),
+                _ => {
+                    return Err(invalid(
+                        path,
+                        "an [[animation]] must name exactly one of `light` or `instance`".into(),
+                        "Add `light = \"name\"` or `instance = \"name\"`.",
+                    ));
+                }
             };
             let keys_sorted = |times: Vec<f32>| times.windows(2).all(|w| w[0] <= w[1]);
             if !keys_sorted(a.translation.iter().map(|k| k[0]).collect())
                 || !keys_sorted(a.intensity_scale.iter().map(|k| k[0]).collect())
                 || !keys_sorted(a.rotation_y_degrees.iter().map(|k| k[0]).collect())
             {
-                return Err(invalid(path, "animation keys are not in time order".into(), "Sort each track's keys by their first number, the time."));
+                return Err(invalid(
+                    path,
+                    "animation keys are not in time order".into(),
+                    "Sort each track's keys by their first number, the time.",
+                ));
             }
             scene.animations.push(Animation {
                 target,
                 tracks: Tracks {
-                    translation: a.translation.iter().map(|k| (k[0], Vec3::new(k[1], k[2], k[3]))).collect(),
+                    translation: a
+                        .translation
+                        .iter()
+                        .map(|k| (k[0], Vec3::new(k[1], k[2], k[3])))
+                        .collect(),
                     intensity_scale: a.intensity_scale.iter().map(|k| (k[0], k[1])).collect(),
                     rotation_y_degrees: a.rotation_y_degrees.iter().map(|k| (k[0], k[1])).collect(),
                 },
@@ -272,5 +331,9 @@ impl Manifest {
 }
 
 fn invalid(path: &Path, problem: String, fix: &str) -> SceneError {
-    SceneError::Invalid { path: path.to_owned(), problem, fix: fix.into() }
+    SceneError::Invalid {
+        path: path.to_owned(),
+        problem,
+        fix: fix.into(),
+    }
 }

@@ -48,7 +48,9 @@ pub struct Instance {
 pub enum AlphaMode {
     Opaque,
     /// Texels whose alpha is below the cutoff are holes: rays pass through them.
-    Mask { cutoff: f32 },
+    Mask {
+        cutoff: f32,
+    },
 }
 
 /// glTF-style metallic-roughness material.
@@ -98,7 +100,10 @@ pub struct Texture {
 pub enum LightKind {
     Point,
     /// Cone angles in radians, measured from the axis.
-    Spot { inner_angle: f32, outer_angle: f32 },
+    Spot {
+        inner_angle: f32,
+        outer_angle: f32,
+    },
     Directional,
 }
 
@@ -118,7 +123,11 @@ pub struct Light {
 impl Light {
     /// Radiant intensity (point, spot) or irradiance (directional), zero when off.
     pub fn power(&self) -> Vec3 {
-        if self.enabled { self.color * self.intensity } else { Vec3::ZERO }
+        if self.enabled {
+            self.color * self.intensity
+        } else {
+            Vec3::ZERO
+        }
     }
 }
 
@@ -133,7 +142,12 @@ pub struct Camera {
 
 impl Default for Camera {
     fn default() -> Self {
-        Self { position: Vec3::new(0.0, 1.0, 3.5), target: Vec3::new(0.0, 1.0, 0.0), up: Vec3::Y, fov_y_degrees: 40.0 }
+        Self {
+            position: Vec3::new(0.0, 1.0, 3.5),
+            target: Vec3::new(0.0, 1.0, 0.0),
+            up: Vec3::Y,
+            fov_y_degrees: 40.0,
+        }
     }
 }
 
@@ -198,7 +212,10 @@ pub struct Scene {
 
 impl Scene {
     pub fn triangle_count(&self) -> usize {
-        self.instances.iter().map(|i| self.meshes[i.mesh as usize].triangle_count()).sum()
+        self.instances
+            .iter()
+            .map(|i| self.meshes[i.mesh as usize].triangle_count())
+            .sum()
     }
 
     /// World-space bounds of every instance.

@@ -15,7 +15,13 @@ pub struct TextureCache {
 impl TextureCache {
     /// Returns `None` (after a warning) when the file is missing or unreadable: a user expects the
     /// scene to render with flat colour rather than not at all.
-    pub fn load(&mut self, base_dir: &Path, name: &str, alpha_name: Option<&str>, warnings: &mut Vec<String>) -> Option<u32> {
+    pub fn load(
+        &mut self,
+        base_dir: &Path,
+        name: &str,
+        alpha_name: Option<&str>,
+        warnings: &mut Vec<String>,
+    ) -> Option<u32> {
         let key = (name.to_owned(), alpha_name.map(str::to_owned));
         if let Some(&index) = self.by_key.get(&key) {
             return index;
@@ -40,7 +46,6 @@ impl TextureCache {
         index
     }
 
-
     pub fn into_textures(self) -> Vec<Texture> {
         self.textures
     }
@@ -51,9 +56,19 @@ fn read_rgba(base_dir: &Path, name: &str) -> Result<Texture, String> {
         format!("{}: texture not found; the material is drawn with its flat colour. Put the file there or fix the name in the material file", base_dir.join(name).display())
     })?;
     let image = image::open(&path)
-        .map_err(|e| format!("{}: texture cannot be decoded ({e}); the material is drawn with its flat colour", path.display()))?
+        .map_err(|e| {
+            format!(
+                "{}: texture cannot be decoded ({e}); the material is drawn with its flat colour",
+                path.display()
+            )
+        })?
         .to_rgba8();
-    Ok(Texture { name: name.to_owned(), width: image.width(), height: image.height(), rgba8: image.into_raw() })
+    Ok(Texture {
+        name: name.to_owned(),
+        width: image.width(),
+        height: image.height(),
+        rgba8: image.into_raw(),
+    })
 }
 
 /// Finds `name` under `base_dir`, accepting backslashes and a different letter case
@@ -66,9 +81,15 @@ pub(crate) fn resolve(base_dir: &Path, name: &str) -> Option<PathBuf> {
     }
     let wanted = exact.file_name()?.to_string_lossy().to_lowercase();
     let dir = exact.parent()?;
-    std::fs::read_dir(dir).ok()?.flatten().map(|e| e.path()).find(|p| {
-        p.is_file() && p.file_name().is_some_and(|f| f.to_string_lossy().to_lowercase() == wanted)
-    })
+    std::fs::read_dir(dir)
+        .ok()?
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| {
+            p.is_file()
+                && p.file_name()
+                    .is_some_and(|f| f.to_string_lossy().to_lowercase() == wanted)
+        })
 }
 
 fn copy_luminance_to_alpha(texture: &mut Texture, alpha: &Texture) {
@@ -79,7 +100,8 @@ fn copy_luminance_to_alpha(texture: &mut Texture, alpha: &Texture) {
             let ax = x * alpha.width as usize / w;
             let ay = y * alpha.height as usize / h;
             let a = &alpha.rgba8[4 * (ay * alpha.width as usize + ax)..][..3];
-            texture.rgba8[4 * (y * w + x) + 3] = ((a[0] as u32 + a[1] as u32 + a[2] as u32) / 3) as u8;
+            texture.rgba8[4 * (y * w + x) + 3] =
+                ((a[0] as u32 + a[1] as u32 + a[2] as u32) / 3) as u8;
         }
     }
 }

@@ -7,7 +7,10 @@ use irradiant_scene::{SceneError, load};
 
 /// A fresh folder under the system temp dir for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("irradiant-scene-test-{}-{name}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "irradiant-scene-test-{}-{name}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -29,13 +32,19 @@ fn error_text(spec: &str) -> String {
 #[test]
 fn a_missing_file_names_the_path() {
     let text = error_text("/nonexistent/scene.obj");
-    assert!(text.contains("/nonexistent/scene.obj") && text.contains("cannot read"), "{text}");
+    assert!(
+        text.contains("/nonexistent/scene.obj") && text.contains("cannot read"),
+        "{text}"
+    );
 }
 
 #[test]
 fn an_unknown_builtin_lists_the_builtins() {
     let text = error_text("cornel");
-    assert!(text.contains("cornell") && text.contains("two-rooms"), "{text}");
+    assert!(
+        text.contains("cornell") && text.contains("two-rooms"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -51,19 +60,36 @@ fn a_malformed_obj_is_an_error_naming_the_file() {
 fn nan_and_infinite_vertices_are_refused() {
     let dir = scratch("nan");
     for (name, v) in [("nan.obj", "nan"), ("inf.obj", "inf")] {
-        let path = write(&dir, name, &format!("v 0 0 0\nv {v} 0 0\nv 0 1 0\nf 1 2 3\n"));
+        let path = write(
+            &dir,
+            name,
+            &format!("v 0 0 0\nv {v} 0 0\nv 0 1 0\nf 1 2 3\n"),
+        );
         let text = error_text(&path);
-        assert!(text.contains(name) && text.contains("not a finite number") && text.contains("vertex 1"), "{text}");
+        assert!(
+            text.contains(name)
+                && text.contains("not a finite number")
+                && text.contains("vertex 1"),
+            "{text}"
+        );
     }
 }
 
 #[test]
 fn degenerate_triangles_are_dropped_with_a_warning() {
     let dir = scratch("degenerate");
-    let path = write(&dir, "mixed.obj", &format!("{TRIANGLE_OBJ}v 2 2 2\nf 1 1 4\nf 1 2 2\n"));
+    let path = write(
+        &dir,
+        "mixed.obj",
+        &format!("{TRIANGLE_OBJ}v 2 2 2\nf 1 1 4\nf 1 2 2\n"),
+    );
     let loaded = load(&path).unwrap();
     assert_eq!(loaded.scene.triangle_count(), 1);
-    assert!(loaded.warnings.iter().any(|w| w.contains("2 degenerate")), "{:?}", loaded.warnings);
+    assert!(
+        loaded.warnings.iter().any(|w| w.contains("2 degenerate")),
+        "{:?}",
+        loaded.warnings
+    );
 }
 
 #[test]
@@ -79,25 +105,54 @@ fn an_empty_scene_is_an_error() {
 #[test]
 fn a_missing_texture_warns_and_renders_flat() {
     let dir = scratch("texture");
-    write(&dir, "m.mtl", "newmtl stone\nKd 0.5 0.5 0.5\nmap_Kd missing.png\n");
-    let path = write(&dir, "t.obj", &format!("mtllib m.mtl\nusemtl stone\n{TRIANGLE_OBJ}"));
+    write(
+        &dir,
+        "m.mtl",
+        "newmtl stone\nKd 0.5 0.5 0.5\nmap_Kd missing.png\n",
+    );
+    let path = write(
+        &dir,
+        "t.obj",
+        &format!("mtllib m.mtl\nusemtl stone\n{TRIANGLE_OBJ}"),
+    );
     let loaded = load(&path).unwrap();
-    assert!(loaded.warnings.iter().any(|w| w.contains("missing.png") && w.contains("not found")), "{:?}", loaded.warnings);
+    assert!(
+        loaded
+            .warnings
+            .iter()
+            .any(|w| w.contains("missing.png") && w.contains("not found")),
+        "{:?}",
+        loaded.warnings
+    );
     assert!(loaded.scene.materials[0].base_color_texture.is_none());
 }
 
 #[test]
 fn a_missing_material_library_warns() {
     let dir = scratch("mtl");
-    let path = write(&dir, "t.obj", &format!("mtllib absent.mtl\nusemtl stone\n{TRIANGLE_OBJ}"));
+    let path = write(
+        &dir,
+        "t.obj",
+        &format!("mtllib absent.mtl\nusemtl stone\n{TRIANGLE_OBJ}"),
+    );
     let loaded = load(&path).unwrap();
-    assert!(loaded.warnings.iter().any(|w| w.contains("material library")), "{:?}", loaded.warnings);
+    assert!(
+        loaded
+            .warnings
+            .iter()
+            .any(|w| w.contains("material library")),
+        "{:?}",
+        loaded.warnings
+    );
 }
 
 #[test]
 fn a_malformed_gltf_is_an_error() {
     let dir = scratch("gltf");
-    for (name, text) in [("broken.gltf", "{ \"asset\": "), ("notgltf.glb", "this is not binary glTF")] {
+    for (name, text) in [
+        ("broken.gltf", "{ \"asset\": "),
+        ("notgltf.glb", "this is not binary glTF"),
+    ] {
         let path = write(&dir, name, text);
         let e = load(&path).unwrap_err();
         assert!(matches!(e, SceneError::Gltf { .. }), "{e}");
@@ -110,22 +165,53 @@ fn manifest_errors_name_the_manifest_and_the_fix() {
     let dir = scratch("manifest");
     write(&dir, "tri.obj", TRIANGLE_OBJ);
     let cases = [
-        ("syntax.toml", "[mesh\npath = 'tri.obj'", "invalid scene manifest"),
+        (
+            "syntax.toml",
+            "[mesh\npath = 'tri.obj'",
+            "invalid scene manifest",
+        ),
         ("type.toml", "[mesh]\npath = 3", "invalid scene manifest"),
         ("nomesh.toml", "sky = [1, 1, 1]", "missing field `mesh`"),
         ("gone.toml", "[mesh]\npath = 'gone.obj'", "gone.obj"),
-        ("light.toml", "[mesh]\npath = 'tri.obj'\n[[light]]\nname = 'l'\nkind = 'point'\nintensity = 1.0", "has no position"),
-        ("anim.toml", "[mesh]\npath = 'tri.obj'\n[[animation]]\nlight = 'ghost'\nintensity_scale = [[0.0, 1.0]]", "ghost"),
-        ("probes.toml", "[mesh]\npath = 'tri.obj'\n[[probe_volume]]\nmin = [0, 0, 0]\nmax = [1, 1, 1]\ncounts = [100000, 1, 1]", "probes per axis"),
-        ("box.toml", "[mesh]\npath = 'tri.obj'\n[[region]]\nname = 'r'\nmin = [1, 1, 1]\nmax = [0, 0, 0]", "min ≥ max"),
-        ("fov.toml", "[mesh]\npath = 'tri.obj'\n[camera]\nposition = [0, 0, 1]\ntarget = [0, 0, 0]\nfov_y_degrees = 500.0", "field of view"),
-        ("sky.toml", "sky = [-1, 0, 0]\n[mesh]\npath = 'tri.obj'", "sky"),
+        (
+            "light.toml",
+            "[mesh]\npath = 'tri.obj'\n[[light]]\nname = 'l'\nkind = 'point'\nintensity = 1.0",
+            "has no position",
+        ),
+        (
+            "anim.toml",
+            "[mesh]\npath = 'tri.obj'\n[[animation]]\nlight = 'ghost'\nintensity_scale = [[0.0, 1.0]]",
+            "ghost",
+        ),
+        (
+            "probes.toml",
+            "[mesh]\npath = 'tri.obj'\n[[probe_volume]]\nmin = [0, 0, 0]\nmax = [1, 1, 1]\ncounts = [100000, 1, 1]",
+            "probes per axis",
+        ),
+        (
+            "box.toml",
+            "[mesh]\npath = 'tri.obj'\n[[region]]\nname = 'r'\nmin = [1, 1, 1]\nmax = [0, 0, 0]",
+            "min ≥ max",
+        ),
+        (
+            "fov.toml",
+            "[mesh]\npath = 'tri.obj'\n[camera]\nposition = [0, 0, 1]\ntarget = [0, 0, 0]\nfov_y_degrees = 500.0",
+            "field of view",
+        ),
+        (
+            "sky.toml",
+            "sky = [-1, 0, 0]\n[mesh]\npath = 'tri.obj'",
+            "sky",
+        ),
     ];
     for (name, text, expected) in cases {
         let path = write(&dir, name, text);
         let message = error_text(&path);
         assert!(message.contains(expected), "{name}: {message}");
-        assert!(message.contains(name) || message.contains("gone.obj"), "{name}: the message must name the file: {message}");
+        assert!(
+            message.contains(name) || message.contains("gone.obj"),
+            "{name}: the message must name the file: {message}"
+        );
     }
 }
 
@@ -133,8 +219,15 @@ fn manifest_errors_name_the_manifest_and_the_fix() {
 fn unknown_manifest_keys_warn_but_load() {
     let dir = scratch("unknown");
     write(&dir, "tri.obj", TRIANGLE_OBJ);
-    let path = write(&dir, "typo.toml", "skye = [1, 1, 1]\n[mesh]\npath = 'tri.obj'\nscael = 2.0\n");
+    let path = write(
+        &dir,
+        "typo.toml",
+        "skye = [1, 1, 1]\n[mesh]\npath = 'tri.obj'\nscael = 2.0\n",
+    );
     let loaded = load(&path).unwrap();
     let w = loaded.warnings.join("\n");
-    assert!(w.contains("skye") && w.contains("scael") && w.contains("typo.toml"), "{w}");
+    assert!(
+        w.contains("skye") && w.contains("scael") && w.contains("typo.toml"),
+        "{w}"
+    );
 }

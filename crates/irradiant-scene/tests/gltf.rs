@@ -19,7 +19,9 @@ fn buffer() -> Vec<u8> {
 }
 
 fn document(buffer_uri: Option<String>, length: usize) -> String {
-    let uri = buffer_uri.map(|u| format!(r#""uri": "{u}","#)).unwrap_or_default();
+    let uri = buffer_uri
+        .map(|u| format!(r#""uri": "{u}","#))
+        .unwrap_or_default();
     format!(
         r#"{{
   "asset": {{"version": "2.0"}},
@@ -63,7 +65,11 @@ fn base64(data: &[u8]) -> String {
     const TABLE: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();
     for chunk in data.chunks(3) {
-        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
         let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
         for i in 0..4 {
             if i <= chunk.len() {
@@ -105,23 +111,42 @@ fn check(path: &std::path::Path) {
     assert_eq!(s.meshes.len(), 1);
     assert_eq!(s.instances.len(), 1);
     // The child's world position composes the parent's translation.
-    let p = s.instances[0].transform.transform_point3(Vec3::new(1.0, 0.0, 0.0));
+    let p = s.instances[0]
+        .transform
+        .transform_point3(Vec3::new(1.0, 0.0, 0.0));
     assert!((p - Vec3::new(11.0, 5.0, 0.0)).length() < 1e-5, "{p}");
     let m = &s.materials[0];
     assert_eq!(m.name, "glowing-leaf");
-    assert!((m.emission - Vec3::new(4.0, 2.0, 0.0)).length() < 1e-6, "emissive strength applied: {:?}", m.emission);
+    assert!(
+        (m.emission - Vec3::new(4.0, 2.0, 0.0)).length() < 1e-6,
+        "emissive strength applied: {:?}",
+        m.emission
+    );
     assert!((m.metallic - 0.3).abs() < 1e-6 && (m.roughness - 0.7).abs() < 1e-6);
     assert_eq!(m.alpha_mode, AlphaMode::Mask { cutoff: 0.3 });
     let bulb = s.lights.iter().find(|l| l.name == "bulb").unwrap();
     assert_eq!(bulb.kind, LightKind::Point);
     assert!((bulb.position - Vec3::new(10.0, 2.0, 0.0)).length() < 1e-5);
     assert!((bulb.power() - Vec3::new(20.0, 10.0, 5.0)).length() < 1e-4);
-    let spot = s.lights.iter().find(|l| matches!(l.kind, LightKind::Spot { .. })).unwrap();
+    let spot = s
+        .lights
+        .iter()
+        .find(|l| matches!(l.kind, LightKind::Spot { .. }))
+        .unwrap();
     // Rotated −90° about x, the spot's −z axis points down.
-    assert!((spot.direction - Vec3::new(0.0, -1.0, 0.0)).length() < 1e-4, "{:?}", spot.direction);
+    assert!(
+        (spot.direction - Vec3::new(0.0, -1.0, 0.0)).length() < 1e-4,
+        "{:?}",
+        spot.direction
+    );
     assert!((s.camera.position - Vec3::new(0.0, 1.0, 7.0)).length() < 1e-5);
     assert!((s.camera.fov_y_degrees - 0.8f32.to_degrees()).abs() < 1e-3);
-    assert!((s.camera.target - s.camera.position).normalize().dot(-Vec3::Z) > 0.999);
+    assert!(
+        (s.camera.target - s.camera.position)
+            .normalize()
+            .dot(-Vec3::Z)
+            > 0.999
+    );
 }
 
 #[test]
@@ -130,7 +155,17 @@ fn gltf_with_embedded_buffer_and_glb_load_the_same_scene() {
     std::fs::create_dir_all(&dir).unwrap();
     let data = buffer();
     let gltf_path = dir.join("scene.gltf");
-    std::fs::write(&gltf_path, document(Some(format!("data:application/octet-stream;base64,{}", base64(&data))), data.len())).unwrap();
+    std::fs::write(
+        &gltf_path,
+        document(
+            Some(format!(
+                "data:application/octet-stream;base64,{}",
+                base64(&data)
+            )),
+            data.len(),
+        ),
+    )
+    .unwrap();
     check(&gltf_path);
     let glb_path = dir.join("scene.glb");
     std::fs::write(&glb_path, glb(&document(None, data.len()), &data)).unwrap();

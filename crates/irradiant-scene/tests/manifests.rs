@@ -40,9 +40,15 @@ fn every_shipped_manifest_round_trips() {
 #[test]
 fn every_shipped_manifest_loads() {
     for path in shipped_manifests() {
-        let loaded = irradiant_scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+        let loaded =
+            irradiant_scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
         assert!(loaded.scene.triangle_count() > 0);
-        assert!(!loaded.warnings.iter().any(|w| w.contains("texture")), "{}: {:?}", path.display(), loaded.warnings);
+        assert!(
+            !loaded.warnings.iter().any(|w| w.contains("texture")),
+            "{}: {:?}",
+            path.display(),
+            loaded.warnings
+        );
     }
 }
 
@@ -62,10 +68,21 @@ fn builtin_scenes_are_valid_and_carry_their_fixtures() {
     for i in 0..v.counts[0] {
         for k in 0..v.counts[2] {
             let p = v.min + step * glam::Vec3::new(i as f32, 0.0, k as f32);
-            if [(-0.75f32, -0.75f32), (0.75, -0.75), (-0.75, 0.75), (0.75, 0.75)].iter().any(|(x, z)| (p.x - x).hypot(p.z - z) < 0.35) {
+            if [
+                (-0.75f32, -0.75f32),
+                (0.75, -0.75),
+                (-0.75, 0.75),
+                (0.75, 0.75),
+            ]
+            .iter()
+            .any(|(x, z)| (p.x - x).hypot(p.z - z) < 0.35)
+            {
                 inside += 1;
             }
         }
     }
-    assert_eq!(inside, 4, "four probe columns should be swallowed by the cylinders");
+    assert_eq!(
+        inside, 4,
+        "four probe columns should be swallowed by the cylinders"
+    );
 }

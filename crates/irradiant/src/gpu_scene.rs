@@ -29,19 +29,31 @@ pub struct GpuSceneSettings {
 
 impl Default for GpuSceneSettings {
     fn default() -> Self {
-        Self { texture_size: 512, bvh_quality: BuildQuality::Balanced, stack_in_workgroup: false }
+        Self {
+            texture_size: 512,
+            bvh_quality: BuildQuality::Balanced,
+            stack_in_workgroup: false,
+        }
     }
 }
 
 impl GpuSceneSettings {
     pub fn fast() -> Self {
-        Self { texture_size: 256, bvh_quality: BuildQuality::Fast, ..Self::default() }
+        Self {
+            texture_size: 256,
+            bvh_quality: BuildQuality::Fast,
+            ..Self::default()
+        }
     }
     pub fn balanced() -> Self {
         Self::default()
     }
     pub fn quality() -> Self {
-        Self { texture_size: 1024, bvh_quality: BuildQuality::Quality, ..Self::default() }
+        Self {
+            texture_size: 1024,
+            bvh_quality: BuildQuality::Quality,
+            ..Self::default()
+        }
     }
 }
 
@@ -93,7 +105,11 @@ pub struct GpuSceneStats {
 const MAX_STACK: u32 = 128;
 
 impl GpuScene {
-    pub fn new(ctx: &GpuContext, scene: &Scene, settings: &GpuSceneSettings) -> Result<Self, RenderError> {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &Scene,
+        settings: &GpuSceneSettings,
+    ) -> Result<Self, RenderError> {
         let device = &ctx.device;
         let start = Instant::now();
         let mut nodes: Vec<GpuBvhNode> = Vec::new();
@@ -104,9 +120,15 @@ impl GpuScene {
         let mut blas_roots = Vec::new();
         let mut mesh_emitters = Vec::new();
         let mut max_depth = 0;
-        let alpha_tested: Vec<bool> = scene.materials.iter().map(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. })).collect();
+        let alpha_tested: Vec<bool> = scene
+            .materials
+            .iter()
+            .map(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. }))
+            .collect();
         for (mesh_index, mesh) in scene.meshes.iter().enumerate() {
-            let tris: Vec<[Vec3; 3]> = (0..mesh.triangle_count()).map(|t| mesh.triangle(t)).collect();
+            let tris: Vec<[Vec3; 3]> = (0..mesh.triangle_count())
+                .map(|t| mesh.triangle(t))
+                .collect();
             if tris.is_empty() {
                 blas_roots.push((0, (Vec3::ZERO, Vec3::ZERO)));
                 mesh_emitters.push(Vec::new());
@@ -131,7 +153,11 @@ impl GpuScene {
                     v0: a.into(),
                     material,
                     e1: (b - a).into(),
-                    flags: if alpha_tested[material as usize] { TRIANGLE_ALPHA_TESTED } else { 0 },
+                    flags: if alpha_tested[material as usize] {
+                        TRIANGLE_ALPHA_TESTED
+                    } else {
+                        0
+                    },
                     e2: (c - a).into(),
                     _pad: 0,
                 });
@@ -148,7 +174,10 @@ impl GpuScene {
         }
         let tlas_base = nodes.len() as u32;
         // Room for the top level: a binary tree over n leaves has fewer than n inner nodes.
-        nodes.extend(std::iter::repeat_n(<GpuBvhNode as bytemuck::Zeroable>::zeroed(), scene.instances.len().max(1)));
+        nodes.extend(std::iter::repeat_n(
+            <GpuBvhNode as bytemuck::Zeroable>::zeroed(),
+            scene.instances.len().max(1),
+        ));
         let bvh_build = start.elapsed();
 
         let materials: Vec<GpuMaterial> = scene
@@ -168,7 +197,9 @@ impl GpuScene {
             })
             .collect();
 
-        let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC;
+        let storage = wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC;
         let max_binding = ctx.info.max_storage_buffer_binding_size;
         let buffer = |label: &str, contents: &[u8]| -> Result<wgpu::Buffer, RenderError> {
             if contents.len() as u64 > max_binding {
@@ -178,23 +209,43 @@ impl GpuScene {
                     max_binding >> 20
                 )));
             }
-            Ok(device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage: storage }))
+            Ok(
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage: storage,
+                }),
+            )
         };
         let nodes_buffer = buffer("scene/bvh_nodes", bytemuck::cast_slice(&nodes))?;
         let triangles_buffer = buffer("scene/triangles", bytemuck::cast_slice(&triangles))?;
         let shading_buffer = buffer("scene/triangle_shading", bytemuck::cast_slice(&shading))?;
-        let instances = buffer("scene/instances", &vec![0u8; size_of::<GpuInstance>() * scene.instances.len().max(1)])?;
+        let instances = buffer(
+            "scene/instances",
+            &vec![0u8; size_of::<GpuInstance>() * scene.instances.len().max(1)],
+        )?;
         let materials_buffer = buffer("scene/materials", bytemuck::cast_slice(&materials))?;
-        let lights = buffer("scene/lights", &vec![0u8; size_of::<GpuLight>() * scene.lights.len().max(1)])?;
-        let emitter_capacity: usize = scene.instances.iter().map(|i| mesh_emitters[i.mesh as usize].len()).sum();
-        let emitters = buffer("scene/emitters", &vec![0u8; size_of::<GpuEmitter>() * emitter_capacity.max(1)])?;
+        let lights = buffer(
+            "scene/lights",
+            &vec![0u8; size_of::<GpuLight>() * scene.lights.len().max(1)],
+        )?;
+        let emitter_capacity: usize = scene
+            .instances
+            .iter()
+            .map(|i| mesh_emitters[i.mesh as usize].len())
+            .sum();
+        let emitters = buffer(
+            "scene/emitters",
+            &vec![0u8; size_of::<GpuEmitter>() * emitter_capacity.max(1)],
+        )?;
         let info = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("scene/info"),
             size: size_of::<GpuSceneInfo>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (texture_view, texture_layers, texture_bytes) = upload_textures(ctx, scene, settings.texture_size)?;
+        let (texture_view, texture_layers, texture_bytes) =
+            upload_textures(ctx, scene, settings.texture_size)?;
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("scene/sampler"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -218,11 +269,29 @@ impl GpuScene {
                 entry(5, &lights),
                 entry(6, &emitters),
                 entry(7, &info),
-                wgpu::BindGroupEntry { binding: 8, resource: wgpu::BindingResource::TextureView(&texture_view) },
-                wgpu::BindGroupEntry { binding: 9, resource: wgpu::BindingResource::Sampler(&sampler) },
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: wgpu::BindingResource::TextureView(&texture_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 9,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
             ],
         });
-        let gpu_bytes = [&nodes_buffer, &triangles_buffer, &shading_buffer, &instances, &materials_buffer, &lights, &emitters].iter().map(|b| b.size()).sum::<u64>() + texture_bytes;
+        let gpu_bytes = [
+            &nodes_buffer,
+            &triangles_buffer,
+            &shading_buffer,
+            &instances,
+            &materials_buffer,
+            &lights,
+            &emitters,
+        ]
+        .iter()
+        .map(|b| b.size())
+        .sum::<u64>()
+            + texture_bytes;
         let mut gpu_scene = Self {
             layout,
             bind_group,
@@ -240,7 +309,8 @@ impl GpuScene {
             instance_order: Vec::new(),
             previous_transforms: Vec::new(),
             stack_in_workgroup: settings.stack_in_workgroup,
-            tlas_stack: (2 * (scene.instances.len().max(2) as f32).log2().ceil() as u32 + 4).min(scene.instances.len() as u32 + 2),
+            tlas_stack: (2 * (scene.instances.len().max(2) as f32).log2().ceil() as u32 + 4)
+                .min(scene.instances.len() as u32 + 2),
             stats: GpuSceneStats {
                 triangles: triangles.len(),
                 bvh_nodes: nodes.len(),
@@ -259,9 +329,15 @@ impl GpuScene {
     /// Constants every shader that traces rays needs: traversal stacks as deep as the trees.
     pub fn shader_constants(&self) -> Vec<(&'static str, String)> {
         vec![
-            ("BLAS_STACK_SIZE", format!("{}u", self.stats.max_blas_depth.max(2))),
+            (
+                "BLAS_STACK_SIZE",
+                format!("{}u", self.stats.max_blas_depth.max(2)),
+            ),
             ("TLAS_STACK_SIZE", format!("{}u", self.tlas_stack)),
-            ("STACK_IN_WORKGROUP", format!("{}u", self.stack_in_workgroup as u32)),
+            (
+                "STACK_IN_WORKGROUP",
+                format!("{}u", self.stack_in_workgroup as u32),
+            ),
         ]
     }
 
@@ -279,10 +355,18 @@ impl GpuScene {
         }
         let tlas = build_tlas(&boxes);
         if tlas.depth > self.tlas_stack {
-            tracing::warn!("top-level BVH depth {} exceeds its traversal stack ({}): some instances may be missed this frame", tlas.depth, self.tlas_stack);
+            tracing::warn!(
+                "top-level BVH depth {} exceeds its traversal stack ({}): some instances may be missed this frame",
+                tlas.depth,
+                self.tlas_stack
+            );
         }
         // The top level's leaves index instances in TLAS order: reorder instances to match.
-        let ordered: Vec<GpuInstance> = tlas.instance_order.iter().map(|&i| instances[i as usize]).collect();
+        let ordered: Vec<GpuInstance> = tlas
+            .instance_order
+            .iter()
+            .map(|&i| instances[i as usize])
+            .collect();
         let mut tlas_nodes = tlas.nodes.clone();
         for n in &mut tlas_nodes {
             for (first, count) in [(&mut n.a_first, n.a_count), (&mut n.b_first, n.b_count)] {
@@ -292,7 +376,11 @@ impl GpuScene {
             }
         }
         queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&ordered));
-        queue.write_buffer(&self.nodes, self.tlas_base as u64 * size_of::<GpuBvhNode>() as u64, bytemuck::cast_slice(&tlas_nodes));
+        queue.write_buffer(
+            &self.nodes,
+            self.tlas_base as u64 * size_of::<GpuBvhNode>() as u64,
+            bytemuck::cast_slice(&tlas_nodes),
+        );
 
         let lights: Vec<GpuLight> = pose.lights.iter().map(gpu_light).collect();
         if !lights.is_empty() {
@@ -304,10 +392,17 @@ impl GpuScene {
         let mut powers = Vec::new();
         for (ordered_index, &source) in tlas.instance_order.iter().enumerate() {
             let transform = &pose.instance_transforms[source as usize];
-            for &(slot, lum) in &self.mesh_emitters[self.instance_meshes[source as usize] as usize] {
-                let [a, b, c] = self.slot_triangles[slot as usize].map(|p| transform.transform_point3(p));
+            for &(slot, lum) in &self.mesh_emitters[self.instance_meshes[source as usize] as usize]
+            {
+                let [a, b, c] =
+                    self.slot_triangles[slot as usize].map(|p| transform.transform_point3(p));
                 let area = 0.5 * (b - a).cross(c - a).length();
-                emitters.push(GpuEmitter { triangle: slot, instance: ordered_index as u32, cdf: 0.0, _pad: 0 });
+                emitters.push(GpuEmitter {
+                    triangle: slot,
+                    instance: ordered_index as u32,
+                    cdf: 0.0,
+                    _pad: 0,
+                });
                 powers.push(lum * area);
             }
         }
@@ -342,13 +437,28 @@ fn luminance(c: Vec3) -> f32 {
 }
 
 fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource: buffer.as_entire_binding() }
+    wgpu::BindGroupEntry {
+        binding,
+        resource: buffer.as_entire_binding(),
+    }
 }
 
 fn triangle_shading(mesh: &irradiant_scene::Mesh, t: usize) -> GpuTriangleShading {
     let idx = &mesh.indices[3 * t..3 * t + 3];
-    let n = |k: usize| mesh.normals.get(idx[k] as usize).copied().unwrap_or(Vec3::ZERO).to_array();
-    let uv = |k: usize| mesh.uvs.get(idx[k] as usize).copied().unwrap_or_default().to_array();
+    let n = |k: usize| {
+        mesh.normals
+            .get(idx[k] as usize)
+            .copied()
+            .unwrap_or(Vec3::ZERO)
+            .to_array()
+    };
+    let uv = |k: usize| {
+        mesh.uvs
+            .get(idx[k] as usize)
+            .copied()
+            .unwrap_or_default()
+            .to_array()
+    };
     GpuTriangleShading {
         n0: n(0),
         _pad0: 0,
@@ -365,7 +475,13 @@ fn triangle_shading(mesh: &irradiant_scene::Mesh, t: usize) -> GpuTriangleShadin
 
 fn gpu_instance(transform: &Mat4, previous: &Mat4, blas_root: u32) -> GpuInstance {
     let inverse = transform.inverse();
-    let rows = |m: &Mat4| [m.row(0).to_array(), m.row(1).to_array(), m.row(2).to_array()];
+    let rows = |m: &Mat4| {
+        [
+            m.row(0).to_array(),
+            m.row(1).to_array(),
+            m.row(2).to_array(),
+        ]
+    };
     let [w0, w1, w2] = rows(&inverse);
     let [o0, o1, o2] = rows(transform);
     let [p0, p1, p2] = rows(previous);
@@ -390,7 +506,10 @@ fn gpu_light(light: &irradiant_scene::Light) -> GpuLight {
     let (kind, cos_inner, cos_outer) = match light.kind {
         LightKind::Point => (LIGHT_POINT, 1.0, 1.0),
         LightKind::Directional => (LIGHT_DIRECTIONAL, 1.0, 1.0),
-        LightKind::Spot { inner_angle, outer_angle } => (LIGHT_SPOT, inner_angle.cos(), outer_angle.cos()),
+        LightKind::Spot {
+            inner_angle,
+            outer_angle,
+        } => (LIGHT_SPOT, inner_angle.cos(), outer_angle.cos()),
     };
     GpuLight {
         position: light.position.into(),
@@ -407,7 +526,11 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let storage = |binding| wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Storage { read_only: true }, has_dynamic_offset: false, min_binding_size: None },
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
         count: None,
     };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -423,7 +546,11 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             wgpu::BindGroupLayoutEntry {
                 binding: 7, // scene_info
                 visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer { ty: wgpu::BufferBindingType::Uniform, has_dynamic_offset: false, min_binding_size: None },
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
                 count: None,
             },
             wgpu::BindGroupLayoutEntry {
@@ -447,9 +574,17 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 }
 
 /// Resamples every texture to one square size with a full mip chain, into one array.
-fn upload_textures(ctx: &GpuContext, scene: &Scene, size: u32) -> Result<(wgpu::TextureView, u32, u64), RenderError> {
+fn upload_textures(
+    ctx: &GpuContext,
+    scene: &Scene,
+    size: u32,
+) -> Result<(wgpu::TextureView, u32, u64), RenderError> {
     let limits = ctx.device.limits();
-    let size = if scene.textures.is_empty() { 1 } else { size.clamp(1, limits.max_texture_dimension_2d) };
+    let size = if scene.textures.is_empty() {
+        1
+    } else {
+        size.clamp(1, limits.max_texture_dimension_2d)
+    };
     let layers = scene.textures.len().max(1) as u32;
     if layers > limits.max_texture_array_layers {
         return Err(RenderError::Scene(format!(
@@ -460,7 +595,11 @@ fn upload_textures(ctx: &GpuContext, scene: &Scene, size: u32) -> Result<(wgpu::
     let mip_levels = 32 - size.leading_zeros();
     let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("scene/textures"),
-        size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers },
+        size: wgpu::Extent3d {
+            width: size,
+            height: size,
+            depth_or_array_layers: layers,
+        },
         mip_level_count: mip_levels,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
@@ -473,7 +612,12 @@ fn upload_textures(ctx: &GpuContext, scene: &Scene, size: u32) -> Result<(wgpu::
         let mut level_image = match scene.textures.get(layer as usize) {
             Some(t) => {
                 let img = image::RgbaImage::from_raw(t.width, t.height, t.rgba8.clone())
-                    .ok_or_else(|| RenderError::Scene(format!("texture '{}' has the wrong number of bytes", t.name)))?;
+                    .ok_or_else(|| {
+                        RenderError::Scene(format!(
+                            "texture '{}' has the wrong number of bytes",
+                            t.name
+                        ))
+                    })?;
                 image::imageops::resize(&img, size, size, image::imageops::FilterType::Triangle)
             }
             None => image::RgbaImage::from_pixel(1, 1, image::Rgba([255; 4])),
@@ -481,13 +625,35 @@ fn upload_textures(ctx: &GpuContext, scene: &Scene, size: u32) -> Result<(wgpu::
         for level in 0..mip_levels {
             let s = (size >> level).max(1);
             if level > 0 {
-                level_image = image::imageops::resize(&level_image, s, s, image::imageops::FilterType::Triangle);
+                level_image = image::imageops::resize(
+                    &level_image,
+                    s,
+                    s,
+                    image::imageops::FilterType::Triangle,
+                );
             }
             ctx.queue.write_texture(
-                wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: level, origin: wgpu::Origin3d { x: 0, y: 0, z: layer }, aspect: wgpu::TextureAspect::All },
+                wgpu::TexelCopyTextureInfo {
+                    texture: &texture,
+                    mip_level: level,
+                    origin: wgpu::Origin3d {
+                        x: 0,
+                        y: 0,
+                        z: layer,
+                    },
+                    aspect: wgpu::TextureAspect::All,
+                },
                 level_image.as_raw(),
-                wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * s), rows_per_image: Some(s) },
-                wgpu::Extent3d { width: s, height: s, depth_or_array_layers: 1 },
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(4 * s),
+                    rows_per_image: Some(s),
+                },
+                wgpu::Extent3d {
+                    width: s,
+                    height: s,
+                    depth_or_array_layers: 1,
+                },
             );
             bytes += 4 * s as u64 * s as u64;
         }

@@ -302,24 +302,186 @@ pub struct GpuDdgiRaySample {
 /// Every GPU struct with its expected layout, for the WGSL check.
 pub fn all_layouts() -> Vec<Expected> {
     vec![
-        gpu_layout!(GpuBvhNode { a_min, a_first, a_max, a_count, b_min, b_first, b_max, b_count }),
-        gpu_layout!(GpuTriangle { v0, material, e1, flags, e2, _pad }),
-        gpu_layout!(GpuTriangleShading { n0, _pad0, n1, _pad1, n2, _pad2, uv0, uv1, uv2, _pad3 }),
-        gpu_layout!(GpuInstance { world_to_object0, world_to_object1, world_to_object2, object_to_world0, object_to_world1, object_to_world2, previous_object_to_world0, previous_object_to_world1, previous_object_to_world2, blas_root, _pad0, _pad1, _pad2 }),
-        gpu_layout!(GpuMaterial { base_color, emission, texture, metallic, roughness, specular, alpha_cutoff }),
-        gpu_layout!(GpuLight { position, kind, direction, cos_inner, power, cos_outer }),
-        gpu_layout!(GpuEmitter { triangle, instance, cdf, _pad }),
-        gpu_layout!(GpuSceneInfo { sky, light_count, emitter_count, emissive_power, tlas_root, instance_count }),
-        gpu_layout!(GpuCamera { position, tan_half_fov_y, right, aspect, up, _pad0, forward, _pad1 }),
-        gpu_layout!(GpuPathTraceParams { camera, width, height, sample_offset, samples, max_bounces, seed, _pad0, _pad1 }),
-        gpu_layout!(GpuTonemapParams { width, height, exposure, curve }),
-        gpu_layout!(GpuRay { origin, t_max, dir, _pad }),
-        gpu_layout!(GpuRayHit { t, triangle, instance, _pad }),
-        gpu_layout!(GpuRayCastParams { ray_count, any_hit, _pad0, _pad1 }),
-        gpu_layout!(GpuFrameParams { camera, previous_camera, width, height, frame_index, area_light_samples, seed, accumulated_frames, _pad0, _pad1 }),
-        gpu_layout!(GpuGBufferTexel { position, depth, normal, roughness, geometric_normal, metallic, albedo, specular, emission, _pad0, motion, _pad1 }),
-        gpu_layout!(GpuDdgiVolume { origin, probe_count, spacing, rays_per_probe, counts, probes_per_row, ray_rotation0, ray_rotation1, ray_rotation2, irradiance_texels, distance_texels, irradiance_hysteresis, distance_hysteresis, max_ray_distance, self_shadow_bias, distance_exponent, irradiance_gamma, weights, frame, min_spacing, convergence_heuristics, relocating, all_lights, _pad1, _pad2 }),
-        gpu_layout!(GpuDdgiRayHit { t, triangle, instance, bary }),
+        gpu_layout!(GpuBvhNode {
+            a_min,
+            a_first,
+            a_max,
+            a_count,
+            b_min,
+            b_first,
+            b_max,
+            b_count
+        }),
+        gpu_layout!(GpuTriangle {
+            v0,
+            material,
+            e1,
+            flags,
+            e2,
+            _pad
+        }),
+        gpu_layout!(GpuTriangleShading {
+            n0,
+            _pad0,
+            n1,
+            _pad1,
+            n2,
+            _pad2,
+            uv0,
+            uv1,
+            uv2,
+            _pad3
+        }),
+        gpu_layout!(GpuInstance {
+            world_to_object0,
+            world_to_object1,
+            world_to_object2,
+            object_to_world0,
+            object_to_world1,
+            object_to_world2,
+            previous_object_to_world0,
+            previous_object_to_world1,
+            previous_object_to_world2,
+            blas_root,
+            _pad0,
+            _pad1,
+            _pad2
+        }),
+        gpu_layout!(GpuMaterial {
+            base_color,
+            emission,
+            texture,
+            metallic,
+            roughness,
+            specular,
+            alpha_cutoff
+        }),
+        gpu_layout!(GpuLight {
+            position,
+            kind,
+            direction,
+            cos_inner,
+            power,
+            cos_outer
+        }),
+        gpu_layout!(GpuEmitter {
+            triangle,
+            instance,
+            cdf,
+            _pad
+        }),
+        gpu_layout!(GpuSceneInfo {
+            sky,
+            light_count,
+            emitter_count,
+            emissive_power,
+            tlas_root,
+            instance_count
+        }),
+        gpu_layout!(GpuCamera {
+            position,
+            tan_half_fov_y,
+            right,
+            aspect,
+            up,
+            _pad0,
+            forward,
+            _pad1
+        }),
+        gpu_layout!(GpuPathTraceParams {
+            camera,
+            width,
+            height,
+            sample_offset,
+            samples,
+            max_bounces,
+            seed,
+            _pad0,
+            _pad1
+        }),
+        gpu_layout!(GpuTonemapParams {
+            width,
+            height,
+            exposure,
+            curve
+        }),
+        gpu_layout!(GpuRay {
+            origin,
+            t_max,
+            dir,
+            _pad
+        }),
+        gpu_layout!(GpuRayHit {
+            t,
+            triangle,
+            instance,
+            _pad
+        }),
+        gpu_layout!(GpuRayCastParams {
+            ray_count,
+            any_hit,
+            _pad0,
+            _pad1
+        }),
+        gpu_layout!(GpuFrameParams {
+            camera,
+            previous_camera,
+            width,
+            height,
+            frame_index,
+            area_light_samples,
+            seed,
+            accumulated_frames,
+            _pad0,
+            _pad1
+        }),
+        gpu_layout!(GpuGBufferTexel {
+            position,
+            depth,
+            normal,
+            roughness,
+            geometric_normal,
+            metallic,
+            albedo,
+            specular,
+            emission,
+            _pad0,
+            motion,
+            _pad1
+        }),
+        gpu_layout!(GpuDdgiVolume {
+            origin,
+            probe_count,
+            spacing,
+            rays_per_probe,
+            counts,
+            probes_per_row,
+            ray_rotation0,
+            ray_rotation1,
+            ray_rotation2,
+            irradiance_texels,
+            distance_texels,
+            irradiance_hysteresis,
+            distance_hysteresis,
+            max_ray_distance,
+            self_shadow_bias,
+            distance_exponent,
+            irradiance_gamma,
+            weights,
+            frame,
+            min_spacing,
+            convergence_heuristics,
+            relocating,
+            all_lights,
+            _pad1,
+            _pad2
+        }),
+        gpu_layout!(GpuDdgiRayHit {
+            t,
+            triangle,
+            instance,
+            bary
+        }),
         gpu_layout!(GpuDdgiRaySample { radiance, distance }),
     ]
 }

@@ -18,10 +18,16 @@ struct Rays {
 
 fn random_rays(rng: &mut StdRng, probes: usize, m: usize, max_distance: f32) -> Rays {
     let directions = (0..m)
-        .map(|_| loop {
-            let v = Vec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
-            if v.length_squared() > 0.05 && v.length_squared() <= 1.0 {
-                break v.normalize();
+        .map(|_| {
+            loop {
+                let v = Vec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
+                if v.length_squared() > 0.05 && v.length_squared() <= 1.0 {
+                    break v.normalize();
+                }
             }
         })
         .collect();
@@ -29,16 +35,29 @@ fn random_rays(rng: &mut StdRng, probes: usize, m: usize, max_distance: f32) -> 
         .map(|_| {
             let d = rng.random_range(0.1..max_distance * 1.2);
             GpuDdgiRaySample {
-                radiance: [rng.random_range(0.0..4.0), rng.random_range(0.0..2.0), rng.random_range(0.0..1.0)],
+                radiance: [
+                    rng.random_range(0.0..4.0),
+                    rng.random_range(0.0..2.0),
+                    rng.random_range(0.0..1.0),
+                ],
                 distance: if rng.random_bool(0.1) { -d } else { d },
             }
         })
         .collect();
-    Rays { directions, samples }
+    Rays {
+        directions,
+        samples,
+    }
 }
 
 /// The CPU oracle of one blend step for one texel: (irradiance, distance moments).
-fn oracle(texel_dir: Vec3, probe: usize, rays: &Rays, settings: &DdgiSettings, max_distance: f32) -> (Vec3, [f32; 2]) {
+fn oracle(
+    texel_dir: Vec3,
+    probe: usize,
+    rays: &Rays,
+    settings: &DdgiSettings,
+    max_distance: f32,
+) -> (Vec3, [f32; 2]) {
     let m = rays.directions.len();
     let (mut irradiance, mut irradiance_weight) = (Vec3::ZERO, 0.0);
     let (mut moments, mut moment_weight) = ([0.0f64; 2], 0.0f64);
@@ -53,8 +72,19 @@ fn oracle(texel_dir: Vec3, probe: usize, rays: &Rays, settings: &DdgiSettings, m
         moments[1] += w * distance * distance;
         moment_weight += w;
     }
-    let value = if irradiance_weight > 0.0 { irradiance / irradiance_weight } else { Vec3::ZERO };
-    let distance = if moment_weight > 0.0 { [(moments[0] / moment_weight) as f32, (moments[1] / moment_weight) as f32] } else { [max_distance, max_distance * max_distance] };
+    let value = if irradiance_weight > 0.0 {
+        irradiance / irradiance_weight
+    } else {
+        Vec3::ZERO
+    };
+    let distance = if moment_weight > 0.0 {
+        [
+            (moments[0] / moment_weight) as f32,
+            (moments[1] / moment_weight) as f32,
+        ]
+    } else {
+        [max_distance, max_distance * max_distance]
+    };
     (value, distance)
 }
 
@@ -63,8 +93,17 @@ fn blend_and_borders_match_the_cpu_oracle() {
     let Some(ctx) = common::gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
-    let settings = DdgiSettings { rays_per_probe: 96, convergence_heuristics: false, ..DdgiSettings::balanced() };
-    let volume = ProbeVolumeDesc { name: "test".into(), min: Vec3::splat(-0.5), max: Vec3::splat(0.5), counts: [3, 2, 1] };
+    let settings = DdgiSettings {
+        rays_per_probe: 96,
+        convergence_heuristics: false,
+        ..DdgiSettings::balanced()
+    };
+    let volume = ProbeVolumeDesc {
+        name: "test".into(),
+        min: Vec3::splat(-0.5),
+        max: Vec3::splat(0.5),
+        counts: [3, 2, 1],
+    };
     let mut ddgi = Ddgi::new(&ctx, &gpu_scene, &volume, &settings).unwrap();
     let max_distance = ddgi.max_ray_distance();
     let probes = 6;
@@ -73,35 +112,75 @@ fn blend_and_borders_match_the_cpu_oracle() {
     let mut expected_encoded: Vec<Vec<Vec3>> = vec![Vec::new(); probes];
     let mut expected_distance: Vec<Vec<[f32; 2]>> = vec![Vec::new(); probes];
     for frame in 0..2u32 {
-        let rays = random_rays(&mut rng, probes, settings.rays_per_probe as usize, max_distance);
-        let directions: Vec<[f32; 4]> = rays.directions.iter().map(|d| d.extend(0.0).to_array()).collect();
-        ctx.queue.write_buffer(&ddgi.resources.directions, 0, bytemuck::cast_slice(&directions));
-        ctx.queue.write_buffer(&ddgi.resources.samples, 0, bytemuck::cast_slice(&rays.samples));
+        let rays = random_rays(
+            &mut rng,
+            probes,
+            settings.rays_per_probe as usize,
+            max_distance,
+        );
+        let directions: Vec<[f32; 4]> = rays
+            .directions
+            .iter()
+            .map(|d| d.extend(0.0).to_array())
+            .collect();
+        ctx.queue.write_buffer(
+            &ddgi.resources.directions,
+            0,
+            bytemuck::cast_slice(&directions),
+        );
+        ctx.queue.write_buffer(
+            &ddgi.resources.samples,
+            0,
+            bytemuck::cast_slice(&rays.samples),
+        );
         ddgi.frame = frame;
         ddgi.prepare(&ctx);
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         ddgi.record_blend(&mut encoder, &gpu_scene, None);
         ctx.queue.submit([encoder.finish()]);
         // Frame 0 starts from nothing (hysteresis 0); frame 1 keeps min(h, 1/2) of the old value.
-        let hysteresis = if frame == 0 { 0.0 } else { settings.hysteresis.min(0.5) };
-        let distance_hysteresis = if frame == 0 { 0.0 } else { settings.distance_hysteresis.min(0.5) };
+        let hysteresis = if frame == 0 {
+            0.0
+        } else {
+            settings.hysteresis.min(0.5)
+        };
+        let distance_hysteresis = if frame == 0 {
+            0.0
+        } else {
+            settings.distance_hysteresis.min(0.5)
+        };
         for probe in 0..probes {
-            for (t, texels) in [(0, settings.irradiance_texels), (1, settings.distance_texels)] {
+            for (t, texels) in [
+                (0, settings.irradiance_texels),
+                (1, settings.distance_texels),
+            ] {
                 for j in 0..texels {
                     for i in 0..texels {
                         let index = (j * texels + i) as usize;
-                        let (value, distance) = oracle(texel_direction(UVec2::new(i, j), texels), probe, &rays, &settings, max_distance);
+                        let (value, distance) = oracle(
+                            texel_direction(UVec2::new(i, j), texels),
+                            probe,
+                            &rays,
+                            &settings,
+                            max_distance,
+                        );
                         if t == 0 {
                             let encoded = value.max(Vec3::ZERO).powf(1.0 / gamma);
                             let slot = &mut expected_encoded[probe];
-                            if frame == 0 { slot.push(encoded) } else { slot[index] = encoded.lerp(slot[index], hysteresis) }
+                            if frame == 0 {
+                                slot.push(encoded)
+                            } else {
+                                slot[index] = encoded.lerp(slot[index], hysteresis)
+                            }
                         } else {
                             let slot = &mut expected_distance[probe];
                             if frame == 0 {
                                 slot.push(distance)
                             } else {
                                 let old = slot[index];
-                                slot[index] = [0, 1].map(|c| distance[c] + (old[c] - distance[c]) * distance_hysteresis);
+                                slot[index] = [0, 1].map(|c| {
+                                    distance[c] + (old[c] - distance[c]) * distance_hysteresis
+                                });
                             }
                         }
                     }
@@ -112,25 +191,39 @@ fn blend_and_borders_match_the_cpu_oracle() {
         let layout = &ddgi.layout;
         for probe in 0..probes as u32 {
             let (col, row) = (probe % layout.probes_per_row, probe / layout.probes_per_row);
-            for (t, texels) in [(0u32, settings.irradiance_texels), (1, settings.distance_texels)] {
+            for (t, texels) in [
+                (0u32, settings.irradiance_texels),
+                (1, settings.distance_texels),
+            ] {
                 let tile = texels + 2;
                 let width = layout.probes_per_row * tile;
                 let at = |x: u32, y: u32| ((row * tile + y) * width + col * tile + x) as usize;
                 for y in 0..tile {
                     for x in 0..tile {
                         let interior = x >= 1 && y >= 1 && x <= texels && y <= texels;
-                        let source = if interior { UVec2::new(x, y) } else { border_source(x, y, texels) };
+                        let source = if interior {
+                            UVec2::new(x, y)
+                        } else {
+                            border_source(x, y, texels)
+                        };
                         let index = ((source.y - 1) * texels + source.x - 1) as usize;
                         if t == 0 {
                             let got = Vec3::from(atlases.irradiance[at(x, y)]);
                             let want = expected_encoded[probe as usize][index].powf(gamma);
                             // f16 storage of value^(1/5): about 1e-3 relative, ×5 after decoding.
-                            assert!((got - want).abs().max_element() <= 1e-2 * want.max_element().max(0.05), "frame {frame} probe {probe} irradiance texel ({x}, {y}): GPU {got} CPU {want}");
+                            assert!(
+                                (got - want).abs().max_element()
+                                    <= 1e-2 * want.max_element().max(0.05),
+                                "frame {frame} probe {probe} irradiance texel ({x}, {y}): GPU {got} CPU {want}"
+                            );
                         } else {
                             let got = atlases.distance[at(x, y)];
                             let want = expected_distance[probe as usize][index];
                             for c in 0..2 {
-                                assert!((got[c] - want[c]).abs() <= 1e-4 * want[c].max(1.0), "frame {frame} probe {probe} distance texel ({x}, {y}): GPU {got:?} CPU {want:?}");
+                                assert!(
+                                    (got[c] - want[c]).abs() <= 1e-4 * want[c].max(1.0),
+                                    "frame {frame} probe {probe} distance texel ({x}, {y}): GPU {got:?} CPU {want:?}"
+                                );
                             }
                         }
                     }

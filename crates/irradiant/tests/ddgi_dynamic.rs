@@ -12,10 +12,17 @@ use irradiant_scene::{Animation, AnimationTarget, Instance, Scene, Tracks};
 
 /// Renders an animated scene at 60 frames a second and returns, per frame, the mean indirect
 /// luminance over the pixels of `region` (as seen in the first frame).
-fn indirect_over_time(ctx: &irradiant::GpuContext, scene: &Scene, settings: &DdgiSettings, frames: u32, region: &str) -> Vec<f64> {
+fn indirect_over_time(
+    ctx: &irradiant::GpuContext,
+    scene: &Scene,
+    settings: &DdgiSettings,
+    frames: u32,
+    region: &str,
+) -> Vec<f64> {
     let size = (48, 36);
     let mut gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut frame = FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
+    let mut frame =
+        FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
     let mut ddgi = Ddgi::new(ctx, &gpu_scene, &scene.probe_volumes[0], settings).unwrap();
     ddgi.bind_frame(ctx, &frame.buffers);
     let mut mask = None;
@@ -23,12 +30,31 @@ fn indirect_over_time(ctx: &irradiant::GpuContext, scene: &Scene, settings: &Ddg
     let mut means = Vec::new();
     for i in 0..frames {
         let next = scene.pose_at(i as f32 / 60.0);
-        apply_pose(ctx, &mut gpu_scene, &mut frame, Some(&mut ddgi as &mut dyn Technique), &pose, &next);
+        apply_pose(
+            ctx,
+            &mut gpu_scene,
+            &mut frame,
+            Some(&mut ddgi as &mut dyn Technique),
+            &pose,
+            &next,
+        );
         pose = next;
-        frame.render(ctx, &gpu_scene, &scene.camera, Some(&mut ddgi as &mut dyn Technique), false, None).unwrap();
+        frame
+            .render(
+                ctx,
+                &gpu_scene,
+                &scene.camera,
+                Some(&mut ddgi as &mut dyn Technique),
+                false,
+                None,
+            )
+            .unwrap();
         let gbuffer = frame.read_gbuffer(ctx).unwrap();
         let mask = mask.get_or_insert_with(|| region_mask(&gbuffer, scene.region(region).unwrap()));
-        means.push(masked_mean(&frame.read(ctx, &frame.buffers.indirect).unwrap(), mask));
+        means.push(masked_mean(
+            &frame.read(ctx, &frame.buffers.indirect).unwrap(),
+            mask,
+        ));
     }
     means
 }
@@ -40,25 +66,54 @@ fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag(
     // On for one second, off from 1 s (frame 60).
     scene.animations.push(Animation {
         target: AnimationTarget::Light("lamp".into()),
-        tracks: Tracks { intensity_scale: vec![(0.0, 1.0), (0.999, 1.0), (1.0, 0.0)], ..Default::default() },
+        tracks: Tracks {
+            intensity_scale: vec![(0.0, 1.0), (0.999, 1.0), (1.0, 0.0)],
+            ..Default::default()
+        },
     });
-    let with = DdgiSettings { rays_per_probe: 128, ..DdgiSettings::balanced() };
-    let without = DdgiSettings { convergence_heuristics: false, ..with.clone() };
+    let with = DdgiSettings {
+        rays_per_probe: 128,
+        ..DdgiSettings::balanced()
+    };
+    let without = DdgiSettings {
+        convergence_heuristics: false,
+        ..with.clone()
+    };
     let fall = |settings: &DdgiSettings| {
         let means = indirect_over_time(&ctx, &scene, settings, 60 + 30, "dark-room");
         let lit = means[59];
-        assert!(lit > 0.01, "the dark room should receive indirect light while the lamp burns");
+        assert!(
+            lit > 0.01,
+            "the dark room should receive indirect light while the lamp burns"
+        );
         means[60..].iter().map(|m| m / lit).collect::<Vec<f64>>()
     };
     let (fast, slow) = (fall(&with), fall(&without));
-    let show = |v: &[f64]| v.iter().step_by(5).map(|m| format!("{m:.3}")).collect::<Vec<_>>().join(" ");
-    eprintln!("dark-room indirect after the switch, as a share of the lit value, every 5 frames:\n  with 003's heuristics    {}\n  without                  {}", show(&fast), show(&slow));
+    let show = |v: &[f64]| {
+        v.iter()
+            .step_by(5)
+            .map(|m| format!("{m:.3}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    eprintln!(
+        "dark-room indirect after the switch, as a share of the lit value, every 5 frames:\n  with 003's heuristics    {}\n  without                  {}",
+        show(&fast),
+        show(&slow)
+    );
     // In a closed room the probes feed on their own last values (each frame adds a bounce), so
     // light drains at about (h + (1 − h)·ρ^(1/γ))^γ a frame: 0.8 % with h = 0.97. The
     // large-lighting-change heuristic (hysteresis halved for 10 frames) must bring it under 30 %
     // within 15 frames, and leave it far below the plain update's.
-    assert!(fast[14] < 0.3, "15 frames after the switch the indirect light is still {:.0} % of its lit value", fast[14] * 100.0);
-    assert!(fast[29] < 0.5 * slow[29], "the heuristics should at least halve what is left after 30 frames");
+    assert!(
+        fast[14] < 0.3,
+        "15 frames after the switch the indirect light is still {:.0} % of its lit value",
+        fast[14] * 100.0
+    );
+    assert!(
+        fast[29] < 0.5 * slow[29],
+        "the heuristics should at least halve what is left after 30 frames"
+    );
 }
 
 #[test]
@@ -67,37 +122,89 @@ fn a_moving_object_changes_the_indirect_light_as_a_fresh_render_would() {
     // The Cornell box with a red block that slides from the left wall to the right one.
     let mut scene = irradiant_scene::load("cornell").unwrap().scene;
     let block = scene.meshes.len() as u32;
-    let mut mesh = irradiant_scene::Mesh { name: "block".into(), ..Default::default() };
-    let red = scene.materials.iter().position(|m| m.name == "red").unwrap() as u32;
-    for (i, face) in [[0, 1, 2, 3], [5, 4, 7, 6], [4, 0, 3, 7], [1, 5, 6, 2], [3, 2, 6, 7], [4, 5, 1, 0]].iter().enumerate() {
-        let corners: Vec<Vec3> = (0..8).map(|c| Vec3::new((c & 1) as f32, ((c >> 1) & 1) as f32, ((c >> 2) & 1) as f32) - 0.5).collect();
+    let mut mesh = irradiant_scene::Mesh {
+        name: "block".into(),
+        ..Default::default()
+    };
+    let red = scene
+        .materials
+        .iter()
+        .position(|m| m.name == "red")
+        .unwrap() as u32;
+    for (i, face) in [
+        [0, 1, 2, 3],
+        [5, 4, 7, 6],
+        [4, 0, 3, 7],
+        [1, 5, 6, 2],
+        [3, 2, 6, 7],
+        [4, 5, 1, 0],
+    ]
+    .iter()
+    .enumerate()
+    {
+        let corners: Vec<Vec3> = (0..8)
+            .map(|c| Vec3::new((c & 1) as f32, ((c >> 1) & 1) as f32, ((c >> 2) & 1) as f32) - 0.5)
+            .collect();
         let order = [0, 1, 3, 2, 4, 5, 7, 6];
         let base = mesh.positions.len() as u32;
-        mesh.positions.extend(face.iter().map(|&k| corners[order[k]] * 0.5));
-        mesh.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+        mesh.positions
+            .extend(face.iter().map(|&k| corners[order[k]] * 0.5));
+        mesh.indices
+            .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
         mesh.triangle_materials.extend([red, red]);
         let _ = i;
     }
     scene.meshes.push(mesh);
-    scene.instances.push(Instance { name: "block".into(), mesh: block, transform: Mat4::from_translation(Vec3::new(-0.6, 1.5, 0.0)) });
+    scene.instances.push(Instance {
+        name: "block".into(),
+        mesh: block,
+        transform: Mat4::from_translation(Vec3::new(-0.6, 1.5, 0.0)),
+    });
     // The walls and floor around where the block arrives: their indirect light changes most.
-    scene.regions.push(irradiant_scene::Region { name: "right".into(), min: Vec3::new(0.2, -0.01, -1.0), max: Vec3::new(1.01, 2.0, 1.0) });
-    let settings = DdgiSettings { rays_per_probe: 128, ..DdgiSettings::balanced() };
+    scene.regions.push(irradiant_scene::Region {
+        name: "right".into(),
+        min: Vec3::new(0.2, -0.01, -1.0),
+        max: Vec3::new(1.01, 2.0, 1.0),
+    });
+    let settings = DdgiSettings {
+        rays_per_probe: 128,
+        ..DdgiSettings::balanced()
+    };
     let mut moving = scene.clone();
     moving.animations.push(Animation {
         target: AnimationTarget::Instance("block".into()),
-        tracks: Tracks { translation: vec![(0.0, Vec3::ZERO), (0.5, Vec3::ZERO), (0.5001, Vec3::new(1.2, 0.0, 0.0))], ..Default::default() },
+        tracks: Tracks {
+            translation: vec![
+                (0.0, Vec3::ZERO),
+                (0.5, Vec3::ZERO),
+                (0.5001, Vec3::new(1.2, 0.0, 0.0)),
+            ],
+            ..Default::default()
+        },
     });
     let over_time = indirect_over_time(&ctx, &moving, &settings, 30 + 80, "right");
     let mut moved = scene.clone();
-    moved.instances.last_mut().unwrap().transform = Mat4::from_translation(Vec3::new(0.6, 1.5, 0.0));
+    moved.instances.last_mut().unwrap().transform =
+        Mat4::from_translation(Vec3::new(0.6, 1.5, 0.0));
     let fresh = indirect_over_time(&ctx, &moved, &settings, 80, "right");
     // Means over 10 frames, so that the probes' per-frame noise does not decide the test.
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-    let (before, after, target) = (mean(&over_time[20..30]), mean(&over_time[100..110]), mean(&fresh[70..80]));
-    eprintln!("indirect light right of the box: before the move {before:.5}, 70–80 frames after {after:.5}, fresh render with the block there {target:.5}");
-    assert!((before / target - 1.0).abs() > 0.1, "the move should change the indirect light there by more than 10 %");
+    let (before, after, target) = (
+        mean(&over_time[20..30]),
+        mean(&over_time[100..110]),
+        mean(&fresh[70..80]),
+    );
+    eprintln!(
+        "indirect light right of the box: before the move {before:.5}, 70–80 frames after {after:.5}, fresh render with the block there {target:.5}"
+    );
+    assert!(
+        (before / target - 1.0).abs() > 0.1,
+        "the move should change the indirect light there by more than 10 %"
+    );
     // Bound: within a third of the change the move caused (the rest is the hysteresis lag and
     // probe noise at 128 rays).
-    assert!((after - target).abs() < (before - target).abs() / 3.0, "80 frames after the move the indirect light should be close to a fresh render's");
+    assert!(
+        (after - target).abs() < (before - target).abs() / 3.0,
+        "80 frames after the move the indirect light should be close to a fresh render's"
+    );
 }

@@ -9,7 +9,12 @@ use irradiant::ddgi::{DdgiSettings, ProbeWeights};
 /// Settings for converging a static scene quickly on a CPU adapter: hysteresis 0.9 (about ten
 /// frames of memory) instead of 0.97, so that 120 frames carry light through several bounces.
 fn converging(weights: ProbeWeights) -> DdgiSettings {
-    DdgiSettings { weights, hysteresis: 0.9, rays_per_probe: 256, ..DdgiSettings::balanced() }
+    DdgiSettings {
+        weights,
+        hysteresis: 0.9,
+        rays_per_probe: 256,
+        ..DdgiSettings::balanced()
+    }
 }
 
 #[test]
@@ -17,14 +22,36 @@ fn two_rooms_full_ddgi_is_ten_times_closer_than_classic_probes_in_the_dark_room(
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("two-rooms").unwrap().scene;
     let size = (64, 48);
-    let classic = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Classic)), 120);
-    let full = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Full)), 120);
+    let classic = render_frames(
+        &ctx,
+        &scene,
+        size,
+        Some(&converging(ProbeWeights::Classic)),
+        120,
+    );
+    let full = render_frames(
+        &ctx,
+        &scene,
+        size,
+        Some(&converging(ProbeWeights::Full)),
+        120,
+    );
     let reference = path_trace(&ctx, &scene, size, 1024);
     let mask = region_mask(&full.gbuffer, scene.region("dark-room").unwrap());
     let pt = masked_mean(&path_traced_indirect(&reference, &full), &mask);
-    let (c, f) = (masked_mean(&classic.indirect, &mask), masked_mean(&full.indirect, &mask));
-    eprintln!("two-rooms dark-room mean indirect luminance: path tracer {pt:.5}, classic probes {c:.5} (error {:.5}), full DDGI {f:.5} (error {:.5})", (c - pt).abs(), (f - pt).abs());
-    assert!((f - pt).abs() * 10.0 <= (c - pt).abs(), "full DDGI must be at least 10× closer to the path tracer than classic probes");
+    let (c, f) = (
+        masked_mean(&classic.indirect, &mask),
+        masked_mean(&full.indirect, &mask),
+    );
+    eprintln!(
+        "two-rooms dark-room mean indirect luminance: path tracer {pt:.5}, classic probes {c:.5} (error {:.5}), full DDGI {f:.5} (error {:.5})",
+        (c - pt).abs(),
+        (f - pt).abs()
+    );
+    assert!(
+        (f - pt).abs() * 10.0 <= (c - pt).abs(),
+        "full DDGI must be at least 10× closer to the path tracer than classic probes"
+    );
 }
 
 /// Cornell box colour bleeding: FLIP of converged DDGI against the path-traced reference.
@@ -33,16 +60,40 @@ fn cornell_box_converged_ddgi_is_within_flip_0_1_of_the_path_tracer() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let size = (64, 64);
-    let ddgi = render_frames(&ctx, &scene, size, Some(&converging(ProbeWeights::Full)), 120);
+    let ddgi = render_frames(
+        &ctx,
+        &scene,
+        size,
+        Some(&converging(ProbeWeights::Full)),
+        120,
+    );
     let reference = path_trace(&ctx, &scene, size, 1024);
-    let flip = irradiant_eval::flip(&reference.to_srgb8(1.0, true), &ddgi.total.to_srgb8(1.0, true), size.0, size.1).unwrap();
+    let flip = irradiant_eval::flip(
+        &reference.to_srgb8(1.0, true),
+        &ddgi.total.to_srgb8(1.0, true),
+        size.0,
+        size.1,
+    )
+    .unwrap();
     let none = render_frames(&ctx, &scene, size, None, 60);
-    let flip_none = irradiant_eval::flip(&reference.to_srgb8(1.0, true), &none.total.to_srgb8(1.0, true), size.0, size.1).unwrap();
-    eprintln!("cornell FLIP against the path tracer: DDGI mean {:.4} p95 {:.4}; direct light only mean {:.4}", flip.mean, flip.p95, flip_none.mean);
+    let flip_none = irradiant_eval::flip(
+        &reference.to_srgb8(1.0, true),
+        &none.total.to_srgb8(1.0, true),
+        size.0,
+        size.1,
+    )
+    .unwrap();
+    eprintln!(
+        "cornell FLIP against the path tracer: DDGI mean {:.4} p95 {:.4}; direct light only mean {:.4}",
+        flip.mean, flip.p95, flip_none.mean
+    );
     // Bound from issue 3 (mean FLIP ≤ 0.1). The reference's own noise at 1024 spp adds about
     // 0.01–0.02 of FLIP at 64×64; without indirect light the error is several times larger.
     assert!(flip.mean <= 0.1, "mean FLIP {} above 0.1", flip.mean);
-    assert!(flip.mean * 2.0 < flip_none.mean, "DDGI must be much closer to the reference than no indirect light");
+    assert!(
+        flip.mean * 2.0 < flip_none.mean,
+        "DDGI must be much closer to the reference than no indirect light"
+    );
 }
 
 /// The light-field paper's Figure 10 setup: probes swallowed by cylinders must not darken the
@@ -58,13 +109,21 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
     let tiles = |settings: &DdgiSettings| {
         let frames = render_frames(&ctx, &scene, size, Some(settings), 120);
         let mask = region_mask(&frames.gbuffer, scene.region("around-cylinders").unwrap());
-        let mut ratios = block_ratios(&frames.indirect, &path_traced_indirect(&reference, &frames), &mask, 8);
+        let mut ratios = block_ratios(
+            &frames.indirect,
+            &path_traced_indirect(&reference, &frames),
+            &mask,
+            8,
+        );
         ratios.sort_by(f64::total_cmp);
         let (worst, median) = (ratios[0], ratios[ratios.len() / 2]);
         (worst, median)
     };
     let full = tiles(&converging(ProbeWeights::Full));
-    let unrelocated = tiles(&DdgiSettings { relocation: false, ..converging(ProbeWeights::Full) });
+    let unrelocated = tiles(&DdgiSettings {
+        relocation: false,
+        ..converging(ProbeWeights::Full)
+    });
     let classic = tiles(&converging(ProbeWeights::Classic));
     eprintln!(
         "box-cylinders, DDGI ÷ path tracer indirect over 8×8 tiles around the cylinders (worst, median): full {full:.2?}, without relocation {unrelocated:.2?}, classic {classic:.2?}"
@@ -72,7 +131,18 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
     // Seen on lavapipe: full 0.53 / 0.62, without relocation 0.25 / 0.77 (black between the
     // four cylinders, whose eight cage probes are all swallowed), classic 0.29 / 0.40. Bound:
     // the worst tile at least 75 % of the median one — no local dark spot.
-    assert!(full.0 >= 0.75 * full.1, "a dark halo: worst tile {:.2} against median {:.2}", full.0, full.1);
-    assert!(unrelocated.0 < 0.75 * unrelocated.1, "without relocation the swallowed probes should show the halo this test exists to catch");
-    assert!(full.1 > classic.1, "full DDGI must be brighter (closer) than classic probes around the cylinders");
+    assert!(
+        full.0 >= 0.75 * full.1,
+        "a dark halo: worst tile {:.2} against median {:.2}",
+        full.0,
+        full.1
+    );
+    assert!(
+        unrelocated.0 < 0.75 * unrelocated.1,
+        "without relocation the swallowed probes should show the halo this test exists to catch"
+    );
+    assert!(
+        full.1 > classic.1,
+        "full DDGI must be brighter (closer) than classic probes around the cylinders"
+    );
 }

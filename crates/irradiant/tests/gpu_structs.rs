@@ -34,7 +34,10 @@ fn rust_structs_match_wgsl() {
 #[test]
 fn a_wrong_layout_is_reported() {
     let wgsl = "struct GpuRayHit { t: f32, triangle: u32, instance: u32, _pad: u32, extra: u32 }";
-    let layouts: Vec<_> = all_layouts().into_iter().filter(|l| l.0 == "GpuRayHit").collect();
+    let layouts: Vec<_> = all_layouts()
+        .into_iter()
+        .filter(|l| l.0 == "GpuRayHit")
+        .collect();
     assert!(irradiant_gpu::check_struct_layouts(wgsl, &layouts).is_err());
 }
 

@@ -12,11 +12,24 @@ use irradiant_scene::{AlphaMode, Instance, Material, Mesh, Scene, Texture};
 use rand::{Rng, SeedableRng, rngs::StdRng};
 
 fn soup(rng: &mut StdRng, name: &str, count: usize, material: u32) -> Mesh {
-    let mut mesh = Mesh { name: name.into(), ..Default::default() };
+    let mut mesh = Mesh {
+        name: name.into(),
+        ..Default::default()
+    };
     for _ in 0..count {
-        let c = Vec3::new(rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0));
+        let c = Vec3::new(
+            rng.random_range(-2.0..2.0),
+            rng.random_range(-2.0..2.0),
+            rng.random_range(-2.0..2.0),
+        );
         for _ in 0..3 {
-            mesh.positions.push(c + Vec3::new(rng.random_range(-0.4..0.4), rng.random_range(-0.4..0.4), rng.random_range(-0.4..0.4)));
+            mesh.positions.push(
+                c + Vec3::new(
+                    rng.random_range(-0.4..0.4),
+                    rng.random_range(-0.4..0.4),
+                    rng.random_range(-0.4..0.4),
+                ),
+            );
             mesh.indices.push(mesh.indices.len() as u32);
         }
         mesh.triangle_materials.push(material);
@@ -32,12 +45,22 @@ fn test_scene(rng: &mut StdRng) -> Scene {
     scene.meshes.push(soup(rng, "c", 1, 0));
     let placements = [
         (0, Mat4::IDENTITY),
-        (1, Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)) * Mat4::from_rotation_y(0.8)),
-        (0, Mat4::from_translation(Vec3::new(-3.0, 1.0, 2.0)) * Mat4::from_scale(Vec3::splat(0.5))),
+        (
+            1,
+            Mat4::from_translation(Vec3::new(3.0, 0.0, 0.0)) * Mat4::from_rotation_y(0.8),
+        ),
+        (
+            0,
+            Mat4::from_translation(Vec3::new(-3.0, 1.0, 2.0)) * Mat4::from_scale(Vec3::splat(0.5)),
+        ),
         (2, Mat4::from_translation(Vec3::new(0.0, 3.0, 0.0))),
     ];
     for (i, (mesh, transform)) in placements.into_iter().enumerate() {
-        scene.instances.push(Instance { name: format!("i{i}"), mesh, transform });
+        scene.instances.push(Instance {
+            name: format!("i{i}"),
+            mesh,
+            transform,
+        });
     }
     scene
 }
@@ -59,9 +82,22 @@ fn world_triangles(scene: &Scene) -> (Vec<[Vec3; 3]>, Vec<(u32, u32)>) {
 fn random_rays(rng: &mut StdRng, n: usize) -> Vec<GpuRay> {
     (0..n)
         .map(|_| {
-            let o = Vec3::new(rng.random_range(-6.0..6.0), rng.random_range(-4.0..5.0), rng.random_range(-6.0..6.0));
-            let target = Vec3::new(rng.random_range(-4.0..4.0), rng.random_range(-2.0..4.0), rng.random_range(-3.0..3.0));
-            GpuRay { origin: o.into(), t_max: 1e20, dir: (target - o).normalize().into(), _pad: 0 }
+            let o = Vec3::new(
+                rng.random_range(-6.0..6.0),
+                rng.random_range(-4.0..5.0),
+                rng.random_range(-6.0..6.0),
+            );
+            let target = Vec3::new(
+                rng.random_range(-4.0..4.0),
+                rng.random_range(-2.0..4.0),
+                rng.random_range(-3.0..3.0),
+            );
+            GpuRay {
+                origin: o.into(),
+                t_max: 1e20,
+                dir: (target - o).normalize().into(),
+                _pad: 0,
+            }
         })
         .collect()
 }
@@ -69,7 +105,10 @@ fn random_rays(rng: &mut StdRng, n: usize) -> Vec<GpuRay> {
 #[test]
 fn gpu_hits_match_cpu_brute_force_over_instanced_meshes() {
     for stack_in_workgroup in [false, true] {
-        hits_match_brute_force(irradiant::GpuSceneSettings { stack_in_workgroup, ..Default::default() });
+        hits_match_brute_force(irradiant::GpuSceneSettings {
+            stack_in_workgroup,
+            ..Default::default()
+        });
     }
 }
 
@@ -86,7 +125,10 @@ fn hits_match_brute_force(settings: irradiant::GpuSceneSettings) {
     for (ray, hit) in rays.iter().zip(&hits) {
         let expected = brute_force_closest_hit(ray.origin.into(), ray.dir.into(), &tris, 1e20);
         match expected {
-            None => assert_eq!(hit.t, -1.0, "GPU hit where the CPU found none: {ray:?} {hit:?}"),
+            None => assert_eq!(
+                hit.t, -1.0,
+                "GPU hit where the CPU found none: {ray:?} {hit:?}"
+            ),
             Some(e) => {
                 hit_count += 1;
                 assert!(hit.t > 0.0, "GPU missed a hit at t = {}", e.t);
@@ -94,12 +136,27 @@ fn hits_match_brute_force(settings: irradiant::GpuSceneSettings) {
                 let (_, mesh_triangle) = gpu_scene.triangle_sources[hit.triangle as usize];
                 // Same triangle, or (in a near tie) one at the same distance.
                 let same = ids[e.triangle as usize] == (instance, mesh_triangle);
-                assert!(same || (hit.t - e.t).abs() < 1e-4, "different triangle: CPU {:?} at {}, GPU {:?} at {}", ids[e.triangle as usize], e.t, (instance, mesh_triangle), hit.t);
-                assert!((hit.t - e.t).abs() <= 1e-4 * e.t.max(1.0), "distance differs: CPU {} GPU {}", e.t, hit.t);
+                assert!(
+                    same || (hit.t - e.t).abs() < 1e-4,
+                    "different triangle: CPU {:?} at {}, GPU {:?} at {}",
+                    ids[e.triangle as usize],
+                    e.t,
+                    (instance, mesh_triangle),
+                    hit.t
+                );
+                assert!(
+                    (hit.t - e.t).abs() <= 1e-4 * e.t.max(1.0),
+                    "distance differs: CPU {} GPU {}",
+                    e.t,
+                    hit.t
+                );
             }
         }
     }
-    assert!(hit_count > 500, "too few rays hit ({hit_count}) for the test to mean much");
+    assert!(
+        hit_count > 500,
+        "too few rays hit ({hit_count}) for the test to mean much"
+    );
 }
 
 #[test]
@@ -153,25 +210,77 @@ fn alpha_masked_holes_let_rays_through() {
     let Some(ctx) = common::gpu() else { return };
     let mut scene = Scene::default();
     // A 2×2 texture: left column opaque, right column transparent.
-    scene.textures.push(Texture { name: "mask".into(), width: 2, height: 2, rgba8: [[255, 255, 255, 255], [255, 255, 255, 0], [255, 255, 255, 255], [255, 255, 255, 0]].concat() });
-    scene.materials.push(Material { base_color: Vec4::ONE, base_color_texture: Some(0), alpha_mode: AlphaMode::Mask { cutoff: 0.5 }, ..Default::default() });
+    scene.textures.push(Texture {
+        name: "mask".into(),
+        width: 2,
+        height: 2,
+        rgba8: [
+            [255, 255, 255, 255],
+            [255, 255, 255, 0],
+            [255, 255, 255, 255],
+            [255, 255, 255, 0],
+        ]
+        .concat(),
+    });
+    scene.materials.push(Material {
+        base_color: Vec4::ONE,
+        base_color_texture: Some(0),
+        alpha_mode: AlphaMode::Mask { cutoff: 0.5 },
+        ..Default::default()
+    });
     scene.materials.push(Material::default());
-    let mut mesh = Mesh { name: "quads".into(), ..Default::default() };
+    let mut mesh = Mesh {
+        name: "quads".into(),
+        ..Default::default()
+    };
     // Masked quad at z = 0 (uv x follows world x), opaque backstop at z = -1.
     for (z, material) in [(0.0, 0u32), (-1.0, 1u32)] {
         let base = mesh.positions.len() as u32;
-        mesh.positions.extend([Vec3::new(0.0, 0.0, z), Vec3::new(1.0, 0.0, z), Vec3::new(1.0, 1.0, z), Vec3::new(0.0, 1.0, z)]);
-        mesh.uvs.extend([glam::Vec2::new(0.0, 1.0), glam::Vec2::new(1.0, 1.0), glam::Vec2::new(1.0, 0.0), glam::Vec2::new(0.0, 0.0)]);
-        mesh.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+        mesh.positions.extend([
+            Vec3::new(0.0, 0.0, z),
+            Vec3::new(1.0, 0.0, z),
+            Vec3::new(1.0, 1.0, z),
+            Vec3::new(0.0, 1.0, z),
+        ]);
+        mesh.uvs.extend([
+            glam::Vec2::new(0.0, 1.0),
+            glam::Vec2::new(1.0, 1.0),
+            glam::Vec2::new(1.0, 0.0),
+            glam::Vec2::new(0.0, 0.0),
+        ]);
+        mesh.indices
+            .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
         mesh.triangle_materials.extend([material, material]);
     }
     scene.meshes.push(mesh);
-    scene.instances.push(Instance { name: "quads".into(), mesh: 0, transform: Mat4::IDENTITY });
-    let settings = irradiant::GpuSceneSettings { texture_size: 2, ..Default::default() };
+    scene.instances.push(Instance {
+        name: "quads".into(),
+        mesh: 0,
+        transform: Mat4::IDENTITY,
+    });
+    let settings = irradiant::GpuSceneSettings {
+        texture_size: 2,
+        ..Default::default()
+    };
     let gpu_scene = GpuScene::new(&ctx, &scene, &settings).unwrap();
     let caster = RayCaster::new(&ctx, &gpu_scene).unwrap();
-    let ray = |x: f32| GpuRay { origin: [x, 0.5, 1.0], t_max: 1e20, dir: [0.0, 0.0, -1.0], _pad: 0 };
-    let hits = caster.trace(&ctx, &gpu_scene, &[ray(0.1), ray(0.9)], false).unwrap();
-    assert!((hits[0].t - 1.0).abs() < 1e-5, "opaque texel must stop the ray: {:?}", hits[0]);
-    assert!((hits[1].t - 2.0).abs() < 1e-5, "transparent texel must let the ray through: {:?}", hits[1]);
+    let ray = |x: f32| GpuRay {
+        origin: [x, 0.5, 1.0],
+        t_max: 1e20,
+        dir: [0.0, 0.0, -1.0],
+        _pad: 0,
+    };
+    let hits = caster
+        .trace(&ctx, &gpu_scene, &[ray(0.1), ray(0.9)], false)
+        .unwrap();
+    assert!(
+        (hits[0].t - 1.0).abs() < 1e-5,
+        "opaque texel must stop the ray: {:?}",
+        hits[0]
+    );
+    assert!(
+        (hits[1].t - 2.0).abs() < 1e-5,
+        "transparent texel must let the ray through: {:?}",
+        hits[1]
+    );
 }

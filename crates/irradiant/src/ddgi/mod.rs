@@ -85,7 +85,11 @@ impl Default for DdgiSettings {
 
 impl DdgiSettings {
     pub fn fast() -> Self {
-        Self { rays_per_probe: 64, hysteresis: 0.95, ..Self::balanced() }
+        Self {
+            rays_per_probe: 64,
+            hysteresis: 0.95,
+            ..Self::balanced()
+        }
     }
     pub fn balanced() -> Self {
         Self {
@@ -106,23 +110,43 @@ impl DdgiSettings {
         }
     }
     pub fn quality() -> Self {
-        Self { rays_per_probe: 512, hysteresis: 0.98, distance_hysteresis: 0.98, shade_all_lights: true, ..Self::balanced() }
+        Self {
+            rays_per_probe: 512,
+            hysteresis: 0.98,
+            distance_hysteresis: 0.98,
+            shade_all_lights: true,
+            ..Self::balanced()
+        }
     }
 
     /// Refuses settings that cannot work, saying which and why.
     pub fn validate(&self) -> Result<(), String> {
         if !(1..=4096).contains(&self.rays_per_probe) {
-            return Err(format!("rays per probe {} is out of range: use 1…4096", self.rays_per_probe));
+            return Err(format!(
+                "rays per probe {} is out of range: use 1…4096",
+                self.rays_per_probe
+            ));
         }
-        if !(2..=16).contains(&self.irradiance_texels) || !(2..=30).contains(&self.distance_texels) {
-            return Err("probe texels out of range: irradiance 2…16, distance 2…30 per side".into());
+        if !(2..=16).contains(&self.irradiance_texels) || !(2..=30).contains(&self.distance_texels)
+        {
+            return Err(
+                "probe texels out of range: irradiance 2…16, distance 2…30 per side".into(),
+            );
         }
-        for (name, h) in [("hysteresis", self.hysteresis), ("distance hysteresis", self.distance_hysteresis)] {
+        for (name, h) in [
+            ("hysteresis", self.hysteresis),
+            ("distance hysteresis", self.distance_hysteresis),
+        ] {
             if !(0.0..1.0).contains(&h) {
-                return Err(format!("{name} {h} must be in [0, 1): 1 would never update"));
+                return Err(format!(
+                    "{name} {h} must be in [0, 1): 1 would never update"
+                ));
             }
         }
-        if self.max_ray_distance.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
+        if self
+            .max_ray_distance
+            .is_some_and(|d| !(d.is_finite() && d > 0.0))
+        {
             return Err("max ray distance must be a positive number".into());
         }
         if !(self.self_shadow_bias.is_finite() && self.self_shadow_bias >= 0.0) {

@@ -4,12 +4,19 @@
 use glam::{UVec2, Vec2, Vec3};
 
 fn sign_not_zero(v: Vec2) -> Vec2 {
-    Vec2::new(if v.x >= 0.0 { 1.0 } else { -1.0 }, if v.y >= 0.0 { 1.0 } else { -1.0 })
+    Vec2::new(
+        if v.x >= 0.0 { 1.0 } else { -1.0 },
+        if v.y >= 0.0 { 1.0 } else { -1.0 },
+    )
 }
 
 pub fn oct_encode(n: Vec3) -> Vec2 {
     let p = Vec2::new(n.x, n.y) / (n.x.abs() + n.y.abs() + n.z.abs());
-    if n.z < 0.0 { (Vec2::ONE - Vec2::new(p.y, p.x).abs()) * sign_not_zero(p) } else { p }
+    if n.z < 0.0 {
+        (Vec2::ONE - Vec2::new(p.y, p.x).abs()) * sign_not_zero(p)
+    } else {
+        p
+    }
 }
 
 pub fn oct_decode(p: Vec2) -> Vec3 {
@@ -87,7 +94,10 @@ mod tests {
                     }
                     let expected = oct_decode(q);
                     let got = texel_direction(source - 1, texels);
-                    assert!((expected - got).length() < 1e-4, "texels {texels}, border ({x}, {y}) → {source}: {expected} vs {got}");
+                    assert!(
+                        (expected - got).length() < 1e-4,
+                        "texels {texels}, border ({x}, {y}) → {source}: {expected} vs {got}"
+                    );
                 }
             }
         }
@@ -103,7 +113,10 @@ mod tests {
         for i in 0..1000 {
             let probe = spherical_fibonacci(i, 1000);
             let best = dirs.iter().map(|d| d.dot(probe)).fold(-1.0f32, f32::max);
-            assert!(best > 15f32.to_radians().cos(), "a hole in the ray set near {probe}");
+            assert!(
+                best > 15f32.to_radians().cos(),
+                "a hole in the ray set near {probe}"
+            );
         }
     }
 }

@@ -52,71 +52,202 @@ struct UpdateGroups {
 }
 
 impl Ddgi {
-    pub fn new(ctx: &GpuContext, scene: &GpuScene, desc: &ProbeVolumeDesc, settings: &DdgiSettings) -> Result<Self, RenderError> {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        desc: &ProbeVolumeDesc,
+        settings: &DdgiSettings,
+    ) -> Result<Self, RenderError> {
         settings.validate().map_err(RenderError::Settings)?;
         let layout = VolumeLayout::new(desc);
         let resources = DdgiResources::new(ctx, &layout, settings)?;
         let device = &ctx.device;
-        let max_ray_distance = settings.max_ray_distance.unwrap_or((desc.max - desc.min).length().max(1e-3) * 1.5);
+        let max_ray_distance = settings
+            .max_ray_distance
+            .unwrap_or((desc.max - desc.min).length().max(1e-3) * 1.5);
         let r = &resources;
         // Bindings, by the names in the WGSL: 0 volume, 1 irradiance (read), 2 distance (read),
         // 3 directions, 4 hits, 6 samples, 7 irradiance (write), 8 distance (write),
         // 9 gbuffer, 10 indirect, 11 frame, 12 radiance.
-        let make = |label: &'static str, source: &str, entries: &[(u32, wgpu::BufferBindingType)], constants: &[(&str, String)]| {
+        let make = |label: &'static str,
+                    source: &str,
+                    entries: &[(u32, wgpu::BufferBindingType)],
+                    constants: &[(&str, String)]| {
             let group_layout = buffer_layout(device, label, entries);
             let stage = ComputeStage::tracing(ctx, scene, label, source, constants, &group_layout)?;
             Ok::<_, RenderError>((stage, group_layout))
         };
-        let (ray_directions, l_dirs) = make("ddgi/ray_directions", include_str!("ray_directions.wgsl"), &[(0, UNIFORM), (3, STORAGE_WRITE)], &[])?;
-        let (trace, l_trace) = make("ddgi/trace", include_str!("trace.wgsl"), &[(0, UNIFORM), (3, STORAGE_READ), (4, STORAGE_WRITE), (5, STORAGE_READ)], &[])?;
+        let (ray_directions, l_dirs) = make(
+            "ddgi/ray_directions",
+            include_str!("ray_directions.wgsl"),
+            &[(0, UNIFORM), (3, STORAGE_WRITE)],
+            &[],
+        )?;
+        let (trace, l_trace) = make(
+            "ddgi/trace",
+            include_str!("trace.wgsl"),
+            &[
+                (0, UNIFORM),
+                (3, STORAGE_READ),
+                (4, STORAGE_WRITE),
+                (5, STORAGE_READ),
+            ],
+            &[],
+        )?;
         let (shade, l_shade) = make(
             "ddgi/shade",
             include_str!("shade.wgsl"),
-            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (3, STORAGE_READ), (4, STORAGE_READ), (5, STORAGE_READ), (6, STORAGE_WRITE)],
+            &[
+                (0, UNIFORM),
+                (1, STORAGE_READ),
+                (2, STORAGE_READ),
+                (3, STORAGE_READ),
+                (4, STORAGE_READ),
+                (5, STORAGE_READ),
+                (6, STORAGE_WRITE),
+            ],
             &[],
         )?;
-        let (relocate, l_relocate) =
-            make("ddgi/relocate", include_str!("relocate.wgsl"), &[(0, UNIFORM), (3, STORAGE_READ), (6, STORAGE_READ), (13, STORAGE_WRITE)], &[])?;
+        let (relocate, l_relocate) = make(
+            "ddgi/relocate",
+            include_str!("relocate.wgsl"),
+            &[
+                (0, UNIFORM),
+                (3, STORAGE_READ),
+                (6, STORAGE_READ),
+                (13, STORAGE_WRITE),
+            ],
+            &[],
+        )?;
         let irradiance_group = settings.irradiance_texels.max(8);
         let distance_group = settings.distance_texels.max(8);
         let (blend_irradiance, l_bi) = make(
             "ddgi/blend_irradiance",
             include_str!("blend_irradiance.wgsl"),
-            &[(0, UNIFORM), (3, STORAGE_READ), (6, STORAGE_READ), (7, STORAGE_WRITE)],
+            &[
+                (0, UNIFORM),
+                (3, STORAGE_READ),
+                (6, STORAGE_READ),
+                (7, STORAGE_WRITE),
+            ],
             &[("BLEND_GROUP", format!("{irradiance_group}u"))],
         )?;
         let (blend_distance, l_bd) = make(
             "ddgi/blend_distance",
             include_str!("blend_distance.wgsl"),
-            &[(0, UNIFORM), (3, STORAGE_READ), (6, STORAGE_READ), (8, STORAGE_WRITE)],
+            &[
+                (0, UNIFORM),
+                (3, STORAGE_READ),
+                (6, STORAGE_READ),
+                (8, STORAGE_WRITE),
+            ],
             &[("BLEND_GROUP", format!("{distance_group}u"))],
         )?;
-        let (borders, l_borders) = make("ddgi/borders", include_str!("borders.wgsl"), &[(0, UNIFORM), (7, STORAGE_WRITE), (8, STORAGE_WRITE)], &[])?;
+        let (borders, l_borders) = make(
+            "ddgi/borders",
+            include_str!("borders.wgsl"),
+            &[(0, UNIFORM), (7, STORAGE_WRITE), (8, STORAGE_WRITE)],
+            &[],
+        )?;
         let (resolve, frame_layout) = make(
             "ddgi/resolve",
             include_str!("resolve.wgsl"),
-            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (5, STORAGE_READ), (9, STORAGE_READ), (10, STORAGE_WRITE), (11, UNIFORM)],
+            &[
+                (0, UNIFORM),
+                (1, STORAGE_READ),
+                (2, STORAGE_READ),
+                (5, STORAGE_READ),
+                (9, STORAGE_READ),
+                (10, STORAGE_WRITE),
+                (11, UNIFORM),
+            ],
             &[],
         )?;
         let (visualize, visualize_layout) = make(
             "ddgi/visualize",
             include_str!("visualize.wgsl"),
-            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (5, STORAGE_READ), (9, STORAGE_READ), (11, UNIFORM), (12, STORAGE_WRITE)],
+            &[
+                (0, UNIFORM),
+                (1, STORAGE_READ),
+                (2, STORAGE_READ),
+                (5, STORAGE_READ),
+                (9, STORAGE_READ),
+                (11, UNIFORM),
+                (12, STORAGE_WRITE),
+            ],
             &[],
         )?;
         let groups = UpdateGroups {
-            ray_directions: bind_at(device, "ddgi/ray_directions", &l_dirs, &[(0, &r.volume), (3, &r.directions)]),
-            trace: bind_at(device, "ddgi/trace", &l_trace, &[(0, &r.volume), (3, &r.directions), (4, &r.hits), (5, &r.offsets)]),
+            ray_directions: bind_at(
+                device,
+                "ddgi/ray_directions",
+                &l_dirs,
+                &[(0, &r.volume), (3, &r.directions)],
+            ),
+            trace: bind_at(
+                device,
+                "ddgi/trace",
+                &l_trace,
+                &[
+                    (0, &r.volume),
+                    (3, &r.directions),
+                    (4, &r.hits),
+                    (5, &r.offsets),
+                ],
+            ),
             shade: bind_at(
                 device,
                 "ddgi/shade",
                 &l_shade,
-                &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (3, &r.directions), (4, &r.hits), (5, &r.offsets), (6, &r.samples)],
+                &[
+                    (0, &r.volume),
+                    (1, &r.irradiance),
+                    (2, &r.distance),
+                    (3, &r.directions),
+                    (4, &r.hits),
+                    (5, &r.offsets),
+                    (6, &r.samples),
+                ],
             ),
-            relocate: bind_at(device, "ddgi/relocate", &l_relocate, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (13, &r.offsets)]),
-            blend_irradiance: bind_at(device, "ddgi/blend_irradiance", &l_bi, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (7, &r.irradiance)]),
-            blend_distance: bind_at(device, "ddgi/blend_distance", &l_bd, &[(0, &r.volume), (3, &r.directions), (6, &r.samples), (8, &r.distance)]),
-            borders: bind_at(device, "ddgi/borders", &l_borders, &[(0, &r.volume), (7, &r.irradiance), (8, &r.distance)]),
+            relocate: bind_at(
+                device,
+                "ddgi/relocate",
+                &l_relocate,
+                &[
+                    (0, &r.volume),
+                    (3, &r.directions),
+                    (6, &r.samples),
+                    (13, &r.offsets),
+                ],
+            ),
+            blend_irradiance: bind_at(
+                device,
+                "ddgi/blend_irradiance",
+                &l_bi,
+                &[
+                    (0, &r.volume),
+                    (3, &r.directions),
+                    (6, &r.samples),
+                    (7, &r.irradiance),
+                ],
+            ),
+            blend_distance: bind_at(
+                device,
+                "ddgi/blend_distance",
+                &l_bd,
+                &[
+                    (0, &r.volume),
+                    (3, &r.directions),
+                    (6, &r.samples),
+                    (8, &r.distance),
+                ],
+            ),
+            borders: bind_at(
+                device,
+                "ddgi/borders",
+                &l_borders,
+                &[(0, &r.volume), (7, &r.irradiance), (8, &r.distance)],
+            ),
         };
         Ok(Self {
             settings: settings.clone(),
@@ -177,7 +308,9 @@ impl Ddgi {
 
     /// This frame's hysteresis multipliers (irradiance, distance) from the active boosts.
     fn boost_factors(&self) -> (f32, f32) {
-        self.boosts.iter().fold((1.0f32, 1.0f32), |(i, d), b| (i.min(b.1), d.min(b.2)))
+        self.boosts
+            .iter()
+            .fold((1.0f32, 1.0f32), |(i, d), b| (i.min(b.1), d.min(b.2)))
     }
 
     fn volume_uniform(&self) -> GpuDdgiVolume {
@@ -206,7 +339,11 @@ impl Ddgi {
             irradiance_hysteresis: s.hysteresis * self.boost_factors().0,
             distance_hysteresis: s.distance_hysteresis * self.boost_factors().1,
             max_ray_distance: self.max_ray_distance,
-            self_shadow_bias: if s.weights == ProbeWeights::Full { s.self_shadow_bias } else { 0.0 },
+            self_shadow_bias: if s.weights == ProbeWeights::Full {
+                s.self_shadow_bias
+            } else {
+                0.0
+            },
             distance_exponent: s.distance_exponent,
             irradiance_gamma: s.irradiance_gamma,
             weights,
@@ -223,23 +360,52 @@ impl Ddgi {
     /// Writes this frame's volume parameters; call before recording the frame's passes, once a
     /// submission (the queue applies the write before the submission runs).
     pub fn prepare(&self, ctx: &GpuContext) {
-        ctx.queue.write_buffer(&self.resources.volume, 0, bytemuck::bytes_of(&self.volume_uniform()));
+        ctx.queue.write_buffer(
+            &self.resources.volume,
+            0,
+            bytemuck::bytes_of(&self.volume_uniform()),
+        );
     }
 
     /// Records the probe update: trace, shade, blend, borders.
-    pub fn update(&mut self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, mut profiler: Option<&mut Profiler>) {
+    pub fn update(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        mut profiler: Option<&mut Profiler>,
+    ) {
         let rays = self.layout.probe_count * self.settings.rays_per_probe;
         let g = &self.groups;
         let s = &scene.bind_group;
-        self.ray_directions.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.ray_directions], [self.settings.rays_per_probe.div_ceil(64), 1, 1]);
-        self.trace.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.trace], fold_groups(rays.div_ceil(64)));
-        self.shade.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.shade], fold_groups(rays.div_ceil(64)));
+        self.ray_directions.dispatch(
+            encoder,
+            profiler.as_deref_mut(),
+            &[s, &g.ray_directions],
+            [self.settings.rays_per_probe.div_ceil(64), 1, 1],
+        );
+        self.trace.dispatch(
+            encoder,
+            profiler.as_deref_mut(),
+            &[s, &g.trace],
+            fold_groups(rays.div_ceil(64)),
+        );
+        self.shade.dispatch(
+            encoder,
+            profiler.as_deref_mut(),
+            &[s, &g.shade],
+            fold_groups(rays.div_ceil(64)),
+        );
         if self.relocating() {
             if self.relocation_pending {
                 encoder.clear_buffer(&self.resources.offsets, 0, None);
                 self.relocation_pending = false;
             }
-            self.relocate.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.relocate], fold_groups(self.layout.probe_count.div_ceil(64)));
+            self.relocate.dispatch(
+                encoder,
+                profiler.as_deref_mut(),
+                &[s, &g.relocate],
+                fold_groups(self.layout.probe_count.div_ceil(64)),
+            );
         }
         self.record_blend(encoder, scene, profiler);
         self.frame += 1;
@@ -250,15 +416,36 @@ impl Ddgi {
     }
 
     /// Records only the blend and border passes (tests feed the ray samples themselves).
-    pub fn record_blend(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, mut profiler: Option<&mut Profiler>) {
+    pub fn record_blend(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        mut profiler: Option<&mut Profiler>,
+    ) {
         let g = &self.groups;
         let s = &scene.bind_group;
         let probes = fold_groups(self.layout.probe_count);
-        self.blend_irradiance.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.blend_irradiance], probes);
-        self.blend_distance.dispatch(encoder, profiler.as_deref_mut(), &[s, &g.blend_distance], probes);
+        self.blend_irradiance.dispatch(
+            encoder,
+            profiler.as_deref_mut(),
+            &[s, &g.blend_irradiance],
+            probes,
+        );
+        self.blend_distance.dispatch(
+            encoder,
+            profiler.as_deref_mut(),
+            &[s, &g.blend_distance],
+            probes,
+        );
         let tile = |t: u32| (t + 2) * (t + 2);
-        let border_threads = self.layout.probe_count * (tile(self.settings.irradiance_texels) + tile(self.settings.distance_texels));
-        self.borders.dispatch(encoder, profiler, &[s, &g.borders], fold_groups(border_threads.div_ceil(64)));
+        let border_threads = self.layout.probe_count
+            * (tile(self.settings.irradiance_texels) + tile(self.settings.distance_texels));
+        self.borders.dispatch(
+            encoder,
+            profiler,
+            &[s, &g.borders],
+            fold_groups(border_threads.div_ceil(64)),
+        );
     }
 
     /// Binds the frame's G-buffer and outputs; call again when they are recreated.
@@ -268,27 +455,70 @@ impl Ddgi {
             &ctx.device,
             "ddgi/resolve",
             &self.frame_layout,
-            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (5, &r.offsets), (9, &frame.gbuffer), (10, &frame.indirect), (11, &frame.params)],
+            &[
+                (0, &r.volume),
+                (1, &r.irradiance),
+                (2, &r.distance),
+                (5, &r.offsets),
+                (9, &frame.gbuffer),
+                (10, &frame.indirect),
+                (11, &frame.params),
+            ],
         );
         let visualize = bind_at(
             &ctx.device,
             "ddgi/visualize",
             &self.visualize_layout,
-            &[(0, &r.volume), (1, &r.irradiance), (2, &r.distance), (5, &r.offsets), (9, &frame.gbuffer), (11, &frame.params), (12, &frame.radiance)],
+            &[
+                (0, &r.volume),
+                (1, &r.irradiance),
+                (2, &r.distance),
+                (5, &r.offsets),
+                (9, &frame.gbuffer),
+                (11, &frame.params),
+                (12, &frame.radiance),
+            ],
         );
         self.frame_groups = Some((resolve, visualize));
     }
 
     /// Records ddgi/resolve: the G-buffer's indirect diffuse light into `frame.indirect`.
-    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers, profiler: Option<&mut Profiler>) {
-        let (group, _) = self.frame_groups.as_ref().expect("Ddgi::bind_frame before resolve");
-        self.resolve.dispatch(encoder, profiler, &[&scene.bind_group, group], [frame.width.div_ceil(8), frame.height.div_ceil(8), 1]);
+    pub fn resolve(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        frame: &FrameBuffers,
+        profiler: Option<&mut Profiler>,
+    ) {
+        let (group, _) = self
+            .frame_groups
+            .as_ref()
+            .expect("Ddgi::bind_frame before resolve");
+        self.resolve.dispatch(
+            encoder,
+            profiler,
+            &[&scene.bind_group, group],
+            [frame.width.div_ceil(8), frame.height.div_ceil(8), 1],
+        );
     }
 
     /// Records ddgi/visualize: probes drawn as spheres into the composed radiance.
-    pub fn visualize(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers) {
-        let (_, group) = self.frame_groups.as_ref().expect("Ddgi::bind_frame before visualize");
-        self.visualize.dispatch(encoder, None, &[&scene.bind_group, group], [frame.width.div_ceil(8), frame.height.div_ceil(8), 1]);
+    pub fn visualize(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        frame: &FrameBuffers,
+    ) {
+        let (_, group) = self
+            .frame_groups
+            .as_ref()
+            .expect("Ddgi::bind_frame before visualize");
+        self.visualize.dispatch(
+            encoder,
+            None,
+            &[&scene.bind_group, group],
+            [frame.width.div_ceil(8), frame.height.div_ceil(8), 1],
+        );
     }
 
     /// Each probe's relocation offset and the share of its rays that hit backfaces.
@@ -314,7 +544,12 @@ impl Ddgi {
             .collect();
         let (iw, ih) = self.layout.atlas_size(self.settings.irradiance_texels);
         let (dw, dh) = self.layout.atlas_size(self.settings.distance_texels);
-        Ok(Atlases { irradiance, irradiance_size: (iw, ih), distance, distance_size: (dw, dh) })
+        Ok(Atlases {
+            irradiance,
+            irradiance_size: (iw, ih),
+            distance,
+            distance_size: (dw, dh),
+        })
     }
 }
 
@@ -333,7 +568,13 @@ pub fn half_to_f32(h: u16) -> f32 {
     let mantissa = (h & 0x3ff) as f32;
     match exponent {
         0 => sign * mantissa * 2f32.powi(-24),
-        31 => if mantissa == 0.0 { sign * f32::INFINITY } else { f32::NAN },
+        31 => {
+            if mantissa == 0.0 {
+                sign * f32::INFINITY
+            } else {
+                f32::NAN
+            }
+        }
         e => sign * (1.0 + mantissa / 1024.0) * 2f32.powi(e - 15),
     }
 }
@@ -349,12 +590,12 @@ fn random_rotation(seed: u32, frame: u32) -> Quat {
         x
     };
     let base = hash(seed.wrapping_mul(0x9e3779b9) ^ hash(frame));
-    let u = [hash(base), hash(base ^ 0x68e31da4), hash(base ^ 0xb5297a4d)].map(|v| (v >> 8) as f32 / 16_777_216.0);
+    let u = [hash(base), hash(base ^ 0x68e31da4), hash(base ^ 0xb5297a4d)]
+        .map(|v| (v >> 8) as f32 / 16_777_216.0);
     let (a, b) = ((1.0 - u[0]).sqrt(), u[0].sqrt());
     let (t1, t2) = (std::f32::consts::TAU * u[1], std::f32::consts::TAU * u[2]);
     Quat::from_xyzw(a * t1.sin(), a * t1.cos(), b * t2.sin(), b * t2.cos()).normalize()
 }
-
 
 impl crate::frame::Technique for Ddgi {
     fn name(&self) -> &'static str {
@@ -366,13 +607,29 @@ impl crate::frame::Technique for Ddgi {
     fn prepare(&mut self, ctx: &GpuContext) {
         Ddgi::prepare(self, ctx);
     }
-    fn update(&mut self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, profiler: Option<&mut Profiler>) {
+    fn update(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        profiler: Option<&mut Profiler>,
+    ) {
         Ddgi::update(self, encoder, scene, profiler);
     }
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers, profiler: Option<&mut Profiler>) {
+    fn resolve(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        frame: &FrameBuffers,
+        profiler: Option<&mut Profiler>,
+    ) {
         Ddgi::resolve(self, encoder, scene, frame, profiler);
     }
-    fn visualize(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers) {
+    fn visualize(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        frame: &FrameBuffers,
+    ) {
         Ddgi::visualize(self, encoder, scene, frame);
     }
     fn reset(&mut self) {

@@ -27,11 +27,26 @@ impl VolumeLayout {
         let steps = (counts.as_vec3() - 1.0).max(Vec3::ONE);
         let extent = desc.max - desc.min;
         let spacing = extent / steps;
-        let origin = Vec3::select(counts.cmpeq(UVec3::ONE).into(), (desc.min + desc.max) * 0.5, desc.min);
+        let origin = Vec3::select(
+            counts.cmpeq(UVec3::ONE).into(),
+            (desc.min + desc.max) * 0.5,
+            desc.min,
+        );
         let probe_count = counts.x * counts.y * counts.z;
         let probes_per_row = (probe_count as f32).sqrt().ceil() as u32;
         let rows = probe_count.div_ceil(probes_per_row);
-        Self { origin, spacing: Vec3::select(counts.cmpeq(UVec3::ONE).into(), extent.max(Vec3::splat(1e-3)), spacing), counts, probe_count, probes_per_row, rows }
+        Self {
+            origin,
+            spacing: Vec3::select(
+                counts.cmpeq(UVec3::ONE).into(),
+                extent.max(Vec3::splat(1e-3)),
+                spacing,
+            ),
+            counts,
+            probe_count,
+            probes_per_row,
+            rows,
+        }
     }
 
     pub fn min_spacing(&self) -> f32 {
@@ -65,7 +80,11 @@ pub struct DdgiResources {
 }
 
 impl DdgiResources {
-    pub fn new(ctx: &GpuContext, layout: &VolumeLayout, settings: &DdgiSettings) -> Result<Self, RenderError> {
+    pub fn new(
+        ctx: &GpuContext,
+        layout: &VolumeLayout,
+        settings: &DdgiSettings,
+    ) -> Result<Self, RenderError> {
         let rays = layout.probe_count as u64 * settings.rays_per_probe as u64;
         let (iw, ih) = layout.atlas_size(settings.irradiance_texels);
         let (dw, dh) = layout.atlas_size(settings.distance_texels);
@@ -87,8 +106,16 @@ impl DdgiResources {
         }
         let device = &ctx.device;
         Ok(Self {
-            volume: uniform_buffer(device, "ddgi/volume", size_of::<crate::gpu_types::GpuDdgiVolume>()),
-            directions: storage_buffer(device, "ddgi/directions", settings.rays_per_probe as u64 * 16),
+            volume: uniform_buffer(
+                device,
+                "ddgi/volume",
+                size_of::<crate::gpu_types::GpuDdgiVolume>(),
+            ),
+            directions: storage_buffer(
+                device,
+                "ddgi/directions",
+                settings.rays_per_probe as u64 * 16,
+            ),
             hits: storage_buffer(device, sizes[0].0, sizes[0].1),
             samples: storage_buffer(device, sizes[1].0, sizes[1].1),
             irradiance: storage_buffer(device, sizes[2].0, sizes[2].1),

@@ -26,26 +26,40 @@ impl Image {
     /// sRGB8 RGB through the same exposure and curve as `frame/tonemap` (its CPU twin), for
     /// metrics such as FLIP that compare display values.
     pub fn to_srgb8(&self, exposure: f32, filmic: bool) -> Vec<u8> {
-        let aces = |x: f32| ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0);
-        let srgb = |c: f32| if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        let aces =
+            |x: f32| ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0);
+        let srgb = |c: f32| {
+            if c <= 0.0031308 {
+                c * 12.92
+            } else {
+                1.055 * c.powf(1.0 / 2.4) - 0.055
+            }
+        };
         self.pixels
             .iter()
-            .flat_map(|p| p.map(|v| {
-                let v = (v * exposure).max(0.0);
-                let v = if filmic { aces(v) } else { v.min(1.0) };
-                (srgb(v) * 255.0 + 0.5) as u8
-            }))
+            .flat_map(|p| {
+                p.map(|v| {
+                    let v = (v * exposure).max(0.0);
+                    let v = if filmic { aces(v) } else { v.min(1.0) };
+                    (srgb(v) * 255.0 + 0.5) as u8
+                })
+            })
             .collect()
     }
 
     pub fn write_exr(&self, path: &Path) -> Result<(), RenderError> {
         let data: Vec<f32> = self.pixels.iter().flatten().copied().collect();
-        let image = image::Rgb32FImage::from_raw(self.width, self.height, data).expect("pixel count matches size");
-        image.save_with_format(path, image::ImageFormat::OpenExr).map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
+        let image = image::Rgb32FImage::from_raw(self.width, self.height, data)
+            .expect("pixel count matches size");
+        image
+            .save_with_format(path, image::ImageFormat::OpenExr)
+            .map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
     }
 
     pub fn read_exr(path: &Path) -> Result<Self, RenderError> {
-        let image = image::open(path).map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))?.to_rgb32f();
+        let image = image::open(path)
+            .map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))?
+            .to_rgb32f();
         Ok(Self {
             width: image.width(),
             height: image.height(),
@@ -56,6 +70,13 @@ impl Image {
 
 /// Writes packed sRGB RGBA8 bytes as a PNG.
 pub fn write_png(path: &Path, rgba8: &[u8], width: u32, height: u32) -> Result<(), RenderError> {
-    image::save_buffer_with_format(path, rgba8, width, height, image::ExtendedColorType::Rgba8, image::ImageFormat::Png)
-        .map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
+    image::save_buffer_with_format(
+        path,
+        rgba8,
+        width,
+        height,
+        image::ExtendedColorType::Rgba8,
+        image::ImageFormat::Png,
+    )
+    .map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
 }

@@ -19,11 +19,28 @@ pub trait Technique {
     /// Uploads per-frame parameters (before the frame's commands are submitted).
     fn prepare(&mut self, ctx: &GpuContext);
     /// Records the technique's per-frame update.
-    fn update(&mut self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, profiler: Option<&mut Profiler>);
+    fn update(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        profiler: Option<&mut Profiler>,
+    );
     /// Records the resolve: indirect light into `frame.indirect`.
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, scene: &GpuScene, frame: &FrameBuffers, profiler: Option<&mut Profiler>);
+    fn resolve(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        frame: &FrameBuffers,
+        profiler: Option<&mut Profiler>,
+    );
     /// Records a debug overlay into `frame.radiance` (after compose).
-    fn visualize(&self, _encoder: &mut wgpu::CommandEncoder, _scene: &GpuScene, _frame: &FrameBuffers) {}
+    fn visualize(
+        &self,
+        _encoder: &mut wgpu::CommandEncoder,
+        _scene: &GpuScene,
+        _frame: &FrameBuffers,
+    ) {
+    }
     /// Forgets all history (the next frame starts from scratch).
     fn reset(&mut self);
     /// Told when the scene changes between frames, so that it can adapt (DDGI lowers its
@@ -64,7 +81,10 @@ impl SceneChange {
             };
             lighting = lighting.max(change);
         }
-        Self { lighting, geometry: old.instance_transforms != new.instance_transforms }
+        Self {
+            lighting,
+            geometry: old.instance_transforms != new.instance_transforms,
+        }
     }
 
     pub fn is_empty(&self) -> bool {
@@ -74,7 +94,14 @@ impl SceneChange {
 
 /// Moves the scene to a new pose: uploads it, resets the frame's accumulated history and tells
 /// the technique what changed — the one path by which a change reaches everything it affects.
-pub fn apply_pose(ctx: &GpuContext, scene: &mut GpuScene, frame: &mut FrameRenderer, technique: Option<&mut dyn Technique>, old: &Pose, new: &Pose) {
+pub fn apply_pose(
+    ctx: &GpuContext,
+    scene: &mut GpuScene,
+    frame: &mut FrameRenderer,
+    technique: Option<&mut dyn Technique>,
+    old: &Pose,
+    new: &Pose,
+) {
     let change = SceneChange::between(old, new);
     if change.is_empty() && old == new {
         return;
@@ -97,7 +124,10 @@ pub struct FrameSettings {
 
 impl Default for FrameSettings {
     fn default() -> Self {
-        Self { area_light_samples: 4, seed: 0 }
+        Self {
+            area_light_samples: 4,
+            seed: 0,
+        }
     }
 }
 
@@ -134,41 +164,103 @@ pub struct FrameRenderer {
 }
 
 impl FrameRenderer {
-    pub fn new(ctx: &GpuContext, scene: &GpuScene, width: u32, height: u32, settings: FrameSettings) -> Result<Self, RenderError> {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        width: u32,
+        height: u32,
+        settings: FrameSettings,
+    ) -> Result<Self, RenderError> {
         let device = &ctx.device;
         let pixels = width as u64 * height as u64;
         let buffers = FrameBuffers {
             width,
             height,
             params: uniform_buffer(device, "frame/params", size_of::<GpuFrameParams>()),
-            gbuffer: storage_buffer(device, "frame/gbuffer", pixels * size_of::<GpuGBufferTexel>() as u64),
+            gbuffer: storage_buffer(
+                device,
+                "frame/gbuffer",
+                pixels * size_of::<GpuGBufferTexel>() as u64,
+            ),
             direct: storage_buffer(device, "frame/direct", pixels * 16),
             indirect: storage_buffer(device, "frame/indirect", pixels * 16),
             radiance: storage_buffer(device, "frame/radiance", pixels * 16),
             sky: uniform_buffer(device, "frame/sky", 16),
         };
         let sky: Vec3 = scene.sky;
-        ctx.queue.write_buffer(&buffers.sky, 0, bytemuck::cast_slice(&sky.extend(1.0).to_array()));
+        ctx.queue.write_buffer(
+            &buffers.sky,
+            0,
+            bytemuck::cast_slice(&sky.extend(1.0).to_array()),
+        );
         let l_gbuffer = buffer_layout(device, "frame/gbuffer", &[(0, UNIFORM), (1, STORAGE_WRITE)]);
-        let l_direct = buffer_layout(device, "frame/direct", &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_WRITE)]);
+        let l_direct = buffer_layout(
+            device,
+            "frame/direct",
+            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_WRITE)],
+        );
         let l_compose = buffer_layout(
             device,
             "frame/compose",
-            &[(0, UNIFORM), (1, STORAGE_READ), (2, STORAGE_READ), (3, STORAGE_READ), (4, STORAGE_WRITE), (5, UNIFORM)],
+            &[
+                (0, UNIFORM),
+                (1, STORAGE_READ),
+                (2, STORAGE_READ),
+                (3, STORAGE_READ),
+                (4, STORAGE_WRITE),
+                (5, UNIFORM),
+            ],
         );
         let b = &buffers;
         Ok(Self {
-            gbuffer: ComputeStage::tracing(ctx, scene, "frame/gbuffer", include_str!("gbuffer.wgsl"), &[], &l_gbuffer)?,
-            direct: ComputeStage::tracing(ctx, scene, "frame/direct", include_str!("direct.wgsl"), &[], &l_direct)?,
-            compose: ComputeStage::new(ctx, "frame/compose", include_str!("compose.wgsl"), &[], &[&l_compose])?,
+            gbuffer: ComputeStage::tracing(
+                ctx,
+                scene,
+                "frame/gbuffer",
+                include_str!("gbuffer.wgsl"),
+                &[],
+                &l_gbuffer,
+            )?,
+            direct: ComputeStage::tracing(
+                ctx,
+                scene,
+                "frame/direct",
+                include_str!("direct.wgsl"),
+                &[],
+                &l_direct,
+            )?,
+            compose: ComputeStage::new(
+                ctx,
+                "frame/compose",
+                include_str!("compose.wgsl"),
+                &[],
+                &[&l_compose],
+            )?,
             tonemapper: Tonemapper::new(ctx)?,
-            gbuffer_group: bind_at(device, "frame/gbuffer", &l_gbuffer, &[(0, &b.params), (1, &b.gbuffer)]),
-            direct_group: bind_at(device, "frame/direct", &l_direct, &[(0, &b.params), (1, &b.gbuffer), (2, &b.direct)]),
+            gbuffer_group: bind_at(
+                device,
+                "frame/gbuffer",
+                &l_gbuffer,
+                &[(0, &b.params), (1, &b.gbuffer)],
+            ),
+            direct_group: bind_at(
+                device,
+                "frame/direct",
+                &l_direct,
+                &[(0, &b.params), (1, &b.gbuffer), (2, &b.direct)],
+            ),
             compose_group: bind_at(
                 device,
                 "frame/compose",
                 &l_compose,
-                &[(0, &b.params), (1, &b.gbuffer), (2, &b.direct), (3, &b.indirect), (4, &b.radiance), (5, &b.sky)],
+                &[
+                    (0, &b.params),
+                    (1, &b.gbuffer),
+                    (2, &b.direct),
+                    (3, &b.indirect),
+                    (4, &b.radiance),
+                    (5, &b.sky),
+                ],
             ),
             buffers,
             settings,
@@ -203,7 +295,10 @@ impl FrameRenderer {
         if self.previous_camera.as_ref() != Some(camera) {
             self.accumulated_frames = 0;
         }
-        let previous = self.previous_camera.clone().unwrap_or_else(|| camera.clone());
+        let previous = self
+            .previous_camera
+            .clone()
+            .unwrap_or_else(|| camera.clone());
         let params = GpuFrameParams {
             camera: GpuCamera::new(camera, w, h),
             previous_camera: GpuCamera::new(&previous, w, h),
@@ -216,14 +311,29 @@ impl FrameRenderer {
             _pad0: 0,
             _pad1: 0,
         };
-        ctx.queue.write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&params));
+        ctx.queue
+            .write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&params));
         if let Some(t) = technique.as_deref_mut() {
             t.prepare(ctx);
         }
-        let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("frame"),
+            });
         let pixel_groups = [w.div_ceil(8), h.div_ceil(8), 1];
-        self.gbuffer.dispatch(&mut encoder, profiler.as_deref_mut(), &[&scene.bind_group, &self.gbuffer_group], pixel_groups);
-        self.direct.dispatch(&mut encoder, profiler.as_deref_mut(), &[&scene.bind_group, &self.direct_group], pixel_groups);
+        self.gbuffer.dispatch(
+            &mut encoder,
+            profiler.as_deref_mut(),
+            &[&scene.bind_group, &self.gbuffer_group],
+            pixel_groups,
+        );
+        self.direct.dispatch(
+            &mut encoder,
+            profiler.as_deref_mut(),
+            &[&scene.bind_group, &self.direct_group],
+            pixel_groups,
+        );
         match technique.as_deref_mut() {
             Some(t) => {
                 t.update(&mut encoder, scene, profiler.as_deref_mut());
@@ -231,7 +341,12 @@ impl FrameRenderer {
             }
             None => encoder.clear_buffer(&self.buffers.indirect, 0, None),
         }
-        self.compose.dispatch(&mut encoder, profiler.as_deref_mut(), &[&self.compose_group], [(w * h).div_ceil(64), 1, 1]);
+        self.compose.dispatch(
+            &mut encoder,
+            profiler.as_deref_mut(),
+            &[&self.compose_group],
+            [(w * h).div_ceil(64), 1, 1],
+        );
         if let (true, Some(t)) = (show_probes, technique.as_deref()) {
             t.visualize(&mut encoder, scene, &self.buffers);
         }
@@ -248,23 +363,43 @@ impl FrameRenderer {
 
     /// The last frame's linear radiance.
     pub fn image(&self, ctx: &GpuContext) -> Result<Image, RenderError> {
-        read_radiance(ctx, &self.buffers.radiance, self.buffers.width, self.buffers.height)
+        read_radiance(
+            ctx,
+            &self.buffers.radiance,
+            self.buffers.width,
+            self.buffers.height,
+        )
     }
 
     /// A buffer's per-pixel vec4 (direct, indirect) as an image.
     pub fn read(&self, ctx: &GpuContext, buffer: &wgpu::Buffer) -> Result<Image, RenderError> {
         let sums: Vec<[f32; 4]> = irradiant_gpu::read_buffer_as(ctx, buffer)?;
         let n = (self.buffers.width * self.buffers.height) as usize;
-        Ok(Image { width: self.buffers.width, height: self.buffers.height, pixels: sums[..n].iter().map(|s| [s[0], s[1], s[2]]).collect() })
+        Ok(Image {
+            width: self.buffers.width,
+            height: self.buffers.height,
+            pixels: sums[..n].iter().map(|s| [s[0], s[1], s[2]]).collect(),
+        })
     }
 
     pub fn read_gbuffer(&self, ctx: &GpuContext) -> Result<Vec<GpuGBufferTexel>, RenderError> {
-        let texels: Vec<GpuGBufferTexel> = irradiant_gpu::read_buffer_as(ctx, &self.buffers.gbuffer)?;
+        let texels: Vec<GpuGBufferTexel> =
+            irradiant_gpu::read_buffer_as(ctx, &self.buffers.gbuffer)?;
         Ok(texels[..(self.buffers.width * self.buffers.height) as usize].to_vec())
     }
 
     /// The last frame, tonemapped to sRGB RGBA8.
-    pub fn tonemapped(&self, ctx: &GpuContext, tone: &ToneSettings) -> Result<Vec<u8>, RenderError> {
-        self.tonemapper.run(ctx, &self.buffers.radiance, self.buffers.width, self.buffers.height, tone)
+    pub fn tonemapped(
+        &self,
+        ctx: &GpuContext,
+        tone: &ToneSettings,
+    ) -> Result<Vec<u8>, RenderError> {
+        self.tonemapper.run(
+            ctx,
+            &self.buffers.radiance,
+            self.buffers.width,
+            self.buffers.height,
+            tone,
+        )
     }
 }

@@ -29,12 +29,27 @@ impl Default for PathTraceSettings {
 
 impl PathTraceSettings {
     pub fn fast() -> Self {
-        Self { samples_per_pixel: 64, samples_per_dispatch: 8, max_bounces: 8, seed: 0 }
+        Self {
+            samples_per_pixel: 64,
+            samples_per_dispatch: 8,
+            max_bounces: 8,
+            seed: 0,
+        }
     }
     pub fn balanced() -> Self {
-        Self { samples_per_pixel: 1024, samples_per_dispatch: 16, max_bounces: 32, seed: 0 }
+        Self {
+            samples_per_pixel: 1024,
+            samples_per_dispatch: 16,
+            max_bounces: 32,
+            seed: 0,
+        }
     }
     pub fn quality() -> Self {
-        Self { samples_per_pixel: 8192, samples_per_dispatch: 32, max_bounces: 64, seed: 0 }
+        Self {
+            samples_per_pixel: 8192,
+            samples_per_dispatch: 32,
+            max_bounces: 64,
+            seed: 0,
+        }
     }
 }

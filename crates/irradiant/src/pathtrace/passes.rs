@@ -21,17 +21,42 @@ pub struct PathTracer {
 }
 
 impl PathTracer {
-    pub fn new(ctx: &GpuContext, scene: &GpuScene, width: u32, height: u32) -> Result<Self, RenderError> {
-        let layout = ctx.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("pathtrace/trace"),
-            entries: &[
-                buffer_entry(0, UNIFORM),       // params
-                buffer_entry(1, STORAGE_WRITE), // accumulation
-            ],
-        });
-        let stage = ComputeStage::tracing(ctx, scene, "pathtrace/trace", include_str!("trace.wgsl"), &[], &layout)?;
-        let accumulation = storage_buffer(&ctx.device, "pathtrace/accumulation", 16 * width as u64 * height as u64);
-        Ok(Self { stage, layout, accumulation, width, height, samples_done: 0 })
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, RenderError> {
+        let layout = ctx
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("pathtrace/trace"),
+                entries: &[
+                    buffer_entry(0, UNIFORM),       // params
+                    buffer_entry(1, STORAGE_WRITE), // accumulation
+                ],
+            });
+        let stage = ComputeStage::tracing(
+            ctx,
+            scene,
+            "pathtrace/trace",
+            include_str!("trace.wgsl"),
+            &[],
+            &layout,
+        )?;
+        let accumulation = storage_buffer(
+            &ctx.device,
+            "pathtrace/accumulation",
+            16 * width as u64 * height as u64,
+        );
+        Ok(Self {
+            stage,
+            layout,
+            accumulation,
+            width,
+            height,
+            samples_done: 0,
+        })
     }
 
     /// Clears the accumulation: call whenever anything that changes the image changes.
@@ -64,10 +89,25 @@ impl PathTracer {
         };
         // A fresh uniform per dispatch: write_buffer lands before the whole submission, so
         // several dispatches in one encoder must not share one.
-        let uniform = uniform_buffer(&ctx.device, "pathtrace/params", size_of::<GpuPathTraceParams>());
-        ctx.queue.write_buffer(&uniform, 0, bytemuck::bytes_of(&params));
-        let group = bind_buffers(&ctx.device, "pathtrace/trace", &self.layout, &[&uniform, &self.accumulation]);
-        self.stage.dispatch(encoder, profiler, &[&scene.bind_group, &group], [self.width.div_ceil(8), self.height.div_ceil(8), 1]);
+        let uniform = uniform_buffer(
+            &ctx.device,
+            "pathtrace/params",
+            size_of::<GpuPathTraceParams>(),
+        );
+        ctx.queue
+            .write_buffer(&uniform, 0, bytemuck::bytes_of(&params));
+        let group = bind_buffers(
+            &ctx.device,
+            "pathtrace/trace",
+            &self.layout,
+            &[&uniform, &self.accumulation],
+        );
+        self.stage.dispatch(
+            encoder,
+            profiler,
+            &[&scene.bind_group, &group],
+            [self.width.div_ceil(8), self.height.div_ceil(8), 1],
+        );
         self.samples_done += samples;
     }
 
@@ -81,13 +121,21 @@ impl PathTracer {
         settings: &PathTraceSettings,
         mut progress: impl FnMut(u32, u32),
     ) -> Result<Image, RenderError> {
-        let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pathtrace/reset") });
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("pathtrace/reset"),
+            });
         self.reset(&mut encoder);
         ctx.queue.submit([encoder.finish()]);
         let per_dispatch = settings.samples_per_dispatch.max(1);
         while self.samples_done < settings.samples_per_pixel {
             let samples = per_dispatch.min(settings.samples_per_pixel - self.samples_done);
-            let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pathtrace/trace") });
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("pathtrace/trace"),
+                });
             self.record(ctx, &mut encoder, scene, camera, settings, samples, None);
             ctx.queue.submit([encoder.finish()]);
             ctx.wait()?;

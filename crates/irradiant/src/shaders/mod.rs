@@ -15,7 +15,10 @@ pub fn library() -> ShaderLibrary {
         .with("surface", include_str!("surface.wgsl"))
         .with("octahedral", include_str!("octahedral.wgsl"))
         .with("frame_types", include_str!("../frame/frame_types.wgsl"))
-        .with("gbuffer_surface", include_str!("../frame/gbuffer_surface.wgsl"))
+        .with(
+            "gbuffer_surface",
+            include_str!("../frame/gbuffer_surface.wgsl"),
+        )
         .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
         .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
         .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))

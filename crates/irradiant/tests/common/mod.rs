@@ -9,7 +9,9 @@ use irradiant::{AdapterChoice, GpuContext};
 pub fn gpu() -> Option<GpuContext> {
     match GpuContext::new(&AdapterChoice::from_env()) {
         Ok(ctx) => Some(ctx),
-        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => panic!("CI=true and no usable GPU adapter: {e}"),
+        Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => {
+            panic!("CI=true and no usable GPU adapter: {e}")
+        }
         Err(e) => {
             eprintln!("SKIPPED: no usable GPU adapter ({e})");
             None
@@ -42,9 +44,16 @@ pub struct FrameResult {
 }
 
 /// Renders `frames` frames of a static scene with DDGI (or direct light only, for `None`).
-pub fn render_frames(ctx: &GpuContext, scene: &Scene, size: (u32, u32), settings: Option<&DdgiSettings>, frames: u32) -> FrameResult {
+pub fn render_frames(
+    ctx: &GpuContext,
+    scene: &Scene,
+    size: (u32, u32),
+    settings: Option<&DdgiSettings>,
+    frames: u32,
+) -> FrameResult {
     let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut frame = FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
+    let mut frame =
+        FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
     let mut ddgi = settings.map(|s| {
         let mut d = Ddgi::new(ctx, &gpu_scene, &scene.probe_volumes[0], s).unwrap();
         d.bind_frame(ctx, &frame.buffers);
@@ -52,7 +61,9 @@ pub fn render_frames(ctx: &GpuContext, scene: &Scene, size: (u32, u32), settings
     });
     for _ in 0..frames {
         let technique = ddgi.as_mut().map(|d| d as &mut dyn Technique);
-        frame.render(ctx, &gpu_scene, &scene.camera, technique, false, None).unwrap();
+        frame
+            .render(ctx, &gpu_scene, &scene.camera, technique, false, None)
+            .unwrap();
     }
     FrameResult {
         total: frame.image(ctx).unwrap(),
@@ -65,8 +76,15 @@ pub fn render_frames(ctx: &GpuContext, scene: &Scene, size: (u32, u32), settings
 pub fn path_trace(ctx: &GpuContext, scene: &Scene, size: (u32, u32), spp: u32) -> Image {
     let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
     let mut tracer = PathTracer::new(ctx, &gpu_scene, size.0, size.1).unwrap();
-    let settings = PathTraceSettings { samples_per_pixel: spp, samples_per_dispatch: 32, max_bounces: 64, seed: 7 };
-    tracer.render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {}).unwrap()
+    let settings = PathTraceSettings {
+        samples_per_pixel: spp,
+        samples_per_dispatch: 32,
+        max_bounces: 64,
+        seed: 7,
+    };
+    tracer
+        .render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {})
+        .unwrap()
 }
 
 /// Pixels whose visible surface lies inside the region.
@@ -100,9 +118,21 @@ pub fn path_traced_indirect(total: &Image, frame: &FrameResult) -> Image {
         .iter()
         .zip(&frame.direct.pixels)
         .zip(&frame.gbuffer)
-        .map(|((t, d), g)| [0, 1, 2].map(|c| if g.depth < 0.0 { 0.0 } else { t[c] - d[c] - g.emission[c] }))
+        .map(|((t, d), g)| {
+            [0, 1, 2].map(|c| {
+                if g.depth < 0.0 {
+                    0.0
+                } else {
+                    t[c] - d[c] - g.emission[c]
+                }
+            })
+        })
         .collect();
-    Image { width: total.width, height: total.height, pixels }
+    Image {
+        width: total.width,
+        height: total.height,
+        pixels,
+    }
 }
 
 /// Ratio of two images' mean luminance over each `block`×`block` tile of the masked pixels
