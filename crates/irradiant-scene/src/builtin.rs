@@ -101,6 +101,26 @@ impl Builder {
         }
     }
 
+    /// The inside of a closed room from `lo` to `hi`: floor, ceiling and four walls as solid
+    /// slabs `thickness` thick outside it (solid, so that probes and rays see proper backfaces).
+    fn closed_room(&mut self, lo: Vec3, hi: Vec3, thickness: f32, floor: u32, walls: u32) {
+        let (l, h) = (lo - Vec3::splat(thickness), hi + Vec3::splat(thickness));
+        self.cuboid(Vec3::new(l.x, l.y, l.z), Vec3::new(h.x, lo.y, h.z), floor);
+        self.cuboid(Vec3::new(l.x, hi.y, l.z), Vec3::new(h.x, h.y, h.z), walls);
+        self.cuboid(Vec3::new(l.x, lo.y, l.z), Vec3::new(h.x, hi.y, lo.z), walls);
+        self.cuboid(Vec3::new(l.x, lo.y, hi.z), Vec3::new(h.x, hi.y, h.z), walls);
+        self.cuboid(
+            Vec3::new(l.x, lo.y, lo.z),
+            Vec3::new(lo.x, hi.y, hi.z),
+            walls,
+        );
+        self.cuboid(
+            Vec3::new(hi.x, lo.y, lo.z),
+            Vec3::new(h.x, hi.y, hi.z),
+            walls,
+        );
+    }
+
     /// A closed vertical cylinder (side plus caps).
     fn cylinder(&mut self, center: Vec3, radius: f32, height: f32, segments: u32, material: u32) {
         let point = |i: u32, y: f32| {
@@ -222,16 +242,7 @@ pub fn two_rooms() -> Scene {
     let floor = b.material("floor", Vec3::new(0.6, 0.45, 0.3), Vec3::ZERO);
     let v = Vec3::new;
     let t = 0.1;
-    b.cuboid(v(-4.0 - t, -t, -2.0 - t), v(4.0 + t, 0.0, 2.0 + t), floor);
-    b.cuboid(
-        v(-4.0 - t, 3.0, -2.0 - t),
-        v(4.0 + t, 3.0 + t, 2.0 + t),
-        white,
-    );
-    b.cuboid(v(-4.0 - t, 0.0, -2.0 - t), v(4.0 + t, 3.0, -2.0), white);
-    b.cuboid(v(-4.0 - t, 0.0, 2.0), v(4.0 + t, 3.0, 2.0 + t), white);
-    b.cuboid(v(-4.0 - t, 0.0, -2.0), v(-4.0, 3.0, 2.0), white);
-    b.cuboid(v(4.0, 0.0, -2.0), v(4.0 + t, 3.0, 2.0), white);
+    b.closed_room(v(-4.0, 0.0, -2.0), v(4.0, 3.0, 2.0), t, floor, white);
     // The dividing wall, with a door 1 m wide and 2 m high at z in [-0.5, 0.5].
     let h = t * 0.5;
     b.cuboid(v(-h, 0.0, -2.0), v(h, 3.0, -0.5), white);
@@ -283,16 +294,7 @@ pub fn box_cylinders() -> Scene {
     let column = b.material("column", Vec3::new(0.7, 0.55, 0.4), Vec3::ZERO);
     let v = Vec3::new;
     let t = 0.1;
-    b.cuboid(v(-3.0 - t, -t, -3.0 - t), v(3.0 + t, 0.0, 3.0 + t), white);
-    b.cuboid(
-        v(-3.0 - t, 3.0, -3.0 - t),
-        v(3.0 + t, 3.0 + t, 3.0 + t),
-        white,
-    );
-    b.cuboid(v(-3.0 - t, 0.0, -3.0 - t), v(3.0 + t, 3.0, -3.0), white);
-    b.cuboid(v(-3.0 - t, 0.0, 3.0), v(3.0 + t, 3.0, 3.0 + t), white);
-    b.cuboid(v(-3.0 - t, 0.0, -3.0), v(-3.0, 3.0, 3.0), white);
-    b.cuboid(v(3.0, 0.0, -3.0), v(3.0 + t, 3.0, 3.0), white);
+    b.closed_room(v(-3.0, 0.0, -3.0), v(3.0, 3.0, 3.0), t, white, white);
     for (x, z) in [(-0.75, -0.75), (0.75, -0.75), (-0.75, 0.75), (0.75, 0.75)] {
         b.cylinder(v(x, 0.0, z), 0.35, 3.0, 24, column);
     }

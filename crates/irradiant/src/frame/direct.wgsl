@@ -10,24 +10,6 @@
 @group(1) @binding(1) var<storage, read> gbuffer: array<GpuGBufferTexel>;
 @group(1) @binding(2) var<storage, read_write> direct: array<vec4<f32>>;
 
-fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
-    let origin = offset_ray(s.position, s.geometric_normal);
-    let e = sample_emitter(rand(rng), rand2(rng));
-    let to_light = e.position - origin;
-    let d2 = dot(to_light, to_light);
-    let distance = sqrt(d2);
-    let wi = to_light / distance;
-    let cos_light = -dot(e.normal, wi);
-    let cos_surface = dot(s.normal, wi);
-    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, wi) <= 0.0 {
-        return vec3<f32>(0.0);
-    }
-    if occluded(origin, wi, distance * (1.0 - 1e-4)) {
-        return vec3<f32>(0.0);
-    }
-    return brdf_eval(s, wo, wi) * e.radiance * cos_surface * cos_light / (e.pdf_area * d2);
-}
-
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);

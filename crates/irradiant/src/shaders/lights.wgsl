@@ -1,6 +1,8 @@
-// Direct light from the punctual lights (point, spot, directional) with shadow rays.
+// Direct light with shadow rays: the punctual lights (point, spot, directional), and one
+// sample of the emissive triangles.
 #import bvh
 #import brdf
+#import random
 
 // Σ over lights of f · L · cos, for a surface seen from wo.
 fn direct_punctual(s: Surface, wo: vec3<f32>) -> vec3<f32> {
@@ -49,4 +51,24 @@ fn direct_from_light(s: Surface, wo: vec3<f32>, i: u32) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     return brdf_eval(s, wo, wi) * radiance * cos_l;
+}
+
+// f · Le · cos / pdf for one point on an emissive triangle (chosen ∝ power), with its shadow
+// ray: an unbiased estimate of the direct light from every emitter.
+fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
+    let origin = offset_ray(s.position, s.geometric_normal);
+    let e = sample_emitter(rand(rng), rand2(rng));
+    let to_light = e.position - origin;
+    let d2 = dot(to_light, to_light);
+    let distance = sqrt(d2);
+    let wi = to_light / distance;
+    let cos_light = -dot(e.normal, wi);
+    let cos_surface = dot(s.normal, wi);
+    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, wi) <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    if occluded(origin, wi, distance * (1.0 - 1e-4)) {
+        return vec3<f32>(0.0);
+    }
+    return brdf_eval(s, wo, wi) * e.radiance * cos_surface * cos_light / (e.pdf_area * d2);
 }
