@@ -66,9 +66,7 @@ fn oracle(
         let cos = texel_dir.dot(*d).max(0.0);
         irradiance += cos * Vec3::from(s.radiance);
         irradiance_weight += cos;
-        // The GPU skips weights under 10⁻⁴ (ddgi/blend_distance.wgsl).
         let w = (cos as f64).powf(settings.distance_exponent as f64);
-        let w = if w > 1e-4 { w } else { 0.0 };
         let distance = s.distance.abs().min(max_distance) as f64;
         moments[0] += w * distance;
         moments[1] += w * distance * distance;

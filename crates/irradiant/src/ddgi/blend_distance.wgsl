@@ -9,8 +9,6 @@
 @group(1) @binding(8) var<storage, read_write> distance_atlas: array<vec2<f32>>;
 
 const CACHE: u32 = BLEND_GROUP * BLEND_GROUP;
-// Weights below this (relative to a ray straight along the texel) are not summed.
-const DISTANCE_WEIGHT_FLOOR: f32 = 1e-4;
 var<workgroup> cache_direction: array<vec4<f32>, CACHE>;
 
 @compute @workgroup_size(BLEND_GROUP, BLEND_GROUP, 1)
@@ -22,7 +20,6 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     let texels = volume.distance_texels;
     let texel_dir = texel_direction(local.xy, texels);
     let m = volume.rays_per_probe;
-    let cutoff = exp2(log2(DISTANCE_WEIGHT_FLOOR) / volume.distance_exponent);
     var sum = vec2<f32>(0.0);
     var weight_sum = 0.0;
     for (var base = 0u; base < m; base += CACHE) {
@@ -34,14 +31,9 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         let n = min(CACHE, m - base);
         for (var k = 0u; k < n; k++) {
             let c = cache_direction[k];
-            let cos_angle = dot(texel_dir, c.xyz);
-            // Rays whose weight would be under 10⁻⁴ of a head-on ray's are skipped: with the
-            // exponent of 50 that is 85 % of them, and pow is the loop's costliest operation.
-            if cos_angle > cutoff {
-                let w = exp2(volume.distance_exponent * log2(cos_angle));
-                sum += w * vec2<f32>(c.w, c.w * c.w);
-                weight_sum += w;
-            }
+            let w = pow(max(0.0, dot(texel_dir, c.xyz)), volume.distance_exponent);
+            sum += w * vec2<f32>(c.w, c.w * c.w);
+            weight_sum += w;
         }
         workgroupBarrier();
     }
