@@ -1,5 +1,6 @@
 // frame/gbuffer: one primary ray through each pixel centre; what it hits, as a G-buffer.
 #import frame_types
+#import gbuffer_surface
 #import bvh
 #import camera
 
@@ -26,15 +27,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         g.motion = vec2<f32>(0.0);
     } else {
         let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
-        g.position = s.position;
-        g.depth = hit.t;
-        g.normal = s.normal;
-        g.geometric_normal = s.geometric_normal;
-        g.albedo = s.albedo;
-        g.roughness = s.roughness;
-        g.metallic = s.metallic;
-        g.specular = s.specular;
-        g.emission = s.emission;
+        g = gbuffer_from_surface(s, hit.t);
         // Where this surface point was last frame: back through the instance's previous
         // transform, then the previous camera.
         let inst = instances[hit.instance];
