@@ -2,6 +2,7 @@
 
 mod atlas;
 mod bench;
+mod compare;
 mod info;
 mod options;
 mod render;
@@ -29,6 +30,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Time every GPU pass with timestamp queries and report rays per second.
     Bench(bench::BenchArgs),
+    /// Render one view with each technique and the path tracer; report the differences.
+    Compare(compare::CompareArgs),
 }
 
 fn main() -> ExitCode {
@@ -50,6 +53,7 @@ fn main() -> ExitCode {
         Command::Info => info::run(&adapter),
         Command::Render(args) => render::run(&args, &adapter),
         Command::Bench(args) => bench::run(&args, &adapter),
+        Command::Compare(args) => compare::run(&args, &adapter),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -216,3 +216,119 @@ fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
     let ddgi = &record["ddgi"][0];
     assert!(ddgi["passes"].as_array().unwrap().len() >= 9, "{ddgi}");
 }
+
+#[test]
+fn compare_refuses_bad_input_and_leaves_nothing_half_written() {
+    let dir = std::env::temp_dir().join(format!("irradiant-cli-compare-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("report");
+    let out_text = out.to_string_lossy().into_owned();
+    fails_with(
+        &["compare", "--techniques", "ddgi,magic", "--out", &out_text],
+        "unknown technique 'magic'",
+    );
+    fails_with(
+        &[
+            "compare",
+            "--scene",
+            "two-rooms",
+            "--regions",
+            "attic",
+            "--out",
+            &out_text,
+        ],
+        "no region 'attic'",
+    );
+    fails_with(
+        &["compare", "--out", "/nonexistent-dir/report"],
+        "does not exist",
+    );
+    assert!(
+        !out.exists() && !out.with_extension("partial").exists(),
+        "a refused comparison must leave no folder behind"
+    );
+}
+
+/// Needs the test adapter: a tiny comparison, then the same again from the reference cache.
+#[test]
+fn compare_writes_a_report_and_reuses_the_cached_reference() {
+    let dir =
+        std::env::temp_dir().join(format!("irradiant-cli-compare-run-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("report").to_string_lossy().into_owned();
+    let cache = dir.join("cache").to_string_lossy().into_owned();
+    let args = [
+        "compare",
+        "--scene",
+        "two-rooms",
+        "--size",
+        "32x24",
+        "--reference-spp",
+        "16",
+        "--frames",
+        "4",
+        "--out",
+        &out,
+        "--cache",
+        &cache,
+    ];
+    let (ok, stdout, stderr) = irradiant(&args);
+    if !ok && stderr.contains("no GPU adapter") && std::env::var("CI").as_deref() != Ok("true") {
+        eprintln!("SKIPPED: no GPU adapter");
+        return;
+    }
+    assert!(ok, "{stderr}");
+    assert!(
+        stdout.contains("ddgi") && stdout.contains("FLIP mean"),
+        "{stdout}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report/comparison.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["results"].as_array().unwrap().len(), 3);
+    assert_eq!(json["reference_cached"], false);
+    assert_eq!(json["results"][2]["regions"][0][0], "dark-room");
+    let html = std::fs::read_to_string(dir.join("report/report.html")).unwrap();
+    assert_eq!(
+        html.matches("data:image/png;base64,").count(),
+        1 + 2 * 3,
+        "reference + image and error map per technique"
+    );
+    let (ok, _, stderr) = irradiant(&args);
+    assert!(ok, "{stderr}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report/comparison.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        json["reference_cached"], true,
+        "the second run must reuse the cached reference"
+    );
+    // A different view must not reuse it.
+    let other = [
+        "compare",
+        "--scene",
+        "two-rooms",
+        "--size",
+        "32x24",
+        "--reference-spp",
+        "17",
+        "--frames",
+        "2",
+        "--techniques",
+        "none",
+        "--out",
+        &out,
+        "--cache",
+        &cache,
+    ];
+    let (ok, _, stderr) = irradiant(&other);
+    assert!(ok, "{stderr}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report/comparison.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        json["reference_cached"], false,
+        "changed settings must not hit the cache"
+    );
+}

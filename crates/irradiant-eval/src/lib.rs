@@ -2,7 +2,10 @@
 //! perceptual difference, through nv-flip), PSNR and relative MSE.
 //!
 //! Images are plain slices so that this crate needs no GPU: linear RGB radiance for PSNR and
-//! relative MSE, tonemapped sRGB8 for FLIP (nv-flip implements LDR-FLIP).
+//! relative MSE, tonemapped sRGB8 for FLIP (nv-flip implements LDR-FLIP). [`report`] turns a
+//! comparison into a self-contained HTML page.
+
+pub mod report;
 
 /// Why two images cannot be compared.
 #[derive(Debug, thiserror::Error, PartialEq)]

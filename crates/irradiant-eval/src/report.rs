@@ -1,0 +1,187 @@
+//! The comparison lab's report: one self-contained HTML page (images inline, no server, no
+//! external files) and the data behind it, which is also written as JSON.
+
+use serde::Serialize;
+
+/// Everything measured for one technique against the reference.
+#[derive(Clone, Debug, Serialize)]
+pub struct TechniqueResult {
+    pub technique: String,
+    pub flip_mean: f32,
+    pub flip_p95: f32,
+    pub psnr_db: f64,
+    pub relative_mse: f64,
+    /// Mean indirect luminance in each named region: (region, technique, reference).
+    pub regions: Vec<(String, f64, f64)>,
+    /// GPU milliseconds per pass of the last frame (label, ms).
+    pub passes: Vec<(String, f64)>,
+    /// PNG files (relative to the report) of the image and of its FLIP error map.
+    pub image: String,
+    pub error_map: String,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Comparison {
+    pub scene: String,
+    pub width: u32,
+    pub height: u32,
+    pub adapter: String,
+    pub reference_spp: u32,
+    pub reference_image: String,
+    /// Whether the reference came from the cache.
+    pub reference_cached: bool,
+    pub frames: u32,
+    pub results: Vec<TechniqueResult>,
+}
+
+/// RFC 4648 base64, for inlining images.
+pub fn base64(data: &[u8]) -> String {
+    const TABLE: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(data.len().div_ceil(3) * 4);
+    for chunk in data.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
+        for i in 0..4 {
+            out.push(if i <= chunk.len() {
+                TABLE[(n >> (18 - 6 * i) & 63) as usize] as char
+            } else {
+                '='
+            });
+        }
+    }
+    out
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The HTML page. `png` gives the bytes of each image the comparison names.
+pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
+    let img = |file: &str, alt: &str| {
+        format!(
+            "<img src=\"data:image/png;base64,{}\" alt=\"{}\">",
+            base64(&png(file)),
+            escape(alt)
+        )
+    };
+    let mut s = String::new();
+    s.push_str("<!doctype html><html><head><meta charset=\"utf-8\"><title>Irradiant comparison: ");
+    s.push_str(&escape(&c.scene));
+    s.push_str("</title><style>body{font-family:sans-serif;margin:2em;background:#fafafa}table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}th{background:#eee}.grid{display:flex;flex-wrap:wrap;gap:12px}.grid figure{margin:0}img{image-rendering:pixelated;max-width:100%}</style></head><body>");
+    s.push_str(&format!(
+        "<h1>{}</h1><p>{}×{} on {}; reference: path tracer, {} samples per pixel{}; real-time techniques after {} frames.</p>",
+        escape(&c.scene),
+        c.width,
+        c.height,
+        escape(&c.adapter),
+        c.reference_spp,
+        if c.reference_cached { " (from the cache)" } else { "" },
+        c.frames
+    ));
+    s.push_str("<h2>Figures</h2><table id=\"figures\"><tr><th>technique</th><th>FLIP mean</th><th>FLIP p95</th><th>PSNR dB</th><th>relative MSE</th>");
+    let regions: Vec<&String> = c
+        .results
+        .first()
+        .map(|r| r.regions.iter().map(|x| &x.0).collect())
+        .unwrap_or_default();
+    for r in &regions {
+        s.push_str(&format!("<th>indirect in {} (reference)</th>", escape(r)));
+    }
+    s.push_str("<th>GPU ms, last frame</th></tr>");
+    for r in &c.results {
+        s.push_str(&format!("<tr><td style=\"text-align:left\">{}</td><td>{:.4}</td><td>{:.4}</td><td>{:.2}</td><td>{:.5}</td>", escape(&r.technique), r.flip_mean, r.flip_p95, r.psnr_db, r.relative_mse));
+        for (_, t, reference) in &r.regions {
+            s.push_str(&format!("<td>{t:.5} ({reference:.5})</td>"));
+        }
+        s.push_str(&format!(
+            "<td>{:.3}</td></tr>",
+            r.passes.iter().map(|p| p.1).sum::<f64>()
+        ));
+    }
+    s.push_str("</table><h2>Images</h2><div class=\"grid\">");
+    s.push_str(&format!(
+        "<figure>{}<figcaption>reference (path tracer)</figcaption></figure>",
+        img(&c.reference_image, "reference")
+    ));
+    for r in &c.results {
+        s.push_str(&format!(
+            "<figure>{}<figcaption>{}</figcaption></figure>",
+            img(&r.image, &r.technique),
+            escape(&r.technique)
+        ));
+    }
+    s.push_str("</div><h2>FLIP error maps</h2><div class=\"grid\">");
+    for r in &c.results {
+        s.push_str(&format!(
+            "<figure>{}<figcaption>{} (mean {:.4})</figcaption></figure>",
+            img(&r.error_map, &format!("{} error", r.technique)),
+            escape(&r.technique),
+            r.flip_mean
+        ));
+    }
+    s.push_str("</div><h2>GPU time per pass (last frame, ms)</h2><table id=\"passes\"><tr><th>technique</th><th>pass</th><th>ms</th></tr>");
+    for r in &c.results {
+        for (label, ms) in &r.passes {
+            s.push_str(&format!("<tr><td style=\"text-align:left\">{}</td><td style=\"text-align:left\">{}</td><td>{ms:.3}</td></tr>", escape(&r.technique), escape(label)));
+        }
+    }
+    s.push_str("</table></body></html>\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_matches_the_rfc_examples() {
+        for (input, expected) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(input.as_bytes()), expected);
+        }
+    }
+
+    #[test]
+    fn the_report_inlines_every_image_and_escapes_names() {
+        let result = TechniqueResult {
+            technique: "ddgi <full>".into(),
+            flip_mean: 0.1,
+            flip_p95: 0.2,
+            psnr_db: 30.0,
+            relative_mse: 0.01,
+            regions: vec![("dark-room".into(), 0.07, 0.069)],
+            passes: vec![("ddgi/trace".into(), 1.5)],
+            image: "ddgi.png".into(),
+            error_map: "ddgi-flip.png".into(),
+        };
+        let c = Comparison {
+            scene: "two-rooms".into(),
+            width: 4,
+            height: 4,
+            adapter: "test".into(),
+            reference_spp: 64,
+            reference_image: "reference.png".into(),
+            reference_cached: false,
+            frames: 10,
+            results: vec![result],
+        };
+        let page = html(&c, &|name| name.as_bytes().to_vec());
+        assert_eq!(page.matches("data:image/png;base64,").count(), 3);
+        assert!(page.contains("ddgi &lt;full&gt;") && !page.contains("<full>"));
+        assert!(page.contains("dark-room") && page.contains("ddgi/trace"));
+    }
+}
