@@ -10,7 +10,7 @@ use irradiant::ddgi::{Ddgi, DdgiSettings, ProbeWeights};
 use irradiant::frame::{FrameRenderer, FrameSettings, Image, Technique};
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
-use irradiant_eval::report::{Comparison, TechniqueResult};
+use irradiant_eval::report::{Comparison, TechniqueResult, TimeSeries};
 use irradiant_gpu::Profiler;
 
 use crate::CliError;
@@ -55,6 +55,20 @@ pub struct CompareArgs {
     /// Where references are cached (default: $XDG_CACHE_HOME/irradiant, ~/.cache/irradiant).
     #[arg(long)]
     pub cache: Option<PathBuf>,
+    /// Also follow the scene's animation for this many frames (0: off): per frame the flicker,
+    /// every --every frames the FLIP against a reference of that frame, and the lag after a
+    /// light switches.
+    #[arg(long, default_value = "0")]
+    pub over_time: u32,
+    /// Frames a second of the animation.
+    #[arg(long, default_value = "60")]
+    pub fps: f32,
+    /// Compare with a reference every this many frames over time.
+    #[arg(long, default_value = "4")]
+    pub every: u32,
+    /// Samples per pixel of the per-frame references over time.
+    #[arg(long, default_value = "256")]
+    pub sequence_spp: u32,
 }
 
 pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -160,6 +174,7 @@ fn compare_into(
         &ctx,
         &gpu_scene,
         scene,
+        &scene.pose_at(0.0),
         &args.scene,
         args.size,
         &pt,
@@ -264,6 +279,11 @@ fn compare_into(
             error_map: error_file,
         });
     }
+    let over_time = if args.over_time > 0 {
+        follow_animation(args, &ctx, scene)?
+    } else {
+        Vec::new()
+    };
     let comparison = Comparison {
         scene: scene.name.clone(),
         width,
@@ -274,6 +294,7 @@ fn compare_into(
         reference_cached: cached,
         frames: args.frames,
         results,
+        over_time,
     };
     let json = serde_json::to_string_pretty(&comparison).expect("comparisons serialise");
     std::fs::write(dir.join("comparison.json"), json).map_err(|e| CliError::Io {
@@ -292,16 +313,18 @@ fn compare_into(
 
 /// The path-traced reference, from the cache when an entry for exactly this scene, view and
 /// settings exists; otherwise rendered and stored.
+#[allow(clippy::too_many_arguments)]
 fn reference(
     ctx: &GpuContext,
     gpu_scene: &GpuScene,
     scene: &irradiant_scene::Scene,
+    pose: &irradiant_scene::Pose,
     spec: &str,
     size: (u32, u32),
     settings: &PathTraceSettings,
     cache: Option<&Path>,
 ) -> Result<(Image, bool), CliError> {
-    let key = reference_key(scene, size, settings);
+    let key = reference_key(scene, pose, size, settings);
     let dir = cache
         .map(Path::to_owned)
         .or_else(default_cache)
@@ -332,6 +355,146 @@ fn reference(
     Ok((image, false))
 }
 
+/// Runs each technique through the animation, measuring error and flicker per frame.
+fn follow_animation(
+    args: &CompareArgs,
+    ctx: &GpuContext,
+    scene: &irradiant_scene::Scene,
+) -> Result<Vec<TimeSeries>, CliError> {
+    use irradiant::frame::{LightingChange, SceneChange, apply_pose};
+    let (width, height) = args.size;
+    let poses: Vec<irradiant_scene::Pose> = (0..args.over_time)
+        .map(|i| scene.pose_at(i as f32 / args.fps))
+        .collect();
+    let change_frame = (1..poses.len())
+        .find(|&i| SceneChange::between(&poses[i - 1], &poses[i]).lighting == LightingChange::Large)
+        .map(|i| i as u32);
+    // The references of the sampled frames, each cached under its own pose.
+    let mut reference_scene = GpuScene::new(ctx, scene, &GpuSceneSettings::default())?;
+    let settings = PathTraceSettings {
+        samples_per_pixel: args.sequence_spp,
+        ..PathTraceSettings::balanced()
+    };
+    let mut references = Vec::new();
+    for i in (0..args.over_time).step_by(args.every as usize) {
+        reference_scene.update(ctx, &poses[i as usize]);
+        let (image, _) = reference(
+            ctx,
+            &reference_scene,
+            scene,
+            &poses[i as usize],
+            &args.scene,
+            args.size,
+            &settings,
+            args.cache.as_deref(),
+        )?;
+        references.push((i, image.to_srgb8(1.0, true)));
+    }
+    let mut series = Vec::new();
+    for name in &args.techniques {
+        let mut gpu_scene = GpuScene::new(ctx, scene, &GpuSceneSettings::default())?;
+        let mut frame =
+            FrameRenderer::new(ctx, &gpu_scene, width, height, FrameSettings::default())?;
+        let mut ddgi = make_technique(ctx, &gpu_scene, scene, name, &frame)?;
+        let (mut error, mut flicker) = (Vec::new(), Vec::new());
+        let mut previous: Option<Image> = None;
+        for i in 0..args.over_time {
+            if i > 0 {
+                apply_pose(
+                    ctx,
+                    &mut gpu_scene,
+                    &mut frame,
+                    ddgi.as_mut().map(|d| d as &mut dyn Technique),
+                    &poses[i as usize - 1],
+                    &poses[i as usize],
+                );
+            }
+            frame.render(
+                ctx,
+                &gpu_scene,
+                &scene.camera,
+                ddgi.as_mut().map(|d| d as &mut dyn Technique),
+                false,
+                None,
+            )?;
+            let image = frame.image(ctx)?;
+            if let Some(p) = &previous {
+                let lum = |c: &[f32; 3]| (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]) as f64;
+                let change = image
+                    .pixels
+                    .iter()
+                    .zip(&p.pixels)
+                    .map(|(a, b)| (lum(a) - lum(b)).abs())
+                    .sum::<f64>()
+                    / image.pixels.len() as f64;
+                flicker.push((i, change));
+            }
+            if let Some((_, reference)) = references.iter().find(|(f, _)| *f == i) {
+                let flip =
+                    irradiant_eval::flip(reference, &image.to_srgb8(1.0, true), width, height)
+                        .map_err(|e| CliError::Usage(e.to_string()))?;
+                error.push((i, flip.mean));
+            }
+            previous = Some(image);
+        }
+        let before: Vec<f32> = error
+            .iter()
+            .filter(|(f, _)| change_frame.is_none_or(|c| *f < c))
+            .map(|e| e.1)
+            .collect();
+        let lag_bound = 1.25 * before.iter().sum::<f32>() / before.len().max(1) as f32;
+        let lag_frames = change_frame.and_then(|c| {
+            error
+                .iter()
+                .find(|(f, e)| *f >= c && *e <= lag_bound)
+                .map(|(f, _)| f - c)
+        });
+        series.push(TimeSeries {
+            technique: name.clone(),
+            error,
+            flicker,
+            change_frame,
+            lag_frames,
+            lag_bound,
+        });
+    }
+    Ok(series)
+}
+
+/// The DDGI volume a technique name stands for (None: direct light only).
+fn make_technique(
+    ctx: &GpuContext,
+    gpu_scene: &GpuScene,
+    scene: &irradiant_scene::Scene,
+    name: &str,
+    frame: &FrameRenderer,
+) -> Result<Option<Ddgi>, CliError> {
+    if name == "none" {
+        return Ok(None);
+    }
+    let weights = if name == "classic-probes" {
+        ProbeWeights::Classic
+    } else {
+        ProbeWeights::Full
+    };
+    let volume = scene
+        .probe_volumes
+        .first()
+        .cloned()
+        .unwrap_or_else(|| crate::render::default_volume(scene));
+    let mut d = Ddgi::new(
+        ctx,
+        gpu_scene,
+        &volume,
+        &DdgiSettings {
+            weights,
+            ..DdgiSettings::balanced()
+        },
+    )?;
+    d.bind_frame(ctx, &frame.buffers);
+    Ok(Some(d))
+}
+
 fn default_cache() -> Option<PathBuf> {
     std::env::var_os("XDG_CACHE_HOME")
         .map(PathBuf::from)
@@ -343,6 +506,7 @@ fn default_cache() -> Option<PathBuf> {
 /// camera, sky, size, the path tracer's settings and this program's version.
 pub fn reference_key(
     scene: &irradiant_scene::Scene,
+    pose: &irradiant_scene::Pose,
     size: (u32, u32),
     settings: &PathTraceSettings,
 ) -> u64 {
@@ -369,11 +533,7 @@ pub fn reference_key(
     }
     format!(
         "{:?}{:?}{:?}{:?}{:?}",
-        scene.instances,
-        scene.materials,
-        scene.pose_at(0.0).lights,
-        scene.camera,
-        scene.sky
+        scene.instances, scene.materials, pose, scene.camera, scene.sky
     )
     .hash(&mut h);
     h.finish()
@@ -400,8 +560,9 @@ mod tests {
     fn the_reference_key_changes_with_everything_that_shapes_the_reference() {
         let scene = irradiant_scene::builtin("cornell").unwrap();
         let settings = PathTraceSettings::fast();
-        let key =
-            |s: &irradiant_scene::Scene, size, p: &PathTraceSettings| reference_key(s, size, p);
+        let key = |s: &irradiant_scene::Scene, size, p: &PathTraceSettings| {
+            reference_key(s, &s.pose_at(0.0), size, p)
+        };
         let base = key(&scene, (64, 64), &settings);
         assert_eq!(base, key(&scene, (64, 64), &settings));
         assert_ne!(base, key(&scene, (64, 48), &settings));

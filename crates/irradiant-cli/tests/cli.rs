@@ -332,3 +332,71 @@ fn compare_writes_a_report_and_reuses_the_cached_reference() {
         "changed settings must not hit the cache"
     );
 }
+
+/// Needs the test adapter: a comparison that follows an animation (the lamp of two-rooms
+/// switches off at frame 6 at 6 frames a second) and plots error and flicker over time.
+#[test]
+fn compare_follows_an_animation_and_plots_it() {
+    let dir =
+        std::env::temp_dir().join(format!("irradiant-cli-compare-time-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("report").to_string_lossy().into_owned();
+    let cache = dir.join("cache").to_string_lossy().into_owned();
+    let manifest = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/two-rooms/switch.toml"
+    );
+    let args = [
+        "compare",
+        "--scene",
+        manifest,
+        "--size",
+        "24x18",
+        "--reference-spp",
+        "8",
+        "--frames",
+        "2",
+        "--techniques",
+        "none,ddgi",
+        "--over-time",
+        "10",
+        "--fps",
+        "6",
+        "--every",
+        "3",
+        "--sequence-spp",
+        "8",
+        "--out",
+        &out,
+        "--cache",
+        &cache,
+    ];
+    let (ok, _, stderr) = irradiant(&args);
+    if !ok && stderr.contains("no GPU adapter") && std::env::var("CI").as_deref() != Ok("true") {
+        eprintln!("SKIPPED: no GPU adapter");
+        return;
+    }
+    assert!(ok, "{stderr}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report/comparison.json")).unwrap())
+            .unwrap();
+    let series = json["over_time"].as_array().unwrap();
+    assert_eq!(series.len(), 2);
+    assert_eq!(
+        series[1]["change_frame"], 6,
+        "the lamp switches off at 1 s = frame 6"
+    );
+    assert_eq!(
+        series[1]["error"].as_array().unwrap().len(),
+        4,
+        "frames 0, 3, 6 and 9 are compared"
+    );
+    assert_eq!(series[1]["flicker"].as_array().unwrap().len(), 9);
+    let html = std::fs::read_to_string(dir.join("report/report.html")).unwrap();
+    assert_eq!(
+        html.matches("<svg").count(),
+        2,
+        "an error plot and a flicker plot"
+    );
+}

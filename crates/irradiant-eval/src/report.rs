@@ -32,6 +32,25 @@ pub struct Comparison {
     pub reference_cached: bool,
     pub frames: u32,
     pub results: Vec<TechniqueResult>,
+    /// Over time, for animated scenes (`--over-time`).
+    pub over_time: Vec<TimeSeries>,
+}
+
+/// One technique through an animation: per sampled frame the FLIP against a reference of that
+/// frame, per frame the flicker (mean absolute luminance change from the previous frame).
+#[derive(Clone, Debug, Serialize)]
+pub struct TimeSeries {
+    pub technique: String,
+    /// (frame, FLIP mean against that frame's reference)
+    pub error: Vec<(u32, f32)>,
+    /// (frame, mean |Δ luminance| from the previous frame)
+    pub flicker: Vec<(u32, f64)>,
+    /// Frame of the first large lighting change, if any.
+    pub change_frame: Option<u32>,
+    /// Frames after it until the error is back under `lag_bound`; None if it never is.
+    pub lag_frames: Option<u32>,
+    /// 1.25 × the mean error over the sampled frames before the change.
+    pub lag_bound: f32,
 }
 
 /// RFC 4648 base64, for inlining images.
@@ -133,7 +152,53 @@ pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
             s.push_str(&format!("<tr><td style=\"text-align:left\">{}</td><td style=\"text-align:left\">{}</td><td>{ms:.3}</td></tr>", escape(&r.technique), escape(label)));
         }
     }
-    s.push_str("</table></body></html>\n");
+    s.push_str("</table>");
+    if !c.over_time.is_empty() {
+        s.push_str("<h2>Over time</h2><table id=\"lag\"><tr><th>technique</th><th>light change at frame</th><th>lag (frames until the error is back under its bound)</th><th>bound (FLIP)</th><th>mean flicker</th></tr>");
+        for t in &c.over_time {
+            let flicker =
+                t.flicker.iter().map(|f| f.1).sum::<f64>() / t.flicker.len().max(1) as f64;
+            s.push_str(&format!(
+                "<tr><td style=\"text-align:left\">{}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{:.5}</td></tr>",
+                escape(&t.technique),
+                t.change_frame.map_or("–".into(), |f| f.to_string()),
+                t.lag_frames.map_or("never".into(), |f| f.to_string()),
+                t.lag_bound,
+                flicker
+            ));
+        }
+        s.push_str("</table><div class=\"plots\">");
+        let error: Vec<Curve> = c
+            .over_time
+            .iter()
+            .map(|t| Curve {
+                name: t.technique.clone(),
+                points: t.error.iter().map(|&(f, e)| (f as f64, e as f64)).collect(),
+            })
+            .collect();
+        s.push_str(&line_plot_svg(
+            "FLIP against each frame's reference",
+            "frame",
+            "FLIP mean",
+            &error,
+        ));
+        let flicker: Vec<Curve> = c
+            .over_time
+            .iter()
+            .map(|t| Curve {
+                name: t.technique.clone(),
+                points: t.flicker.iter().map(|&(f, v)| (f as f64, v)).collect(),
+            })
+            .collect();
+        s.push_str(&line_plot_svg(
+            "flicker: mean |Δ luminance| from the previous frame",
+            "frame",
+            "|Δ|",
+            &flicker,
+        ));
+        s.push_str("</div>");
+    }
+    s.push_str("</body></html>\n");
     s
 }
 
@@ -178,10 +243,120 @@ mod tests {
             reference_cached: false,
             frames: 10,
             results: vec![result],
+            over_time: vec![TimeSeries {
+                technique: "ddgi".into(),
+                error: vec![(0, 0.1), (4, 0.3), (8, 0.1)],
+                flicker: vec![(1, 0.01), (2, 0.02)],
+                change_frame: Some(4),
+                lag_frames: Some(4),
+                lag_bound: 0.125,
+            }],
         };
         let page = html(&c, &|name| name.as_bytes().to_vec());
         assert_eq!(page.matches("data:image/png;base64,").count(), 3);
         assert!(page.contains("ddgi &lt;full&gt;") && !page.contains("<full>"));
         assert!(page.contains("dark-room") && page.contains("ddgi/trace"));
+        assert_eq!(
+            page.matches("<svg").count(),
+            2,
+            "an error plot and a flicker plot"
+        );
+    }
+}
+
+/// One curve of a plot: a name and its (x, y) points.
+pub struct Curve {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A line plot as an SVG document (plotters' SVG backend), for inlining in the report.
+pub fn line_plot_svg(title: &str, x_label: &str, y_label: &str, curves: &[Curve]) -> String {
+    use plotters::prelude::*;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (640, 320)).into_drawing_area();
+        let _ = root.fill(&WHITE);
+        let x_max = curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|p| p.0))
+            .fold(1.0f64, f64::max);
+        let y_max = curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|p| p.1))
+            .fold(1e-6f64, f64::max)
+            * 1.1;
+        let chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 16))
+            .margin(10)
+            .x_label_area_size(30)
+            .y_label_area_size(50)
+            .build_cartesian_2d(0.0..x_max, 0.0..y_max);
+        let Ok(mut chart) = chart else {
+            return svg_fallback(title);
+        };
+        let _ = chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .draw();
+        let palette = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
+        for (i, c) in curves.iter().enumerate() {
+            let color = palette[i % palette.len()];
+            if let Ok(series) = chart.draw_series(LineSeries::new(
+                c.points.iter().copied(),
+                color.stroke_width(2),
+            )) {
+                series.label(c.name.clone()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2))
+                });
+            }
+        }
+        let _ = chart
+            .configure_series_labels()
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.8))
+            .draw();
+        let _ = root.present();
+    }
+    svg
+}
+
+fn svg_fallback(title: &str) -> String {
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"40\"><text x=\"10\" y=\"25\">{} (no data)</text></svg>",
+        escape(title)
+    )
+}
+
+#[cfg(test)]
+mod plot_tests {
+    use super::*;
+
+    #[test]
+    fn a_plot_is_an_svg_with_a_path_per_curve() {
+        let curves = vec![
+            Curve {
+                name: "ddgi".into(),
+                points: (0..30)
+                    .map(|i| (i as f64, 1.0 / (1.0 + i as f64)))
+                    .collect(),
+            },
+            Curve {
+                name: "classic".into(),
+                points: (0..30).map(|i| (i as f64, 0.5)).collect(),
+            },
+        ];
+        let svg = line_plot_svg("error over time", "frame", "FLIP", &curves);
+        assert!(
+            svg.starts_with("<svg") && svg.contains("</svg>"),
+            "{}",
+            &svg[..svg.len().min(200)]
+        );
+        assert!(
+            svg.matches("<polyline").count() + svg.matches("<path").count() >= 2,
+            "one line a curve"
+        );
+        assert!(svg.contains("ddgi") && svg.contains("classic") && svg.contains("error over time"));
     }
 }
