@@ -69,6 +69,10 @@ pub struct CompareArgs {
     /// Samples per pixel of the per-frame references over time.
     #[arg(long, default_value = "256")]
     pub sequence_spp: u32,
+    /// After a light switches, the lag is the frames until FLIP against that frame's reference
+    /// is back under this (0.05: differences hard to spot side by side).
+    #[arg(long, default_value = "0.05")]
+    pub lag_bound: f32,
 }
 
 pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -437,12 +441,7 @@ fn follow_animation(
             }
             previous = Some(image);
         }
-        let before: Vec<f32> = error
-            .iter()
-            .filter(|(f, _)| change_frame.is_none_or(|c| *f < c))
-            .map(|e| e.1)
-            .collect();
-        let lag_bound = 1.25 * before.iter().sum::<f32>() / before.len().max(1) as f32;
+        let lag_bound = args.lag_bound;
         let lag_frames = change_frame.and_then(|c| {
             error
                 .iter()

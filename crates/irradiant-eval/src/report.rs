@@ -49,7 +49,7 @@ pub struct TimeSeries {
     pub change_frame: Option<u32>,
     /// Frames after it until the error is back under `lag_bound`; None if it never is.
     pub lag_frames: Option<u32>,
-    /// 1.25 × the mean error over the sampled frames before the change.
+    /// The FLIP under which the error counts as recovered (`--lag-bound`).
     pub lag_bound: f32,
 }
 
