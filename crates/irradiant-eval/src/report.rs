@@ -198,6 +198,9 @@ pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
         ));
         s.push_str("</div>");
     }
+    // Marks the page once loaded with how many images decoded and how many plots there are,
+    // so that a headless browser can check the report as a person would see it.
+    s.push_str("<script>window.addEventListener('load',function(){var n=0;for(var i=0;i<document.images.length;i++){var m=document.images[i];if(m.complete&&m.naturalWidth>0){n++;}}document.body.setAttribute('data-images-loaded',String(n));document.body.setAttribute('data-plots',String(document.querySelectorAll('svg').length));});</script>");
     s.push_str("</body></html>\n");
     s
 }
