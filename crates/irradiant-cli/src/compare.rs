@@ -31,6 +31,10 @@ pub struct CompareArgs {
     /// A built-in scene, a manifest or a mesh file.
     #[arg(long, default_value = "cornell")]
     pub scene: String,
+    /// The view, instead of the scene's camera: "px,py,pz,tx,ty,tz" (position, target) or
+    /// with a vertical field of view in degrees as a seventh number.
+    #[arg(long, value_parser = parse_camera)]
+    pub camera: Option<irradiant_scene::Camera>,
     /// Techniques to compare, comma-separated: none, classic-probes, ddgi.
     #[arg(
         long,
@@ -109,7 +113,11 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
-    let scene = loaded.scene;
+    let mut scene = loaded.scene;
+    if let Some(camera) = &args.camera {
+        scene.camera = camera.clone();
+    }
+    let scene = scene;
     let regions: Vec<irradiant_scene::Region> = if args.regions.is_empty() {
         scene.regions.clone()
     } else {
@@ -357,6 +365,33 @@ fn reference(
         }
     }
     Ok((image, false))
+}
+
+fn parse_camera(text: &str) -> Result<irradiant_scene::Camera, String> {
+    let numbers: Vec<f32> = text
+        .split(',')
+        .map(|n| n.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("'{text}' is not a camera: write px,py,pz,tx,ty,tz[,fov_degrees]"))?;
+    if !(numbers.len() == 6 || numbers.len() == 7) || numbers.iter().any(|n| !n.is_finite()) {
+        return Err(format!(
+            "'{text}' is not a camera: write six or seven finite numbers, px,py,pz,tx,ty,tz[,fov_degrees]"
+        ));
+    }
+    let camera = irradiant_scene::Camera {
+        position: glam::Vec3::new(numbers[0], numbers[1], numbers[2]),
+        target: glam::Vec3::new(numbers[3], numbers[4], numbers[5]),
+        up: glam::Vec3::Y,
+        fov_y_degrees: numbers.get(6).copied().unwrap_or(45.0),
+    };
+    if camera.position == camera.target
+        || !(camera.fov_y_degrees > 0.5 && camera.fov_y_degrees < 179.0)
+    {
+        return Err(format!(
+            "'{text}': the position must differ from the target and the field of view lie in 0.5…179°"
+        ));
+    }
+    Ok(camera)
 }
 
 /// Runs each technique through the animation, measuring error and flicker per frame.
