@@ -198,32 +198,7 @@ fn compare_into(
     for name in &args.techniques {
         let mut frame =
             FrameRenderer::new(&ctx, &gpu_scene, width, height, FrameSettings::default())?;
-        let mut ddgi = match name.as_str() {
-            "none" => None,
-            other => {
-                let weights = if other == "classic-probes" {
-                    ProbeWeights::Classic
-                } else {
-                    ProbeWeights::Full
-                };
-                let volume = scene
-                    .probe_volumes
-                    .first()
-                    .cloned()
-                    .unwrap_or_else(|| crate::render::default_volume(scene));
-                let mut d = Ddgi::new(
-                    &ctx,
-                    &gpu_scene,
-                    &volume,
-                    &DdgiSettings {
-                        weights,
-                        ..DdgiSettings::balanced()
-                    },
-                )?;
-                d.bind_frame(&ctx, &frame.buffers);
-                Some(d)
-            }
-        };
+        let mut ddgi = make_technique(&ctx, &gpu_scene, scene, name, &frame)?;
         let mut profiler = Profiler::new(&ctx, 32);
         let mut passes = Vec::new();
         for i in 0..args.frames {

@@ -21,6 +21,14 @@ fn irradiant(args: &[&str]) -> (bool, String, String) {
     )
 }
 
+/// An empty folder of its own for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("irradiant-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 fn fails_with(args: &[&str], expected: &str) {
     let (ok, _, stderr) = irradiant(args);
     assert!(!ok, "irradiant {args:?} should fail");
@@ -69,8 +77,7 @@ fn absurd_settings_are_refused() {
 
 #[test]
 fn a_malformed_manifest_names_the_file() {
-    let dir = std::env::temp_dir().join(format!("irradiant-cli-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("test");
     let manifest = dir.join("broken.toml");
     std::fs::write(&manifest, "[mesh\n").unwrap();
     fails_with(
@@ -94,8 +101,7 @@ fn an_unknown_adapter_lists_the_present_ones() {
 /// the atlas dump and the smoke benchmark.
 #[test]
 fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
-    let dir = std::env::temp_dir().join(format!("irradiant-cli-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("render");
     let path = |name: &str| dir.join(name).to_string_lossy().into_owned();
     let (ok, _, stderr) = irradiant(&[
         "render",
@@ -219,8 +225,7 @@ fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
 
 #[test]
 fn compare_refuses_bad_input_and_leaves_nothing_half_written() {
-    let dir = std::env::temp_dir().join(format!("irradiant-cli-compare-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("compare");
     let out = dir.join("report");
     let out_text = out.to_string_lossy().into_owned();
     fails_with(
@@ -252,10 +257,7 @@ fn compare_refuses_bad_input_and_leaves_nothing_half_written() {
 /// Needs the test adapter: a tiny comparison, then the same again from the reference cache.
 #[test]
 fn compare_writes_a_report_and_reuses_the_cached_reference() {
-    let dir =
-        std::env::temp_dir().join(format!("irradiant-cli-compare-run-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("compare-run");
     let out = dir.join("report").to_string_lossy().into_owned();
     let cache = dir.join("cache").to_string_lossy().into_owned();
     let args = [
@@ -337,10 +339,7 @@ fn compare_writes_a_report_and_reuses_the_cached_reference() {
 /// switches off at frame 6 at 6 frames a second) and plots error and flicker over time.
 #[test]
 fn compare_follows_an_animation_and_plots_it() {
-    let dir =
-        std::env::temp_dir().join(format!("irradiant-cli-compare-time-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("compare-time");
     let out = dir.join("report").to_string_lossy().into_owned();
     let cache = dir.join("cache").to_string_lossy().into_owned();
     let manifest = concat!(
