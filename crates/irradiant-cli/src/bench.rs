@@ -49,6 +49,14 @@ pub struct BenchArgs {
     /// DDGI probe rays shade every punctual light instead of one chosen at random.
     #[arg(long)]
     pub ddgi_shade_all_lights: bool,
+    /// Probes per workgroup of ddgi/trace and ddgi/shade to time, comma-separated (powers of
+    /// two up to 64; see DdgiSettings::probes_per_group).
+    #[arg(long, value_delimiter = ',', default_value = "1")]
+    pub ddgi_probes_per_group: Vec<u32>,
+    /// Probe ray orders to time, comma-separated: coherent (sorted into compact patches, the
+    /// default) and/or fibonacci (the plain spiral order).
+    #[arg(long, value_delimiter = ',', default_value = "coherent")]
+    pub ddgi_ray_order: Vec<String>,
     /// Keep traversal stacks in workgroup memory instead of private memory.
     #[arg(long)]
     pub stack_in_workgroup: bool,
@@ -69,6 +77,8 @@ struct DdgiRecord {
     scene: String,
     probes: [u32; 3],
     rays_per_probe: u32,
+    /// How the probe rays were laid out: ray order and probes per workgroup.
+    variant: String,
     rays: u64,
     /// Median milliseconds of each pass of the frame.
     passes: Vec<(String, f64)>,
@@ -233,21 +243,36 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 crate::render::parse_counts(probes).map_err(CliError::Usage)?
             };
             for &rays in &args.ddgi_rays {
-                let settings = DdgiSettings {
-                    rays_per_probe: rays,
-                    shade_all_lights: args.ddgi_shade_all_lights,
-                    ..DdgiSettings::balanced()
-                };
-                record.ddgi.push(time_ddgi(
-                    &ctx,
-                    &scene,
-                    &gpu_scene,
-                    counts,
-                    &settings,
-                    size,
-                    warmup.max(if args.smoke { 1 } else { 5 }),
-                    iterations,
-                )?);
+                for order in &args.ddgi_ray_order {
+                    let coherent_rays = match order.as_str() {
+                        "coherent" => true,
+                        "fibonacci" => false,
+                        other => {
+                            return Err(CliError::Usage(format!(
+                                "unknown ray order {other:?}: use coherent or fibonacci"
+                            )));
+                        }
+                    };
+                    for &probes_per_group in &args.ddgi_probes_per_group {
+                        let settings = DdgiSettings {
+                            rays_per_probe: rays,
+                            shade_all_lights: args.ddgi_shade_all_lights,
+                            coherent_rays,
+                            probes_per_group,
+                            ..DdgiSettings::balanced()
+                        };
+                        record.ddgi.push(time_ddgi(
+                            &ctx,
+                            &scene,
+                            &gpu_scene,
+                            counts,
+                            &settings,
+                            size,
+                            warmup.max(if args.smoke { 1 } else { 5 }),
+                            iterations,
+                        )?);
+                    }
+                }
             }
         }
     }
@@ -370,6 +395,15 @@ fn time_ddgi(
         scene: scene.name.clone(),
         probes: counts,
         rays_per_probe: rays,
+        variant: format!(
+            "{}/{}",
+            if settings.coherent_rays {
+                "coherent"
+            } else {
+                "fibonacci"
+            },
+            settings.probes_per_group
+        ),
         rays: total_rays,
         trace_mrays_per_s: total_rays as f64 / (ms("ddgi/trace") * 1e-3) / 1e6,
         update_ms: update,
@@ -434,8 +468,8 @@ fn print_table(r: &BenchRecord) {
         })
         .collect();
     print!(
-        "\n{:<10} {:<10} {:>5} {:>9}",
-        "scene", "probes", "rays", "Mrays"
+        "\n{:<10} {:<10} {:>5} {:<12} {:>9}",
+        "scene", "probes", "rays", "order/group", "Mrays"
     );
     for l in &labels {
         print!(" {:>12}", l);
@@ -446,10 +480,11 @@ fn print_table(r: &BenchRecord) {
     );
     for d in &r.ddgi {
         print!(
-            "{:<10} {:<10} {:>5} {:>9.2}",
+            "{:<10} {:<10} {:>5} {:<12} {:>9.2}",
             d.scene,
             format!("{}x{}x{}", d.probes[0], d.probes[1], d.probes[2]),
             d.rays_per_probe,
+            d.variant,
             d.rays as f64 / 1e6
         );
         for (_, ms) in &d.passes {

@@ -8,6 +8,23 @@
 @group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
 @group(1) @binding(8) var<storage, read_write> distance_atlas: array<vec2<f32>>;
 
+// cos^distance_exponent. A whole exponent (DISTANCE_POWER, a shader constant) unrolls into
+// squarings and products; pow costs two special-function operations, which are scarce.
+fn cosine_power(c: f32) -> f32 {
+    if DISTANCE_POWER == 0u {
+        return pow(c, volume.distance_exponent);
+    }
+    var result = 1.0;
+    var square = c;
+    for (var bit = 0u; bit < 8u; bit++) {
+        if (DISTANCE_POWER & (1u << bit)) != 0u {
+            result *= square;
+        }
+        square *= square;
+    }
+    return result;
+}
+
 const CACHE: u32 = BLEND_GROUP * BLEND_GROUP;
 var<workgroup> cache_direction: array<vec4<f32>, CACHE>;
 
@@ -31,7 +48,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         let n = min(CACHE, m - base);
         for (var k = 0u; k < n; k++) {
             let c = cache_direction[k];
-            let w = pow(max(0.0, dot(texel_dir, c.xyz)), volume.distance_exponent);
+            let w = cosine_power(max(0.0, dot(texel_dir, c.xyz)));
             sum += w * vec2<f32>(c.w, c.w * c.w);
             weight_sum += w;
         }

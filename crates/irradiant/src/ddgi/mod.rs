@@ -69,6 +69,14 @@ pub struct DdgiSettings {
     /// ray per probe ray however many lights there are; the extra noise grows with the light
     /// count and the hysteresis averages it away.
     pub shade_all_lights: bool,
+    /// Trace the ray set in an order where neighbouring rays point in neighbouring directions
+    /// (octahedral::probe_ray_set), so that a GPU warp's rays walk the same BVH nodes. The set
+    /// and the result are the same either way; off exists only to measure what it buys.
+    pub coherent_rays: bool,
+    /// Probes that share one 64-thread workgroup of ddgi/trace and ddgi/shade (1, 2, 4, … 64):
+    /// 1 gives each warp a cone of 32 rays from one probe; more give it near-parallel rays from
+    /// neighbouring probes. Only speed differs; BENCHMARKS.md says which is faster where.
+    pub probes_per_group: u32,
     /// Seed of the per-frame random rotation of the ray set.
     pub seed: u32,
 }
@@ -106,6 +114,8 @@ impl DdgiSettings {
             convergence_heuristics: true,
             relocation: true,
             shade_all_lights: false,
+            coherent_rays: true,
+            probes_per_group: 1,
             seed: 0,
         }
     }
@@ -148,6 +158,12 @@ impl DdgiSettings {
             .is_some_and(|d| !(d.is_finite() && d > 0.0))
         {
             return Err("max ray distance must be a positive number".into());
+        }
+        if !(self.probes_per_group.is_power_of_two() && self.probes_per_group <= 64) {
+            return Err(format!(
+                "probes per group {} must be a power of two from 1 to 64",
+                self.probes_per_group
+            ));
         }
         if !(self.self_shadow_bias.is_finite() && self.self_shadow_bias >= 0.0) {
             return Err("self-shadow bias must be ≥ 0".into());

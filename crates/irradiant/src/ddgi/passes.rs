@@ -66,21 +66,24 @@ impl Ddgi {
             .max_ray_distance
             .unwrap_or((desc.max - desc.min).length().max(1e-3) * 1.5);
         let r = &resources;
+        let ddgi_constants = ddgi_shader_constants(settings);
         // Bindings, by the names in the WGSL: 0 volume, 1 irradiance (read), 2 distance (read),
         // 3 directions, 4 hits, 6 samples, 7 irradiance (write), 8 distance (write),
-        // 9 gbuffer, 10 indirect, 11 frame, 12 radiance.
+        // 9 gbuffer, 10 indirect, 11 frame, 12 radiance, 13 offsets (write), 14 ray set.
         let make = |label: &'static str,
                     source: &str,
                     entries: &[(u32, wgpu::BufferBindingType)],
                     constants: &[(&str, String)]| {
             let group_layout = buffer_layout(device, label, entries);
-            let stage = ComputeStage::tracing(ctx, scene, label, source, constants, &group_layout)?;
+            let mut all = ddgi_constants.clone();
+            all.extend(constants.iter().cloned());
+            let stage = ComputeStage::tracing(ctx, scene, label, source, &all, &group_layout)?;
             Ok::<_, RenderError>((stage, group_layout))
         };
         let (ray_directions, l_dirs) = make(
             "ddgi/ray_directions",
             include_str!("ray_directions.wgsl"),
-            &[(0, UNIFORM), (3, STORAGE_WRITE)],
+            &[(0, UNIFORM), (3, STORAGE_WRITE), (14, STORAGE_READ)],
             &[],
         )?;
         let (trace, l_trace) = make(
@@ -182,7 +185,7 @@ impl Ddgi {
                 device,
                 "ddgi/ray_directions",
                 &l_dirs,
-                &[(0, &r.volume), (3, &r.directions)],
+                &[(0, &r.volume), (3, &r.directions), (14, &r.ray_set)],
             ),
             trace: bind_at(
                 device,
@@ -374,8 +377,10 @@ impl Ddgi {
         scene: &GpuScene,
         mut profiler: Option<&mut Profiler>,
     ) {
-        let rays = self.layout.probe_count * self.settings.rays_per_probe;
         let g = &self.groups;
+        let per_group = self.settings.probes_per_group;
+        let ray_groups = self.layout.probe_count.div_ceil(per_group)
+            * self.settings.rays_per_probe.div_ceil(64 / per_group);
         let s = &scene.bind_group;
         self.ray_directions.dispatch(
             encoder,
@@ -387,13 +392,13 @@ impl Ddgi {
             encoder,
             profiler.as_deref_mut(),
             &[s, &g.trace],
-            fold_groups(rays.div_ceil(64)),
+            fold_groups(ray_groups),
         );
         self.shade.dispatch(
             encoder,
             profiler.as_deref_mut(),
             &[s, &g.shade],
-            fold_groups(rays.div_ceil(64)),
+            fold_groups(ray_groups),
         );
         if self.relocating() {
             if self.relocation_pending {
@@ -562,6 +567,25 @@ pub struct Atlases {
 }
 
 /// IEEE half to f32 (the atlases pack f16 pairs with WGSL's pack2x16float).
+/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl) and, for
+/// ddgi/blend_distance, DISTANCE_POWER: the distance exponent when it is a whole number up to
+/// 255 (the cosine power then unrolls into multiplications, much cheaper than pow's log and
+/// exp), else 0 (pow).
+fn ddgi_shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
+    let e = settings.distance_exponent;
+    let integral = e.fract() == 0.0 && (1.0..=255.0).contains(&e);
+    vec![
+        (
+            "PROBES_PER_GROUP",
+            format!("{}u", settings.probes_per_group),
+        ),
+        (
+            "DISTANCE_POWER",
+            format!("{}u", if integral { e as u32 } else { 0 }),
+        ),
+    ]
+}
+
 pub fn half_to_f32(h: u16) -> f32 {
     let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
     let exponent = ((h >> 10) & 0x1f) as i32;

@@ -15,7 +15,27 @@ struct GpuDdgiRaySample {
     distance: f32,
 }
 
-// Rays of a dispatch are laid out probe-major: ray r of probe p is p × rays_per_probe + r.
-fn ray_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
-    return id.x + id.y * groups.x * 64u;
+// Rays are stored probe-major: ray r of probe p is p × rays_per_probe + r.
+struct RaySlot {
+    probe: u32,
+    ray: u32,
+    index: u32,
+    valid: bool,
+}
+
+// Which ray a thread of ddgi/trace or ddgi/shade takes. A 64-thread workgroup takes
+// PROBES_PER_GROUP neighbouring probes (a shader constant from DdgiSettings) and
+// 64 / PROBES_PER_GROUP neighbouring rays of each, interleaved so that a warp holds the
+// same rays of all its probes: near-parallel rays from nearby origins, or with one probe a
+// cone of rays from one origin.
+fn ray_slot(group: vec3<u32>, groups: vec3<u32>, local_index: u32) -> RaySlot {
+    let rays_per_group = 64u / PROBES_PER_GROUP;
+    let ray_blocks = (volume.rays_per_probe + rays_per_group - 1u) / rays_per_group;
+    let linear = group.x + group.y * groups.x;
+    var slot: RaySlot;
+    slot.probe = (linear / ray_blocks) * PROBES_PER_GROUP + local_index % PROBES_PER_GROUP;
+    slot.ray = (linear % ray_blocks) * rays_per_group + local_index / PROBES_PER_GROUP;
+    slot.index = slot.probe * volume.rays_per_probe + slot.ray;
+    slot.valid = slot.probe < volume.probe_count && slot.ray < volume.rays_per_probe;
+    return slot;
 }

@@ -67,6 +67,8 @@ impl VolumeLayout {
 
 pub struct DdgiResources {
     pub volume: wgpu::Buffer,
+    /// The ray set before rotation, uploaded once (vec4 a ray, in trace order).
+    pub ray_set: wgpu::Buffer,
     /// The rotated ray set of this frame (vec4 a ray).
     pub directions: wgpu::Buffer,
     pub hits: wgpu::Buffer,
@@ -105,7 +107,17 @@ impl DdgiResources {
             }
         }
         let device = &ctx.device;
+        let ray_set: Vec<[f32; 4]> =
+            super::octahedral::probe_ray_set(settings.rays_per_probe, settings.coherent_rays)
+                .iter()
+                .map(|d| d.extend(0.0).to_array())
+                .collect();
+        let ray_set_buffer =
+            storage_buffer(device, "ddgi/ray_set", settings.rays_per_probe as u64 * 16);
+        ctx.queue
+            .write_buffer(&ray_set_buffer, 0, bytemuck::cast_slice(&ray_set));
         Ok(Self {
+            ray_set: ray_set_buffer,
             volume: uniform_buffer(
                 device,
                 "ddgi/volume",

@@ -12,14 +12,15 @@
 @group(1) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
 
 @compute @workgroup_size(64, 1, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
-    let index = ray_index(id, groups);
-    if index >= volume.probe_count * volume.rays_per_probe {
+    let slot = ray_slot(group, groups, local_index);
+    if !slot.valid {
         return;
     }
-    let probe = index / volume.rays_per_probe;
-    let dir = directions[index % volume.rays_per_probe].xyz;
+    let index = slot.index;
+    let probe = slot.probe;
+    let dir = directions[slot.ray].xyz;
     let hit = hits[index];
     var out: GpuDdgiRaySample;
     if hit.t < 0.0 {

@@ -17,11 +17,3 @@ fn oct_decode(p: vec2<f32>) -> vec3<f32> {
     }
     return normalize(n);
 }
-
-// Spherical Fibonacci point i of n: an almost uniform set of directions.
-fn spherical_fibonacci(i: f32, n: f32) -> vec3<f32> {
-    let phi = 6.28318530717959 * fract(i * 0.618033988749895);
-    let cos_theta = 1.0 - (2.0 * i + 1.0) / n;
-    let sin_theta = sqrt(saturate(1.0 - cos_theta * cos_theta));
-    return vec3<f32>(cos(phi) * sin_theta, sin(phi) * sin_theta, cos_theta);
-}

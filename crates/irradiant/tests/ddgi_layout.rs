@@ -1,0 +1,53 @@
+//! The probe rays' layout on the GPU (ray order, probes per workgroup) changes speed only: the
+//! same rays give the same light.
+
+mod common;
+
+use common::*;
+use irradiant::ddgi::DdgiSettings;
+
+fn luminance(image: &irradiant::frame::Image) -> f64 {
+    masked_mean(image, &vec![true; image.pixels.len()])
+}
+
+fn settings(coherent_rays: bool, probes_per_group: u32) -> DdgiSettings {
+    DdgiSettings {
+        // Not a multiple of 64: the last workgroup of each probe is partly idle.
+        rays_per_probe: 100,
+        coherent_rays,
+        probes_per_group,
+        ..DdgiSettings::balanced()
+    }
+}
+
+#[test]
+fn probes_per_group_trace_the_same_rays() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let reference = render_frames(&ctx, &scene, (24, 24), Some(&settings(true, 1)), 3).indirect;
+    assert!(luminance(&reference) > 0.01, "no indirect light to compare");
+    for per_group in [4, 64] {
+        let grouped = render_frames(&ctx, &scene, (24, 24), Some(&settings(true, per_group)), 3);
+        // Each ray keeps its slot (and so its random numbers): results match to the bit.
+        assert_eq!(
+            grouped.indirect.pixels, reference.pixels,
+            "{per_group} probes a workgroup changed the light"
+        );
+    }
+}
+
+#[test]
+fn coherent_order_converges_to_the_same_light() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let fibonacci = render_frames(&ctx, &scene, (32, 32), Some(&settings(false, 1)), 30);
+    let coherent = render_frames(&ctx, &scene, (32, 32), Some(&settings(true, 1)), 30);
+    let (a, b) = (
+        luminance(&fibonacci.indirect),
+        luminance(&coherent.indirect),
+    );
+    // Same directions, shaded with different random numbers: the means differ by noise only
+    // (1.2 % measured on lavapipe; another seed of the plain order differs by 0.7 %). Rays
+    // paired with the wrong directions would be off by far more.
+    assert!((a - b).abs() < 0.05 * a, "fibonacci {a} vs coherent {b}");
+}
