@@ -6,8 +6,10 @@
 //! instance moves (a handful of boxes: microseconds), so objects move without touching
 //! their bottom-level trees.
 //!
-//! Both levels share one node format, [`GpuBvhNode`], that stores the boxes of *both*
-//! children in the parent: a traversal step tests two boxes with one 64-byte load.
+//! The top level, and the bottom level in its binary layout, use [`GpuBvhNode`], which stores
+//! the boxes of *both* children in the parent: a traversal step tests two boxes with one
+//! 64-byte load. The bottom level's wide layout ([`GpuWideBvhNode`], the default) is obvhs'
+//! compressed 8-wide BVH: eight quantised boxes in 80 bytes.
 
 use std::time::Duration;
 
@@ -16,7 +18,9 @@ use glam::{Mat4, Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::Bvh2, triangle::Triangle};
 
 mod cpu_trace;
+mod wide;
 pub use cpu_trace::{CpuHit, brute_force_closest_hit, intersect_triangle, traverse_packed};
+pub use wide::{GpuWideBvhNode, WideBlas, build_wide_blas};
 
 /// One inner node of a BVH2, holding the bounds of its two children.
 ///

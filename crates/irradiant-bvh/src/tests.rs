@@ -153,3 +153,40 @@ fn transformed_bounds_contain_rotated_corners() {
         assert!(w.cmpge(lo - 1e-5).all() && w.cmple(hi + 1e-5).all());
     }
 }
+
+#[test]
+fn wide_tree_leaves_cover_every_triangle_and_contain_it() {
+    let mut rng = StdRng::seed_from_u64(9);
+    for quality in [BuildQuality::Fast, BuildQuality::Balanced] {
+        let tris = random_soup(&mut rng, 3000);
+        let mut blas = build_wide_blas(&tris, quality);
+        // Shifting indices (several meshes share the GPU arrays) moves every leaf slot.
+        blas.offset(5, 100);
+        let leaves = blas.leaves();
+        let mut seen = vec![false; tris.len()];
+        for &(slot, (lo, hi)) in &leaves {
+            let triangle = blas.triangle_order[(slot - 100) as usize] as usize;
+            seen[triangle] = true;
+            for v in tris[triangle] {
+                // Quantised boxes are rounded outwards, so each contains its exact box.
+                assert!(
+                    v.cmpge(lo - 1e-4).all() && v.cmple(hi + 1e-4).all(),
+                    "{quality:?}: triangle {triangle} pokes out of its leaf box {lo}…{hi}"
+                );
+            }
+        }
+        assert!(
+            seen.iter().all(|&s| s),
+            "{quality:?}: a triangle no leaf holds"
+        );
+        for node in &blas.nodes {
+            for slot in 0..8 {
+                if node.imask() & (1 << slot) != 0 {
+                    let child = node.inner_child(slot);
+                    assert!((5..5 + blas.nodes.len() as u32).contains(&child));
+                }
+            }
+        }
+        assert!(blas.depth >= 3 && blas.depth < 20, "depth {}", blas.depth);
+    }
+}

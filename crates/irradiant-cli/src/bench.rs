@@ -57,9 +57,35 @@ pub struct BenchArgs {
     /// default) and/or fibonacci (the plain spiral order).
     #[arg(long, value_delimiter = ',', default_value = "coherent")]
     pub ddgi_ray_order: Vec<String>,
-    /// Keep traversal stacks in workgroup memory instead of private memory.
+    /// Probe states to time with, comma-separated: on (the default: probes in walls switch off
+    /// and probes far from geometry sleep, 003 §6) and/or off (every probe traces every frame).
+    #[arg(long, value_delimiter = ',', default_value = "on")]
+    pub ddgi_probe_states: Vec<String>,
+    /// DDGI weights to time with (the Figure 7 ladder; classic skips the visibility lookups).
+    #[arg(long, value_enum, default_value = "full")]
+    pub ddgi_weights: crate::render::Weights,
+    /// BVH build effort: fast, balanced (the default) or quality (spatial pre-splits).
+    #[arg(long, value_enum, default_value = "balanced")]
+    pub bvh_quality: BvhQuality,
+    /// Bottom-level BVH layout: wide (compressed 8-wide nodes, the default) or binary.
+    #[arg(long, value_enum, default_value = "wide")]
+    pub blas_layout: BlasLayoutArg,
+    /// Keep traversal stacks in workgroup memory instead of private memory (binary layout).
     #[arg(long)]
     pub stack_in_workgroup: bool,
+}
+
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum BlasLayoutArg {
+    Binary,
+    Wide,
+}
+
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum BvhQuality {
+    Fast,
+    Balanced,
+    Quality,
 }
 
 #[derive(Serialize)]
@@ -80,13 +106,21 @@ struct DdgiRecord {
     /// How the probe rays were laid out: ray order and probes per workgroup.
     variant: String,
     rays: u64,
+    /// Probes that traced rays in the timed frames (all of them with probe states off).
+    updating_probes: u32,
+    /// Rays actually traced a frame: updating probes × rays per probe.
+    traced_rays: u64,
     /// Median milliseconds of each pass of the frame.
     passes: Vec<(String, f64)>,
     /// ddgi/trace alone.
     trace_mrays_per_s: f64,
-    /// ray directions + trace + shade + blends + borders.
+    /// Every ddgi/ pass but resolve: ray directions, trace, shade, blend weights, blends,
+    /// probe states (and relocation in the frames it runs).
     update_ms: f64,
+    /// Every probe's rays (probes × rays per probe) ÷ update time: the paper's Table 2 figure.
     update_mrays_per_s: f64,
+    /// Rays actually traced ÷ update time (lower than the above when probes sleep).
+    update_traced_mrays_per_s: f64,
     /// update + resolve: all of the frame's GI work.
     gi_ms: f64,
     frame_ms: f64,
@@ -155,6 +189,15 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             &scene,
             &GpuSceneSettings {
                 stack_in_workgroup: args.stack_in_workgroup,
+                blas_layout: match args.blas_layout {
+                    BlasLayoutArg::Binary => irradiant::BlasLayout::Binary,
+                    BlasLayoutArg::Wide => irradiant::BlasLayout::Wide,
+                },
+                bvh_quality: match args.bvh_quality {
+                    BvhQuality::Fast => irradiant::BuildQuality::Fast,
+                    BvhQuality::Balanced => irradiant::BuildQuality::Balanced,
+                    BvhQuality::Quality => irradiant::BuildQuality::Quality,
+                },
                 ..GpuSceneSettings::default()
             },
         )?;
@@ -253,12 +296,27 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                             )));
                         }
                     };
-                    for &probes_per_group in &args.ddgi_probes_per_group {
+                    for (states, &probes_per_group) in args
+                        .ddgi_probe_states
+                        .iter()
+                        .flat_map(|s| args.ddgi_probes_per_group.iter().map(move |p| (s, p)))
+                    {
+                        let probe_states = match states.as_str() {
+                            "on" => true,
+                            "off" => false,
+                            other => {
+                                return Err(CliError::Usage(format!(
+                                    "unknown --ddgi-probe-states {other:?}: use on or off"
+                                )));
+                            }
+                        };
                         let settings = DdgiSettings {
+                            probe_states,
                             rays_per_probe: rays,
                             shade_all_lights: args.ddgi_shade_all_lights,
                             coherent_rays,
                             probes_per_group,
+                            weights: crate::render::probe_weights(args.ddgi_weights),
                             ..DdgiSettings::balanced()
                         };
                         record.ddgi.push(time_ddgi(
@@ -268,7 +326,13 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                             counts,
                             &settings,
                             size,
-                            warmup.max(if args.smoke { 1 } else { 5 }),
+                            // The first configuration also warms the GPU up from idle
+                            // (seen on an H200: its first frames ran 5× slow).
+                            warmup.max(match (args.smoke, record.ddgi.is_empty()) {
+                                (true, _) => 1,
+                                (false, true) => 60,
+                                (false, false) => 5,
+                            }),
                             iterations,
                         )?);
                     }
@@ -384,30 +448,38 @@ fn time_ddgi(
         "ddgi/shade",
         "ddgi/blend_irradiance",
         "ddgi/blend_distance",
-        "ddgi/borders",
+        "ddgi/blend_weights",
+        "ddgi/relocate",
+        "ddgi/probe_states",
     ]
     .iter()
     .map(|l| ms(l))
     .sum();
     let total_rays = (counts[0] * counts[1] * counts[2]) as u64 * rays as u64;
+    let updating_probes = ddgi.read_state_counts(ctx)?.updating();
+    let traced_rays = updating_probes as u64 * rays as u64;
     let gi = update + ms("ddgi/resolve");
     Ok(DdgiRecord {
         scene: scene.name.clone(),
         probes: counts,
         rays_per_probe: rays,
         variant: format!(
-            "{}/{}",
+            "{}/{}{}",
             if settings.coherent_rays {
                 "coherent"
             } else {
                 "fibonacci"
             },
-            settings.probes_per_group
+            settings.probes_per_group,
+            if settings.probe_states { "/states" } else { "" }
         ),
         rays: total_rays,
+        updating_probes,
+        traced_rays,
         trace_mrays_per_s: total_rays as f64 / (ms("ddgi/trace") * 1e-3) / 1e6,
         update_ms: update,
         update_mrays_per_s: total_rays as f64 / (update * 1e-3) / 1e6,
+        update_traced_mrays_per_s: traced_rays as f64 / (update * 1e-3) / 1e6,
         gi_ms: gi,
         frame_ms: passes.iter().map(|p| p.1).sum(),
         passes,
@@ -468,19 +540,19 @@ fn print_table(r: &BenchRecord) {
         })
         .collect();
     print!(
-        "\n{:<10} {:<10} {:>5} {:<12} {:>9}",
-        "scene", "probes", "rays", "order/group", "Mrays"
+        "\n{:<10} {:<10} {:>5} {:<19} {:>9}",
+        "scene", "probes", "rays", "variant", "Mrays"
     );
     for l in &labels {
         print!(" {:>12}", l);
     }
     println!(
-        " {:>10} {:>12} {:>10} {:>12} {:>9}",
-        "update ms", "update Mr/s", "trace Mr/s", "GI ms", "frame ms"
+        " {:>10} {:>12} {:>10} {:>12} {:>9} {:>9}",
+        "update ms", "update Mr/s", "trace Mr/s", "GI ms", "frame ms", "updating"
     );
     for d in &r.ddgi {
         print!(
-            "{:<10} {:<10} {:>5} {:<12} {:>9.2}",
+            "{:<10} {:<10} {:>5} {:<19} {:>9.2}",
             d.scene,
             format!("{}x{}x{}", d.probes[0], d.probes[1], d.probes[2]),
             d.rays_per_probe,
@@ -491,8 +563,13 @@ fn print_table(r: &BenchRecord) {
             print!(" {:>12.3}", ms);
         }
         println!(
-            " {:>10.3} {:>12.0} {:>10.0} {:>12.3} {:>9.3}",
-            d.update_ms, d.update_mrays_per_s, d.trace_mrays_per_s, d.gi_ms, d.frame_ms
+            " {:>10.3} {:>12.0} {:>10.0} {:>12.3} {:>9.3} {:>9}",
+            d.update_ms,
+            d.update_mrays_per_s,
+            d.trace_mrays_per_s,
+            d.gi_ms,
+            d.frame_ms,
+            d.updating_probes
         );
     }
 }

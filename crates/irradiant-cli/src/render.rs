@@ -317,18 +317,22 @@ fn path_settings(args: &RenderArgs) -> Result<PathTraceSettings, CliError> {
     Ok(settings)
 }
 
+pub fn probe_weights(weights: Weights) -> ProbeWeights {
+    match weights {
+        Weights::Classic => ProbeWeights::Classic,
+        Weights::Backface => ProbeWeights::Backface,
+        Weights::Chebyshev => ProbeWeights::Chebyshev,
+        Weights::Full => ProbeWeights::Full,
+    }
+}
+
 fn ddgi_settings(args: &RenderArgs) -> Result<DdgiSettings, CliError> {
     let mut s = match args.preset {
         Preset::Fast => DdgiSettings::fast(),
         Preset::Balanced => DdgiSettings::balanced(),
         Preset::Quality => DdgiSettings::quality(),
     };
-    s.weights = match args.ddgi.weights {
-        Weights::Classic => ProbeWeights::Classic,
-        Weights::Backface => ProbeWeights::Backface,
-        Weights::Chebyshev => ProbeWeights::Chebyshev,
-        Weights::Full => ProbeWeights::Full,
-    };
+    s.weights = probe_weights(args.ddgi.weights);
     if let Some(r) = args.ddgi.rays {
         s.rays_per_probe = r;
     }

@@ -83,7 +83,7 @@ pub struct GpuContext {
     lost: Arc<Mutex<Option<String>>>,
 }
 
-/// Storage buffers one shader stage may bind: the scene takes 7, a DDGI pass up to 7 more.
+/// Storage buffers one shader stage may bind: the scene takes 8, a DDGI pass up to 8 more.
 const STORAGE_BUFFERS_NEEDED: u32 = 16;
 
 impl GpuContext {

@@ -4,7 +4,10 @@
 use std::time::{Duration, Instant};
 
 use glam::{Mat4, Vec3};
-use irradiant_bvh::{BuildQuality, GpuBvhNode, build_blas, build_tlas, transform_bounds};
+use irradiant_bvh::{
+    BuildQuality, GpuBvhNode, GpuWideBvhNode, build_blas, build_tlas, build_wide_blas,
+    transform_bounds,
+};
 use irradiant_gpu::{GpuContext, wgpu};
 use irradiant_scene::{AlphaMode, LightKind, Pose, Scene};
 use wgpu::util::DeviceExt;
@@ -25,6 +28,20 @@ pub struct GpuSceneSettings {
     /// or a slice of workgroup memory. Which is faster depends on the GPU: on an H200 the
     /// workgroup stack is 1.4–1.7× slower (BENCHMARKS.md), so private is the default.
     pub stack_in_workgroup: bool,
+    /// The bottom-level trees' node layout. Wide (compressed 8-wide nodes) traverses
+    /// incoherent rays faster on the GPUs measured (BENCHMARKS.md) and takes about half the
+    /// node memory; binary is the simpler reference, and the one `stack_in_workgroup` applies to.
+    pub blas_layout: BlasLayout,
+}
+
+/// How the bottom-level trees are laid out for traversal.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BlasLayout {
+    /// Two children's boxes a 64-byte node ([`GpuBvhNode`]).
+    Binary,
+    /// Eight children's quantised boxes an 80-byte node ([`GpuWideBvhNode`], Ylitie et al. 2017).
+    #[default]
+    Wide,
 }
 
 impl Default for GpuSceneSettings {
@@ -33,6 +50,7 @@ impl Default for GpuSceneSettings {
             texture_size: 512,
             bvh_quality: BuildQuality::Balanced,
             stack_in_workgroup: false,
+            blas_layout: BlasLayout::Wide,
         }
     }
 }
@@ -83,10 +101,15 @@ pub struct GpuScene {
     pub instance_order: Vec<u32>,
     /// Last uploaded transforms, in scene order (motion vectors).
     previous_transforms: Vec<Mat4>,
+    /// Per scene instance: whether an animation moves it.
+    animated: Vec<bool>,
+    /// Per scene instance: world-space bounds at the last uploaded pose.
+    instance_bounds: Vec<(Vec3, Vec3)>,
     /// Depth of the top-level traversal stack: enough for any tree over the instances that
     /// PLOC builds in practice (it is rebuilt each frame, so its depth varies).
     tlas_stack: u32,
     stack_in_workgroup: bool,
+    blas_layout: BlasLayout,
     pub triangle_sources: Vec<TriangleSource>,
     pub stats: GpuSceneStats,
 }
@@ -113,6 +136,7 @@ impl GpuScene {
         let device = &ctx.device;
         let start = Instant::now();
         let mut nodes: Vec<GpuBvhNode> = Vec::new();
+        let mut wide_nodes: Vec<GpuWideBvhNode> = Vec::new();
         let mut triangles: Vec<GpuTriangle> = Vec::new();
         let mut shading: Vec<GpuTriangleShading> = Vec::new();
         let mut triangle_sources = Vec::new();
@@ -134,15 +158,29 @@ impl GpuScene {
                 mesh_emitters.push(Vec::new());
                 continue;
             }
-            let mut blas = build_blas(&tris, settings.bvh_quality);
-            max_depth = max_depth.max(blas.depth);
-            let node_base = nodes.len() as u32;
             let slot_base = triangles.len() as u32;
-            blas.offset(node_base, slot_base);
-            nodes.extend_from_slice(&blas.nodes);
-            blas_roots.push((node_base, blas.bounds));
+            let triangle_order = match settings.blas_layout {
+                BlasLayout::Binary => {
+                    let mut blas = build_blas(&tris, settings.bvh_quality);
+                    let node_base = nodes.len() as u32;
+                    blas.offset(node_base, slot_base);
+                    nodes.extend_from_slice(&blas.nodes);
+                    max_depth = max_depth.max(blas.depth);
+                    blas_roots.push((node_base, blas.bounds));
+                    blas.triangle_order
+                }
+                BlasLayout::Wide => {
+                    let mut blas = build_wide_blas(&tris, settings.bvh_quality);
+                    let node_base = wide_nodes.len() as u32;
+                    blas.offset(node_base, slot_base);
+                    wide_nodes.extend_from_slice(&blas.nodes);
+                    max_depth = max_depth.max(blas.depth);
+                    blas_roots.push((node_base, blas.bounds));
+                    blas.triangle_order
+                }
+            };
             let mut emissive = Vec::new();
-            for &t in &blas.triangle_order {
+            for &t in &triangle_order {
                 let [a, b, c] = tris[t as usize];
                 let material = mesh.triangle_materials[t as usize];
                 let emission = scene.materials[material as usize].emission;
@@ -218,6 +256,10 @@ impl GpuScene {
             )
         };
         let nodes_buffer = buffer("scene/bvh_nodes", bytemuck::cast_slice(&nodes))?;
+        if wide_nodes.is_empty() {
+            wide_nodes.push(<GpuWideBvhNode as bytemuck::Zeroable>::zeroed());
+        }
+        let wide_nodes_buffer = buffer("scene/wide_bvh_nodes", bytemuck::cast_slice(&wide_nodes))?;
         let triangles_buffer = buffer("scene/triangles", bytemuck::cast_slice(&triangles))?;
         let shading_buffer = buffer("scene/triangle_shading", bytemuck::cast_slice(&shading))?;
         let instances = buffer(
@@ -277,10 +319,12 @@ impl GpuScene {
                     binding: 9,
                     resource: wgpu::BindingResource::Sampler(&sampler),
                 },
+                entry(10, &wide_nodes_buffer),
             ],
         });
         let gpu_bytes = [
             &nodes_buffer,
+            &wide_nodes_buffer,
             &triangles_buffer,
             &shading_buffer,
             &instances,
@@ -308,12 +352,23 @@ impl GpuScene {
             sky: scene.sky,
             instance_order: Vec::new(),
             previous_transforms: Vec::new(),
+            animated: scene
+                .instances
+                .iter()
+                .map(|instance| {
+                    scene.animations.iter().any(|a| {
+                        matches!(&a.target, irradiant_scene::AnimationTarget::Instance(name) if *name == instance.name)
+                    })
+                })
+                .collect(),
+            instance_bounds: Vec::new(),
             stack_in_workgroup: settings.stack_in_workgroup,
+            blas_layout: settings.blas_layout,
             tlas_stack: (2 * (scene.instances.len().max(2) as f32).log2().ceil() as u32 + 4)
                 .min(scene.instances.len() as u32 + 2),
             stats: GpuSceneStats {
                 triangles: triangles.len(),
-                bvh_nodes: nodes.len(),
+                bvh_nodes: nodes.len() + wide_nodes.len(),
                 bvh_build,
                 max_blas_depth: max_depth,
                 texture_layers,
@@ -336,7 +391,14 @@ impl GpuScene {
             ("TLAS_STACK_SIZE", format!("{}u", self.tlas_stack)),
             (
                 "STACK_IN_WORKGROUP",
-                format!("{}u", self.stack_in_workgroup as u32),
+                format!(
+                    "{}u",
+                    (self.stack_in_workgroup && self.blas_layout == BlasLayout::Binary) as u32
+                ),
+            ),
+            (
+                "BLAS_WIDE",
+                format!("{}u", (self.blas_layout == BlasLayout::Wide) as u32),
             ),
         ]
     }
@@ -429,6 +491,18 @@ impl GpuScene {
         queue.write_buffer(&self.info, 0, bytemuck::bytes_of(&info));
         self.instance_order = tlas.instance_order;
         self.previous_transforms = pose.instance_transforms.clone();
+        self.instance_bounds = boxes;
+    }
+
+    /// World-space bounds of every instance an animation moves, at the current pose: where
+    /// geometry may appear that the static scene does not have (DDGI wakes probes there).
+    pub fn dynamic_bounds(&self) -> Vec<(Vec3, Vec3)> {
+        self.instance_bounds
+            .iter()
+            .zip(&self.animated)
+            .filter(|(_, animated)| **animated)
+            .map(|(bounds, _)| *bounds)
+            .collect()
     }
 }
 
@@ -569,6 +643,7 @@ pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
                 ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                 count: None,
             },
+            storage(10), // wide_nodes
         ],
     })
 }

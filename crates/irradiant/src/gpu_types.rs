@@ -4,7 +4,7 @@
 use bytemuck::{Pod, Zeroable};
 use irradiant_gpu::{Expected, gpu_layout};
 
-pub use irradiant_bvh::GpuBvhNode;
+pub use irradiant_bvh::{GpuBvhNode, GpuWideBvhNode};
 
 /// Triangle flag: the material is alpha-masked and textured, so hits test the texture.
 pub const TRIANGLE_ALPHA_TESTED: u32 = 1;
@@ -276,8 +276,11 @@ pub struct GpuDdgiVolume {
     pub relocating: u32,
     /// 1: probe rays shade every punctual light; 0: one chosen at random.
     pub all_lights: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+    /// `STATES_*` of `ddgi/states.wgsl`: off, classifying, classifying for the last time, or
+    /// classified (probes sleep and wake).
+    pub state_phase: u32,
+    /// Boxes in the wake-box buffer (around animated instances).
+    pub wake_box_count: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiVolume>() == 160);
 
@@ -299,6 +302,15 @@ pub struct GpuDdgiRaySample {
     pub distance: f32,
 }
 
+/// One ray's weight in one texel's blend (ddgi/blend_weights.wgsl); a texel's header entry
+/// holds its entry count in `ray` and their weight sum in `weight`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuDdgiBlendWeight {
+    pub ray: u32,
+    pub weight: f32,
+}
+
 /// Every GPU struct with its expected layout, for the WGSL check.
 pub fn all_layouts() -> Vec<Expected> {
     vec![
@@ -311,6 +323,19 @@ pub fn all_layouts() -> Vec<Expected> {
             b_first,
             b_max,
             b_count
+        }),
+        gpu_layout!(GpuWideBvhNode {
+            origin,
+            exponents_imask,
+            child_base,
+            primitive_base,
+            child_meta,
+            q_min_x,
+            q_max_x,
+            q_min_y,
+            q_max_y,
+            q_min_z,
+            q_max_z
         }),
         gpu_layout!(GpuTriangle {
             v0,
@@ -473,8 +498,8 @@ pub fn all_layouts() -> Vec<Expected> {
             convergence_heuristics,
             relocating,
             all_lights,
-            _pad1,
-            _pad2
+            state_phase,
+            wake_box_count
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,
@@ -483,5 +508,6 @@ pub fn all_layouts() -> Vec<Expected> {
             bary
         }),
         gpu_layout!(GpuDdgiRaySample { radiance, distance }),
+        gpu_layout!(GpuDdgiBlendWeight { ray, weight }),
     ]
 }

@@ -14,7 +14,8 @@ mod pipeline;
 pub mod raycast;
 pub mod shaders;
 
-pub use gpu_scene::{GpuScene, GpuSceneSettings};
+pub use gpu_scene::{BlasLayout, GpuScene, GpuSceneSettings};
+pub use irradiant_bvh::BuildQuality;
 pub use irradiant_gpu::{AdapterChoice, GpuContext, GpuError};
 
 use std::path::PathBuf;

@@ -134,6 +134,10 @@ fn blend_and_borders_match_the_cpu_oracle() {
             bytemuck::cast_slice(&rays.samples),
         );
         ddgi.frame = frame;
+        // Every probe vigilant (state 0), having blended `frame` times (ddgi/states.wgsl).
+        let states = vec![frame << 8; probes];
+        ctx.queue
+            .write_buffer(&ddgi.resources.states, 0, bytemuck::cast_slice(&states));
         ddgi.prepare(&ctx);
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         ddgi.record_blend(&mut encoder, &gpu_scene, None);

@@ -8,7 +8,7 @@ use glam::{Mat4, Vec3};
 use irradiant::GpuScene;
 use irradiant::ddgi::{Ddgi, DdgiSettings};
 use irradiant::frame::{FrameRenderer, FrameSettings, Technique, apply_pose};
-use irradiant_scene::{Animation, AnimationTarget, Instance, Scene, Tracks};
+use irradiant_scene::{Animation, AnimationTarget, Scene, Tracks};
 
 /// Renders an animated scene at 60 frames a second and returns, per frame, the mean indirect
 /// luminance over the pixels of `region` (as seen in the first frame).
@@ -120,46 +120,7 @@ fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag(
 fn a_moving_object_changes_the_indirect_light_as_a_fresh_render_would() {
     let Some(ctx) = gpu() else { return };
     // The Cornell box with a red block that slides from the left wall to the right one.
-    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
-    let block = scene.meshes.len() as u32;
-    let mut mesh = irradiant_scene::Mesh {
-        name: "block".into(),
-        ..Default::default()
-    };
-    let red = scene
-        .materials
-        .iter()
-        .position(|m| m.name == "red")
-        .unwrap() as u32;
-    for (i, face) in [
-        [0, 1, 2, 3],
-        [5, 4, 7, 6],
-        [4, 0, 3, 7],
-        [1, 5, 6, 2],
-        [3, 2, 6, 7],
-        [4, 5, 1, 0],
-    ]
-    .iter()
-    .enumerate()
-    {
-        let corners: Vec<Vec3> = (0..8)
-            .map(|c| Vec3::new((c & 1) as f32, ((c >> 1) & 1) as f32, ((c >> 2) & 1) as f32) - 0.5)
-            .collect();
-        let order = [0, 1, 3, 2, 4, 5, 7, 6];
-        let base = mesh.positions.len() as u32;
-        mesh.positions
-            .extend(face.iter().map(|&k| corners[order[k]] * 0.5));
-        mesh.indices
-            .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
-        mesh.triangle_materials.extend([red, red]);
-        let _ = i;
-    }
-    scene.meshes.push(mesh);
-    scene.instances.push(Instance {
-        name: "block".into(),
-        mesh: block,
-        transform: Mat4::from_translation(Vec3::new(-0.6, 1.5, 0.0)),
-    });
+    let mut scene = cornell_with_block(Vec3::new(-0.6, 1.5, 0.0));
     // The walls and floor around where the block arrives: their indirect light changes most.
     scene.regions.push(irradiant_scene::Region {
         name: "right".into(),

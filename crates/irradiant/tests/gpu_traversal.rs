@@ -104,9 +104,16 @@ fn random_rays(rng: &mut StdRng, n: usize) -> Vec<GpuRay> {
 
 #[test]
 fn gpu_hits_match_cpu_brute_force_over_instanced_meshes() {
-    for stack_in_workgroup in [false, true] {
+    use irradiant::BlasLayout;
+    // Every bottom-level layout, and the binary one's workgroup-memory stack.
+    for (blas_layout, stack_in_workgroup) in [
+        (BlasLayout::Wide, false),
+        (BlasLayout::Binary, false),
+        (BlasLayout::Binary, true),
+    ] {
         hits_match_brute_force(irradiant::GpuSceneSettings {
             stack_in_workgroup,
+            blas_layout,
             ..Default::default()
         });
     }

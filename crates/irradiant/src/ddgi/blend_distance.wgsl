@@ -1,70 +1,103 @@
-// ddgi/blend_distance: per texel, the cosine^exponent-weighted mean of hit distance and of
-// its square (the moments that Chebyshev visibility needs), blended with hysteresis.
+// ddgi/blend_distance: one workgroup a probe. Each interior texel takes the
+// cosine^exponent-weighted mean of hit distance and of its square (the moments that Chebyshev
+// visibility needs) and blends them with hysteresis. Which rays weigh in, and how much, comes
+// from ddgi/blend_weights: with exponent 50 about a fifth of them. The workgroup then fills
+// its tile's border too (ddgi_volume's border_source).
 #import ddgi_volume
 #import ddgi_rays
+#import ddgi_states
 
 @group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
 @group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(1) @binding(15) var<storage, read> probe_states: array<u32>;
+@group(1) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
 @group(1) @binding(8) var<storage, read_write> distance_atlas: array<vec2<f32>>;
 
-// cos^distance_exponent. A whole exponent (DISTANCE_POWER, a shader constant) unrolls into
-// squarings and products; pow costs two special-function operations, which are scarce.
-fn cosine_power(c: f32) -> f32 {
-    if DISTANCE_POWER == 0u {
-        return pow(c, volume.distance_exponent);
-    }
-    var result = 1.0;
-    var square = c;
-    for (var bit = 0u; bit < 8u; bit++) {
-        if (DISTANCE_POWER & (1u << bit)) != 0u {
-            result *= square;
-        }
-        square *= square;
-    }
-    return result;
-}
+// BLEND_THREADS, TILE_TEXELS and BLEND_CHUNK: see ddgi/blend_irradiance.
+const SLOTS: u32 = (TILE_TEXELS + BLEND_THREADS - 1u) / BLEND_THREADS;
+// (distance, distance²) of each ray of the chunk.
+var<workgroup> cache_moments: array<vec2<f32>, BLEND_CHUNK>;
+var<workgroup> tile_values: array<vec2<f32>, TILE_TEXELS>;
 
-const CACHE: u32 = BLEND_GROUP * BLEND_GROUP;
-var<workgroup> cache_direction: array<vec4<f32>, CACHE>;
-
-@compute @workgroup_size(BLEND_GROUP, BLEND_GROUP, 1)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>, @builtin(local_invocation_index) li: u32) {
+@compute @workgroup_size(BLEND_THREADS, 1, 1)
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
     let probe = group.x + group.y * groups.x;
     if probe >= volume.probe_count {
         return;
     }
+    let state = probe_states[probe];
+    // Uniform per workgroup: a probe that does not update keeps its texels.
+    if !probe_updates(state) {
+        return;
+    }
     let texels = volume.distance_texels;
-    let texel_dir = texel_direction(local.xy, texels);
+    let tile = texels + 2u;
+    let texel_count = texels * texels;
     let m = volume.rays_per_probe;
-    var sum = vec2<f32>(0.0);
-    var weight_sum = 0.0;
-    for (var base = 0u; base < m; base += CACHE) {
-        if base + li < m {
-            let d = min(abs(samples[probe * m + base + li].distance), volume.max_ray_distance);
-            cache_direction[li] = vec4<f32>(directions[base + li].xyz, d);
+    let weights_base = volume.irradiance_texels * volume.irradiance_texels * (m + 1u);
+    let origin = tile_origin(probe, tile);
+    let width = atlas_width(tile);
+    for (var slot = 0u; slot < SLOTS; slot++) {
+        let i = slot * BLEND_THREADS + li;
+        let x = i % tile;
+        let y = i / tile;
+        let interior = i < tile * tile && x >= 1u && y >= 1u && x <= texels && y <= texels;
+        let t = select(0u, (y - 1u) * texels + x - 1u, interior);
+        let header = blend_weights[weights_base + t];
+        let count = select(0u, header.ray, interior);
+        var sum = vec2<f32>(0.0);
+        var cursor = 0u;
+        var entry = blend_weights[weights_base + texel_count + t];
+        for (var base = 0u; base < m; base += BLEND_CHUNK) {
+            workgroupBarrier();
+            for (var r = li; r < BLEND_CHUNK; r += BLEND_THREADS) {
+                if base + r < m {
+                    let d = min(abs(samples[probe * m + base + r].distance), volume.max_ray_distance);
+                    cache_moments[r] = vec2<f32>(d, d * d);
+                }
+            }
+            workgroupBarrier();
+            if m <= BLEND_CHUNK {
+                // One chunk holds every ray: a counted loop whose loads do not wait on each other.
+                for (var k = 0u; k < count; k++) {
+                    let e = blend_weights[weights_base + texel_count + k * texel_count + t];
+                    sum += e.weight * cache_moments[e.ray];
+                }
+            } else {
+                // The texel's entries are in ray order: take those in this chunk.
+                loop {
+                    if cursor >= count || entry.ray >= base + BLEND_CHUNK {
+                        break;
+                    }
+                    sum += entry.weight * cache_moments[entry.ray - base];
+                    cursor++;
+                    entry = blend_weights[weights_base + texel_count + min(cursor, count - 1u) * texel_count + t];
+                }
+            }
         }
-        workgroupBarrier();
-        let n = min(CACHE, m - base);
-        for (var k = 0u; k < n; k++) {
-            let c = cache_direction[k];
-            let w = cosine_power(max(0.0, dot(texel_dir, c.xyz)));
-            sum += w * vec2<f32>(c.w, c.w * c.w);
-            weight_sum += w;
+        if interior {
+            let index = (origin.y + y) * width + origin.x + x;
+            let old = distance_atlas[index];
+            var blended = old;
+            // A texel no ray came near this frame keeps its old value.
+            if header.weight > 0.0 || probe_blends(state) == 0u {
+                let value = select(vec2<f32>(volume.max_ray_distance, volume.max_ray_distance * volume.max_ray_distance), sum / header.weight, header.weight > 0.0);
+                let hysteresis = startup_hysteresis(volume.distance_hysteresis, probe_blends(state));
+                blended = mix(value, old, hysteresis);
+                distance_atlas[index] = blended;
+            }
+            tile_values[i] = blended;
         }
-        workgroupBarrier();
     }
-    if local.x >= texels || local.y >= texels {
-        return;
+    workgroupBarrier();
+    for (var slot = 0u; slot < SLOTS; slot++) {
+        let i = slot * BLEND_THREADS + li;
+        let x = i % tile;
+        let y = i / tile;
+        if i >= tile * tile || (x >= 1u && y >= 1u && x <= texels && y <= texels) {
+            continue;
+        }
+        let source = border_source(x, y, texels);
+        distance_atlas[(origin.y + y) * width + origin.x + x] = tile_values[source.y * tile + source.x];
     }
-    let texel = tile_origin(probe, texels + 2u) + 1u + local.xy;
-    let index = texel.y * atlas_width(texels + 2u) + texel.x;
-    let old = distance_atlas[index];
-    // A texel no ray came near this frame keeps its old value.
-    if weight_sum <= 0.0 && volume.frame > 0u {
-        return;
-    }
-    let value = select(vec2<f32>(volume.max_ray_distance, volume.max_ray_distance * volume.max_ray_distance), sum / weight_sum, weight_sum > 0.0);
-    let hysteresis = startup_hysteresis(volume.distance_hysteresis);
-    distance_atlas[index] = mix(value, old, hysteresis);
 }

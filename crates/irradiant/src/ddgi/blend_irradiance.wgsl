@@ -1,65 +1,113 @@
-// ddgi/blend_irradiance: one workgroup a probe, one thread an interior texel. Each texel
-// takes the cosine-weighted mean of the radiance its probe's rays brought back this frame,
-// perceptually encoded (value^(1/gamma)), and blends it into the old value with hysteresis —
-// lowered per texel where the light changed a lot (003, §4.3).
+// ddgi/blend_irradiance: one workgroup a probe. Each interior texel takes the cosine-weighted
+// mean of the radiance its probe's rays brought back this frame, perceptually encoded
+// (value^(1/gamma)), and blends it into the old value with hysteresis — lowered per texel
+// where the light changed a lot (003, §4.3). Which rays weigh in, and how much, comes from
+// ddgi/blend_weights. The workgroup then fills its tile's border too (ddgi_volume's
+// border_source), so bilinear lookups need no separate pass.
 #import ddgi_volume
 #import ddgi_rays
+#import ddgi_states
 
 @group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
 @group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(1) @binding(15) var<storage, read> probe_states: array<u32>;
+@group(1) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
 @group(1) @binding(7) var<storage, read_write> irradiance_atlas: array<vec2<u32>>;
 
-const CACHE: u32 = BLEND_GROUP * BLEND_GROUP;
-var<workgroup> cache_direction: array<vec4<f32>, CACHE>;
-var<workgroup> cache_radiance: array<vec4<f32>, CACHE>;
+// BLEND_THREADS (threads a workgroup), TILE_TEXELS (texels of a tile, border included) and
+// BLEND_CHUNK (rays held in workgroup memory at once) come from Ddgi::new.
+const SLOTS: u32 = (TILE_TEXELS + BLEND_THREADS - 1u) / BLEND_THREADS;
+var<workgroup> cache_radiance: array<vec4<f32>, BLEND_CHUNK>;
+var<workgroup> tile_values: array<vec2<u32>, TILE_TEXELS>;
 
-@compute @workgroup_size(BLEND_GROUP, BLEND_GROUP, 1)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>, @builtin(local_invocation_index) li: u32) {
+@compute @workgroup_size(BLEND_THREADS, 1, 1)
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
     let probe = group.x + group.y * groups.x;
     if probe >= volume.probe_count {
         return;
     }
-    let texels = volume.irradiance_texels;
-    let texel_dir = texel_direction(local.xy, texels);
-    let m = volume.rays_per_probe;
-    var sum = vec3<f32>(0.0);
-    var weight_sum = 0.0;
-    for (var base = 0u; base < m; base += CACHE) {
-        if base + li < m {
-            cache_direction[li] = directions[base + li];
-            let s = samples[probe * m + base + li];
-            cache_radiance[li] = vec4<f32>(s.radiance, 0.0);
-        }
-        workgroupBarrier();
-        let n = min(CACHE, m - base);
-        for (var k = 0u; k < n; k++) {
-            let w = max(0.0, dot(texel_dir, cache_direction[k].xyz));
-            sum += w * cache_radiance[k].rgb;
-            weight_sum += w;
-        }
-        workgroupBarrier();
-    }
-    if local.x >= texels || local.y >= texels {
+    let state = probe_states[probe];
+    // Uniform per workgroup: a probe that does not update keeps its texels.
+    if !probe_updates(state) {
         return;
     }
-    let value = select(vec3<f32>(0.0), sum / weight_sum, weight_sum > 0.0);
-    let encoded = pow(max(value, vec3<f32>(0.0)), vec3<f32>(1.0 / volume.irradiance_gamma));
-    let texel = tile_origin(probe, texels + 2u) + 1u + local.xy;
-    let index = texel.y * atlas_width(texels + 2u) + texel.x;
-    let packed_old = irradiance_atlas[index];
-    let old = vec3<f32>(unpack2x16float(packed_old.x), unpack2x16float(packed_old.y).x);
-    var hysteresis = startup_hysteresis(volume.irradiance_hysteresis);
-    if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
-        let delta = abs(encoded - old);
-        let change = max(delta.x, max(delta.y, delta.z)) / max(max(max(encoded.x, encoded.y), max(encoded.z, max(old.x, max(old.y, old.z)))), 1e-4);
-        if change > 0.8 {
-            // The distribution the probe samples has changed completely.
-            hysteresis = 0.0;
-        } else if change > 0.25 {
-            hysteresis = max(0.0, hysteresis - 0.15);
+    let texels = volume.irradiance_texels;
+    let tile = texels + 2u;
+    let texel_count = texels * texels;
+    let m = volume.rays_per_probe;
+    let origin = tile_origin(probe, tile);
+    let width = atlas_width(tile);
+    // Slots: each thread takes tile texels li, li + BLEND_THREADS, … (a uniform count, since
+    // the loop holds barriers).
+    for (var slot = 0u; slot < SLOTS; slot++) {
+        let i = slot * BLEND_THREADS + li;
+        let x = i % tile;
+        let y = i / tile;
+        let interior = i < tile * tile && x >= 1u && y >= 1u && x <= texels && y <= texels;
+        let t = select(0u, (y - 1u) * texels + x - 1u, interior);
+        let header = blend_weights[t];
+        let count = select(0u, header.ray, interior);
+        var sum = vec3<f32>(0.0);
+        var cursor = 0u;
+        var entry = blend_weights[texel_count + t];
+        for (var base = 0u; base < m; base += BLEND_CHUNK) {
+            workgroupBarrier();
+            for (var r = li; r < BLEND_CHUNK; r += BLEND_THREADS) {
+                if base + r < m {
+                    cache_radiance[r] = vec4<f32>(samples[probe * m + base + r].radiance, 0.0);
+                }
+            }
+            workgroupBarrier();
+            if m <= BLEND_CHUNK {
+                // One chunk holds every ray: a counted loop whose loads do not wait on each other.
+                for (var k = 0u; k < count; k++) {
+                    let e = blend_weights[texel_count + k * texel_count + t];
+                    sum += e.weight * cache_radiance[e.ray].rgb;
+                }
+            } else {
+                // The texel's entries are in ray order: take those in this chunk.
+                loop {
+                    if cursor >= count || entry.ray >= base + BLEND_CHUNK {
+                        break;
+                    }
+                    sum += entry.weight * cache_radiance[entry.ray - base].rgb;
+                    cursor++;
+                    entry = blend_weights[texel_count + min(cursor, count - 1u) * texel_count + t];
+                }
+            }
+        }
+        if interior {
+            let value = select(vec3<f32>(0.0), sum / header.weight, header.weight > 0.0);
+            let encoded = pow(max(value, vec3<f32>(0.0)), vec3<f32>(1.0 / volume.irradiance_gamma));
+            let index = (origin.y + y) * width + origin.x + x;
+            let packed_old = irradiance_atlas[index];
+            let old = vec3<f32>(unpack2x16float(packed_old.x), unpack2x16float(packed_old.y).x);
+            var hysteresis = startup_hysteresis(volume.irradiance_hysteresis, probe_blends(state));
+            if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
+                let delta = abs(encoded - old);
+                let change = max(delta.x, max(delta.y, delta.z)) / max(max(max(encoded.x, encoded.y), max(encoded.z, max(old.x, max(old.y, old.z)))), 1e-4);
+                if change > 0.8 {
+                    // The distribution the probe samples has changed completely.
+                    hysteresis = 0.0;
+                } else if change > 0.25 {
+                    hysteresis = max(0.0, hysteresis - 0.15);
+                }
+            }
+            let blended = mix(encoded, old, hysteresis);
+            let packed = vec2<u32>(pack2x16float(blended.xy), pack2x16float(vec2<f32>(blended.z, 0.0)));
+            irradiance_atlas[index] = packed;
+            tile_values[i] = packed;
         }
     }
-    let blended = mix(encoded, old, hysteresis);
-    irradiance_atlas[index] = vec2<u32>(pack2x16float(blended.xy), pack2x16float(vec2<f32>(blended.z, 0.0)));
+    workgroupBarrier();
+    for (var slot = 0u; slot < SLOTS; slot++) {
+        let i = slot * BLEND_THREADS + li;
+        let x = i % tile;
+        let y = i / tile;
+        if i >= tile * tile || (x >= 1u && y >= 1u && x <= texels && y <= texels) {
+            continue;
+        }
+        let source = border_source(x, y, texels);
+        irradiance_atlas[(origin.y + y) * width + origin.x + x] = tile_values[source.y * tile + source.x];
+    }
 }

@@ -1,5 +1,5 @@
 //! CPU twins of `shaders/octahedral.wgsl` and of the atlas border mapping of
-//! `ddgi/borders.wgsl`, used by tests as oracles.
+//! `ddgi/volume.wgsl` (border_source), used by tests as oracles.
 
 use glam::{UVec2, Vec2, Vec3};
 

@@ -14,6 +14,26 @@ const WEIGHT_BACKFACE: u32 = 1;
 const WEIGHT_CHEBYSHEV: u32 = 2;
 const WEIGHT_BACKFACE_HITS: u32 = 4;
 
+/// Probes in each state (003 §6; see ddgi/states.wgsl).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ProbeStateCounts {
+    /// Near static geometry: trace and update every frame.
+    pub vigilant: u32,
+    /// Inside static geometry: never trace or shade.
+    pub off: u32,
+    /// No geometry within a cell: never trace or shade.
+    pub sleeping: u32,
+    /// Sleeping probes that an animated instance woke.
+    pub awake: u32,
+}
+
+impl ProbeStateCounts {
+    /// Probes that trace rays this frame.
+    pub fn updating(&self) -> u32 {
+        self.vigilant + self.awake
+    }
+}
+
 /// One probe volume and its passes.
 pub struct Ddgi {
     pub settings: DdgiSettings,
@@ -26,9 +46,10 @@ pub struct Ddgi {
     trace: ComputeStage,
     shade: ComputeStage,
     relocate: ComputeStage,
+    probe_states: ComputeStage,
+    blend_weights: ComputeStage,
     blend_irradiance: ComputeStage,
     blend_distance: ComputeStage,
-    borders: ComputeStage,
     resolve: ComputeStage,
     visualize: ComputeStage,
     groups: UpdateGroups,
@@ -39,6 +60,11 @@ pub struct Ddgi {
     boosts: Vec<(u32, f32, f32)>,
     /// Offsets are cleared before the first relocation frame.
     relocation_pending: bool,
+    /// States are cleared (every probe vigilant, nothing blended) before the first frame.
+    states_pending: bool,
+    /// Wake boxes to upload at the next prepare, after animation moved something.
+    wake_boxes: Option<Vec<(glam::Vec3, glam::Vec3)>>,
+    wake_box_count: u32,
 }
 
 struct UpdateGroups {
@@ -46,9 +72,10 @@ struct UpdateGroups {
     trace: wgpu::BindGroup,
     shade: wgpu::BindGroup,
     relocate: wgpu::BindGroup,
+    probe_states: wgpu::BindGroup,
+    blend_weights: wgpu::BindGroup,
     blend_irradiance: wgpu::BindGroup,
     blend_distance: wgpu::BindGroup,
-    borders: wgpu::BindGroup,
 }
 
 impl Ddgi {
@@ -69,7 +96,8 @@ impl Ddgi {
         let ddgi_constants = ddgi_shader_constants(settings);
         // Bindings, by the names in the WGSL: 0 volume, 1 irradiance (read), 2 distance (read),
         // 3 directions, 4 hits, 6 samples, 7 irradiance (write), 8 distance (write),
-        // 9 gbuffer, 10 indirect, 11 frame, 12 radiance, 13 offsets (write), 14 ray set.
+        // 9 gbuffer, 10 indirect, 11 frame, 12 radiance, 13 offsets (write), 14 ray set,
+        // 15 states (read), 16 states (write), 17 wake boxes, 18 blend weights.
         let make = |label: &'static str,
                     source: &str,
                     entries: &[(u32, wgpu::BufferBindingType)],
@@ -94,6 +122,7 @@ impl Ddgi {
                 (3, STORAGE_READ),
                 (4, STORAGE_WRITE),
                 (5, STORAGE_READ),
+                (15, STORAGE_READ),
             ],
             &[],
         )?;
@@ -108,6 +137,7 @@ impl Ddgi {
                 (4, STORAGE_READ),
                 (5, STORAGE_READ),
                 (6, STORAGE_WRITE),
+                (15, STORAGE_READ),
             ],
             &[],
         )?;
@@ -122,35 +152,48 @@ impl Ddgi {
             ],
             &[],
         )?;
-        let irradiance_group = settings.irradiance_texels.max(8);
-        let distance_group = settings.distance_texels.max(8);
+        let (probe_states, l_states) = make(
+            "ddgi/probe_states",
+            include_str!("probe_states.wgsl"),
+            &[
+                (0, UNIFORM),
+                (3, STORAGE_READ),
+                (5, STORAGE_READ),
+                (6, STORAGE_READ),
+                (16, STORAGE_WRITE),
+                (17, STORAGE_READ),
+            ],
+            &[],
+        )?;
+        let (blend_weights, l_bw) = make(
+            "ddgi/blend_weights",
+            include_str!("blend_weights.wgsl"),
+            &[(0, UNIFORM), (3, STORAGE_READ), (18, STORAGE_WRITE)],
+            &[],
+        )?;
         let (blend_irradiance, l_bi) = make(
             "ddgi/blend_irradiance",
             include_str!("blend_irradiance.wgsl"),
             &[
                 (0, UNIFORM),
-                (3, STORAGE_READ),
                 (6, STORAGE_READ),
                 (7, STORAGE_WRITE),
+                (15, STORAGE_READ),
+                (18, STORAGE_READ),
             ],
-            &[("BLEND_GROUP", format!("{irradiance_group}u"))],
+            &blend_constants(settings.irradiance_texels),
         )?;
         let (blend_distance, l_bd) = make(
             "ddgi/blend_distance",
             include_str!("blend_distance.wgsl"),
             &[
                 (0, UNIFORM),
-                (3, STORAGE_READ),
                 (6, STORAGE_READ),
                 (8, STORAGE_WRITE),
+                (15, STORAGE_READ),
+                (18, STORAGE_READ),
             ],
-            &[("BLEND_GROUP", format!("{distance_group}u"))],
-        )?;
-        let (borders, l_borders) = make(
-            "ddgi/borders",
-            include_str!("borders.wgsl"),
-            &[(0, UNIFORM), (7, STORAGE_WRITE), (8, STORAGE_WRITE)],
-            &[],
+            &blend_constants(settings.distance_texels),
         )?;
         let (resolve, frame_layout) = make(
             "ddgi/resolve",
@@ -163,6 +206,7 @@ impl Ddgi {
                 (9, STORAGE_READ),
                 (10, STORAGE_WRITE),
                 (11, UNIFORM),
+                (15, STORAGE_READ),
             ],
             &[],
         )?;
@@ -177,6 +221,7 @@ impl Ddgi {
                 (9, STORAGE_READ),
                 (11, UNIFORM),
                 (12, STORAGE_WRITE),
+                (15, STORAGE_READ),
             ],
             &[],
         )?;
@@ -196,6 +241,7 @@ impl Ddgi {
                     (3, &r.directions),
                     (4, &r.hits),
                     (5, &r.offsets),
+                    (15, &r.states),
                 ],
             ),
             shade: bind_at(
@@ -210,6 +256,7 @@ impl Ddgi {
                     (4, &r.hits),
                     (5, &r.offsets),
                     (6, &r.samples),
+                    (15, &r.states),
                 ],
             ),
             relocate: bind_at(
@@ -223,15 +270,35 @@ impl Ddgi {
                     (13, &r.offsets),
                 ],
             ),
+            probe_states: bind_at(
+                device,
+                "ddgi/probe_states",
+                &l_states,
+                &[
+                    (0, &r.volume),
+                    (3, &r.directions),
+                    (5, &r.offsets),
+                    (6, &r.samples),
+                    (16, &r.states),
+                    (17, &r.wake_boxes),
+                ],
+            ),
+            blend_weights: bind_at(
+                device,
+                "ddgi/blend_weights",
+                &l_bw,
+                &[(0, &r.volume), (3, &r.directions), (18, &r.blend_weights)],
+            ),
             blend_irradiance: bind_at(
                 device,
                 "ddgi/blend_irradiance",
                 &l_bi,
                 &[
                     (0, &r.volume),
-                    (3, &r.directions),
                     (6, &r.samples),
                     (7, &r.irradiance),
+                    (15, &r.states),
+                    (18, &r.blend_weights),
                 ],
             ),
             blend_distance: bind_at(
@@ -240,16 +307,11 @@ impl Ddgi {
                 &l_bd,
                 &[
                     (0, &r.volume),
-                    (3, &r.directions),
                     (6, &r.samples),
                     (8, &r.distance),
+                    (15, &r.states),
+                    (18, &r.blend_weights),
                 ],
-            ),
-            borders: bind_at(
-                device,
-                "ddgi/borders",
-                &l_borders,
-                &[(0, &r.volume), (7, &r.irradiance), (8, &r.distance)],
             ),
         };
         Ok(Self {
@@ -262,9 +324,10 @@ impl Ddgi {
             trace,
             shade,
             relocate,
+            probe_states,
+            blend_weights,
             blend_irradiance,
             blend_distance,
-            borders,
             resolve,
             visualize,
             groups,
@@ -273,6 +336,9 @@ impl Ddgi {
             frame_groups: None,
             boosts: Vec::new(),
             relocation_pending: true,
+            states_pending: true,
+            wake_boxes: Some(scene.dynamic_bounds()),
+            wake_box_count: 0,
         })
     }
 
@@ -280,6 +346,21 @@ impl Ddgi {
     pub fn reset(&mut self) {
         self.frame = 0;
         self.relocation_pending = true;
+        self.states_pending = true;
+    }
+
+    /// STATES_* of ddgi/states.wgsl for this frame: probes are classified on the relocation
+    /// frames (the optimiser has moved them by the last one) and sleep or wake after.
+    fn state_phase(&self) -> u32 {
+        if !self.settings.probe_states {
+            0
+        } else if self.frame + 1 < RELOCATION_FRAMES {
+            1
+        } else if self.frame + 1 == RELOCATION_FRAMES {
+            2
+        } else {
+            3
+        }
     }
 
     fn relocating(&self) -> bool {
@@ -295,6 +376,7 @@ impl Ddgi {
     /// lowers irradiance hysteresis by 50 % for 10 frames and visibility's by 50 % for 7.
     pub fn scene_changed(&mut self, change: &crate::frame::SceneChange) {
         use crate::frame::LightingChange;
+        self.wake_boxes = Some(change.dynamic_bounds.clone());
         if !self.settings.convergence_heuristics {
             return;
         }
@@ -355,14 +437,17 @@ impl Ddgi {
             convergence_heuristics: s.convergence_heuristics as u32,
             relocating: self.relocating() as u32,
             all_lights: s.shade_all_lights as u32,
-            _pad1: 0,
-            _pad2: 0,
+            state_phase: self.state_phase(),
+            wake_box_count: self.wake_box_count,
         }
     }
 
     /// Writes this frame's volume parameters; call before recording the frame's passes, once a
     /// submission (the queue applies the write before the submission runs).
-    pub fn prepare(&self, ctx: &GpuContext) {
+    pub fn prepare(&mut self, ctx: &GpuContext) {
+        if let Some(boxes) = self.wake_boxes.take() {
+            self.upload_wake_boxes(ctx, &boxes);
+        }
         ctx.queue.write_buffer(
             &self.resources.volume,
             0,
@@ -370,13 +455,42 @@ impl Ddgi {
         );
     }
 
-    /// Records the probe update: trace, shade, blend, borders.
+    /// Boxes where geometry may come and go (animated instances), grown by a grid cell and the
+    /// self-shadow bias (003 §6.3): sleeping probes inside wake up.
+    fn upload_wake_boxes(&mut self, ctx: &GpuContext, bounds: &[(glam::Vec3, glam::Vec3)]) {
+        let grow = self.layout.spacing
+            + glam::Vec3::splat(0.75 * self.layout.min_spacing() * self.settings.self_shadow_bias);
+        let mut boxes: Vec<(glam::Vec3, glam::Vec3)> = Vec::new();
+        for &(lo, hi) in bounds {
+            let grown = (lo - grow, hi + grow);
+            if boxes.len() < super::resources::MAX_WAKE_BOXES {
+                boxes.push(grown);
+            } else if let Some(last) = boxes.last_mut() {
+                *last = (last.0.min(grown.0), last.1.max(grown.1));
+            }
+        }
+        let data: Vec<[f32; 4]> = boxes
+            .iter()
+            .flat_map(|(lo, hi)| [lo.extend(0.0).to_array(), hi.extend(0.0).to_array()])
+            .collect();
+        if !data.is_empty() {
+            ctx.queue
+                .write_buffer(&self.resources.wake_boxes, 0, bytemuck::cast_slice(&data));
+        }
+        self.wake_box_count = boxes.len() as u32;
+    }
+
+    /// Records the probe update: trace, shade, blend weights, blends (borders included).
     pub fn update(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         scene: &GpuScene,
         mut profiler: Option<&mut Profiler>,
     ) {
+        if self.states_pending {
+            encoder.clear_buffer(&self.resources.states, 0, None);
+            self.states_pending = false;
+        }
         let g = &self.groups;
         let per_group = self.settings.probes_per_group;
         let ray_groups = self.layout.probe_count.div_ceil(per_group)
@@ -412,7 +526,13 @@ impl Ddgi {
                 fold_groups(self.layout.probe_count.div_ceil(64)),
             );
         }
-        self.record_blend(encoder, scene, profiler);
+        self.record_blend(encoder, scene, profiler.as_deref_mut());
+        self.probe_states.dispatch(
+            encoder,
+            profiler,
+            &[s, &g.probe_states],
+            fold_groups(self.layout.probe_count.div_ceil(64)),
+        );
         self.frame += 1;
         for boost in &mut self.boosts {
             boost.0 -= 1;
@@ -420,7 +540,7 @@ impl Ddgi {
         self.boosts.retain(|b| b.0 > 0);
     }
 
-    /// Records only the blend and border passes (tests feed the ray samples themselves).
+    /// Records only the blend passes, borders included (tests feed the rays themselves).
     pub fn record_blend(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -429,6 +549,13 @@ impl Ddgi {
     ) {
         let g = &self.groups;
         let s = &scene.bind_group;
+        let texels = self.settings.irradiance_texels.pow(2) + self.settings.distance_texels.pow(2);
+        self.blend_weights.dispatch(
+            encoder,
+            profiler.as_deref_mut(),
+            &[s, &g.blend_weights],
+            [texels, 1, 1],
+        );
         let probes = fold_groups(self.layout.probe_count);
         self.blend_irradiance.dispatch(
             encoder,
@@ -436,21 +563,8 @@ impl Ddgi {
             &[s, &g.blend_irradiance],
             probes,
         );
-        self.blend_distance.dispatch(
-            encoder,
-            profiler.as_deref_mut(),
-            &[s, &g.blend_distance],
-            probes,
-        );
-        let tile = |t: u32| (t + 2) * (t + 2);
-        let border_threads = self.layout.probe_count
-            * (tile(self.settings.irradiance_texels) + tile(self.settings.distance_texels));
-        self.borders.dispatch(
-            encoder,
-            profiler,
-            &[s, &g.borders],
-            fold_groups(border_threads.div_ceil(64)),
-        );
+        self.blend_distance
+            .dispatch(encoder, profiler, &[s, &g.blend_distance], probes);
     }
 
     /// Binds the frame's G-buffer and outputs; call again when they are recreated.
@@ -468,6 +582,7 @@ impl Ddgi {
                 (9, &frame.gbuffer),
                 (10, &frame.indirect),
                 (11, &frame.params),
+                (15, &r.states),
             ],
         );
         let visualize = bind_at(
@@ -482,6 +597,7 @@ impl Ddgi {
                 (9, &frame.gbuffer),
                 (11, &frame.params),
                 (12, &frame.radiance),
+                (15, &r.states),
             ],
         );
         self.frame_groups = Some((resolve, visualize));
@@ -527,6 +643,21 @@ impl Ddgi {
     }
 
     /// Each probe's relocation offset and the share of its rays that hit backfaces.
+    /// How many probes are in each state (003 §6), read back from the GPU.
+    pub fn read_state_counts(&self, ctx: &GpuContext) -> Result<ProbeStateCounts, RenderError> {
+        let words: Vec<u32> = read_buffer_as(ctx, &self.resources.states)?;
+        let mut counts = ProbeStateCounts::default();
+        for word in &words[..self.layout.probe_count as usize] {
+            match word & 3 {
+                0 => counts.vigilant += 1,
+                1 => counts.off += 1,
+                2 => counts.sleeping += 1,
+                _ => counts.awake += 1,
+            }
+        }
+        Ok(counts)
+    }
+
     pub fn read_offsets(&self, ctx: &GpuContext) -> Result<Vec<[f32; 4]>, RenderError> {
         let offsets: Vec<[f32; 4]> = read_buffer_as(ctx, &self.resources.offsets)?;
         Ok(offsets[..self.layout.probe_count as usize].to_vec())
@@ -567,23 +698,27 @@ pub struct Atlases {
 }
 
 /// IEEE half to f32 (the atlases pack f16 pairs with WGSL's pack2x16float).
-/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl) and, for
-/// ddgi/blend_distance, DISTANCE_POWER: the distance exponent when it is a whole number up to
-/// 255 (the cosine power then unrolls into multiplications, much cheaper than pow's log and
-/// exp), else 0 (pow).
-fn ddgi_shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
-    let e = settings.distance_exponent;
-    let integral = e.fract() == 0.0 && (1.0..=255.0).contains(&e);
+/// Constants of a blend pass over tiles of `texels` interior texels: BLEND_THREADS (a
+/// workgroup's threads: the whole tile, border included, up to 256), TILE_TEXELS (the
+/// tile's texels) and BLEND_CHUNK (rays held in workgroup memory at once).
+fn blend_constants(texels: u32) -> Vec<(&'static str, String)> {
+    let tile_texels = (texels + 2) * (texels + 2);
     vec![
-        (
-            "PROBES_PER_GROUP",
-            format!("{}u", settings.probes_per_group),
-        ),
-        (
-            "DISTANCE_POWER",
-            format!("{}u", if integral { e as u32 } else { 0 }),
-        ),
+        ("BLEND_THREADS", format!("{}u", tile_texels.min(256))),
+        ("TILE_TEXELS", format!("{tile_texels}u")),
+        ("BLEND_CHUNK", format!("{BLEND_CHUNK}u")),
     ]
+}
+
+/// Rays the blend passes hold in workgroup memory at once: 4 KiB of radiance.
+const BLEND_CHUNK: u32 = 256;
+
+/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl).
+fn ddgi_shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
+    vec![(
+        "PROBES_PER_GROUP",
+        format!("{}u", settings.probes_per_group),
+    )]
 }
 
 pub fn half_to_f32(h: u16) -> f32 {

@@ -64,6 +64,9 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let offset = vec3<u32>(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u);
         let coord = min(vec3<u32>(base) + offset, volume.counts - 1u);
         let probe = probe_index(coord);
+        if !probe_shades(probe) {
+            continue;
+        }
         let probe_pos = probe_position(probe);
         let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
         var w = 1.0;

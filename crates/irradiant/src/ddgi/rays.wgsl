@@ -15,6 +15,13 @@ struct GpuDdgiRaySample {
     distance: f32,
 }
 
+// One ray's weight in one texel's blend (ddgi/blend_weights). The first entry of each texel
+// is its header instead: ray holds the texel's entry count, weight their sum.
+struct GpuDdgiBlendWeight {
+    ray: u32,
+    weight: f32,
+}
+
 // Rays are stored probe-major: ray r of probe p is p × rays_per_probe + r.
 struct RaySlot {
     probe: u32,

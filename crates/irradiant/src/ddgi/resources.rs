@@ -79,7 +79,17 @@ pub struct DdgiResources {
     pub distance: wgpu::Buffer,
     /// vec4 a probe: relocation offset (xyz) and the share of its rays that hit backfaces (w).
     pub offsets: wgpu::Buffer,
+    /// u32 a probe: state, near-geometry flag and blends since it started (ddgi/states.wgsl).
+    pub states: wgpu::Buffer,
+    /// Two vec4 (min, max) a box: where animated instances may wake sleeping probes.
+    pub wake_boxes: wgpu::Buffer,
+    /// GpuDdgiBlendWeight lists: per tile texel, the rays of its blend and their weights, the
+    /// same for every probe (layout in ddgi/blend_weights.wgsl).
+    pub blend_weights: wgpu::Buffer,
 }
+
+/// Wake boxes the buffer holds; further animated instances merge into the last box.
+pub const MAX_WAKE_BOXES: usize = 64;
 
 impl DdgiResources {
     pub fn new(
@@ -133,6 +143,15 @@ impl DdgiResources {
             irradiance: storage_buffer(device, sizes[2].0, sizes[2].1),
             distance: storage_buffer(device, sizes[3].0, sizes[3].1),
             offsets: storage_buffer(device, "ddgi/probe_offsets", layout.probe_count as u64 * 16),
+            states: storage_buffer(device, "ddgi/probe_states", layout.probe_count as u64 * 4),
+            wake_boxes: storage_buffer(device, "ddgi/wake_boxes", MAX_WAKE_BOXES as u64 * 32),
+            blend_weights: storage_buffer(
+                device,
+                "ddgi/blend_weights",
+                (settings.irradiance_texels.pow(2) + settings.distance_texels.pow(2)) as u64
+                    * (settings.rays_per_probe as u64 + 1)
+                    * size_of::<crate::gpu_types::GpuDdgiBlendWeight>() as u64,
+            ),
         })
     }
 }

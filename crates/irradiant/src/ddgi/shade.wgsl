@@ -15,7 +15,7 @@
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
     let slot = ray_slot(group, groups, local_index);
-    if !slot.valid {
+    if !slot.valid || !probe_shades(slot.probe) {
         return;
     }
     let index = slot.index;

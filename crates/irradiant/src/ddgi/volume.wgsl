@@ -43,8 +43,10 @@ struct GpuDdgiVolume {
     relocating: u32,
     // 1: probe rays shade every punctual light; 0: one, chosen at random
     all_lights: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // STATES_* (ddgi/states.wgsl)
+    state_phase: u32,
+    // boxes in the wake-box buffer
+    wake_box_count: u32,
 }
 
 fn probe_grid_coord(probe: u32) -> vec3<u32> {
@@ -77,14 +79,31 @@ fn texel_direction(texel: vec2<u32>, texels: u32) -> vec3<f32> {
     return oct_decode(uv);
 }
 
+// The tile texel (border included, so interior texels are 1…texels) whose value border
+// texel (x, y) repeats, mirrored as the octahedral map folds, so that bilinear filtering is
+// seamless across the map's edges (CPU twin: ddgi::octahedral::border_source).
+fn border_source(x: u32, y: u32, texels: u32) -> vec2<u32> {
+    let last = texels + 1u;
+    let corner_x = select(1u, texels, x == 0u);
+    let corner_y = select(1u, texels, y == 0u);
+    if (x == 0u || x == last) && (y == 0u || y == last) {
+        return vec2<u32>(corner_x, corner_y);
+    }
+    if y == 0u || y == last {
+        return vec2<u32>(last - x, select(texels, 1u, y == 0u));
+    }
+    return vec2<u32>(select(texels, 1u, x == 0u), last - y);
+}
+
 fn rotate_ray(d: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(dot(volume.ray_rotation0.xyz, d), dot(volume.ray_rotation1.xyz, d), dot(volume.ray_rotation2.xyz, d));
 }
 
-// A new volume starts as a running mean (frame f keeps f/(f+1) of the old value) until that
-// reaches the set hysteresis: probes converge in tens of frames from nothing instead of
-// creeping up at 1 − hysteresis a frame, and the first frame (hysteresis 0) starts them.
-fn startup_hysteresis(hysteresis: f32) -> f32 {
-    let f = f32(volume.frame);
+// A probe that starts updating (a new volume, or a probe just woken) is a running mean
+// (after f blends it keeps f/(f+1) of the old value) until that reaches the set hysteresis:
+// it converges in tens of frames from nothing instead of creeping up at 1 − hysteresis a
+// frame, and its first blend (hysteresis 0) discards whatever it held.
+fn startup_hysteresis(hysteresis: f32, blends: u32) -> f32 {
+    let f = f32(blends);
     return min(hysteresis, f / (f + 1.0));
 }

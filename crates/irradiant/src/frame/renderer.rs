@@ -60,11 +60,13 @@ pub enum LightingChange {
 }
 
 /// What changed between two poses of the scene.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct SceneChange {
     pub lighting: LightingChange,
     /// An instance moved.
     pub geometry: bool,
+    /// World bounds of every animated instance at the new pose (GpuScene::dynamic_bounds).
+    pub dynamic_bounds: Vec<(glam::Vec3, glam::Vec3)>,
 }
 
 impl SceneChange {
@@ -84,6 +86,7 @@ impl SceneChange {
         Self {
             lighting,
             geometry: old.instance_transforms != new.instance_transforms,
+            dynamic_bounds: Vec::new(),
         }
     }
 
@@ -109,7 +112,10 @@ pub fn apply_pose(
     scene.update(ctx, new);
     frame.invalidate_history();
     if let Some(t) = technique {
-        t.scene_changed(&change);
+        t.scene_changed(&SceneChange {
+            dynamic_bounds: scene.dynamic_bounds(),
+            ..change
+        });
     }
 }
 

@@ -4,7 +4,9 @@
 #import scene
 
 // BLAS_STACK_SIZE and TLAS_STACK_SIZE come from GpuScene::shader_constants: the stacks are
-// exactly as deep as the scene's trees, which keeps per-thread memory small.
+// exactly as deep as the scene's trees, which keeps per-thread memory small. BLAS_WIDE (0 or
+// 1, from there too) picks the bottom level's layout: binary nodes in bvh_nodes, or
+// compressed 8-wide nodes in wide_nodes.
 // STACK_IN_WORKGROUP (0 or 1, also from there) puts the bottom-level stack in workgroup memory,
 // a slice per thread; every tracing kernel runs 64 threads a workgroup and calls
 // bvh_thread(local_invocation_index) first.
@@ -61,6 +63,9 @@ fn intersect_triangle(tri: GpuTriangle, origin: vec3<f32>, dir: vec3<f32>, t_max
 // Walks one bottom-level tree with the ray in its object space, updating `hit`. With
 // `any_hit`, returns true at the first hit.
 fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_hit: bool, hit: ptr<function, Hit>) -> bool {
+    if BLAS_WIDE == 1u {
+        return trace_blas_wide(root, instance, origin, dir, any_hit, hit);
+    }
     let inv_dir = safe_inverse(dir);
     var stack: array<u32, BLAS_STACK_SIZE>;
     var sp = 0u;
@@ -121,6 +126,115 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_h
             } else {
                 node = stack[sp];
             }
+        }
+    }
+    return false;
+}
+
+// The wide bottom level (BLAS_WIDE == 1): compressed 8-wide nodes (irradiant_bvh::wide,
+// Ylitie, Karras and Laine 2017). The traversal keeps two groups: the node group (a node's
+// children still to visit: child_base and, in bits 24–31, one bit per hit inner child,
+// ordered near to far; bits 0–7 keep imask for finding a child's index) and the triangle
+// group (primitive_base and one bit per hit triangle slot in bits 0–23). The stack holds node
+// groups only, so it needs one entry a tree level.
+
+// 0x04040404 etc. for a ray going up x, y or z: XORed with an inner child's slot it gives the
+// child's place in the near-to-far order the builder laid the slots out for.
+fn wide_octant_inv4(dir: vec3<f32>) -> u32 {
+    return select(0u, 0x04040404u, dir.x >= 0.0) | select(0u, 0x02020202u, dir.y >= 0.0) | select(0u, 0x01010101u, dir.z >= 0.0);
+}
+
+// The bits of four children (one word of child_meta) for a hit mask: inner children set bit
+// 24 + (slot ^ octant), leaves set their triangle slots' bits.
+fn wide_hits4(meta4: u32, oct_inv4: u32, lo_x: u32, hi_x: u32, lo_y: u32, hi_y: u32, lo_z: u32, hi_z: u32, scale_dir: vec3<f32>, shift: vec3<f32>, t_max: f32) -> u32 {
+    // Bit 4 of a byte is set in both meta4 and meta4 << 1 only for inner children (24–31).
+    let inner = ((meta4 & (meta4 << 1u)) & 0x10101010u) >> 4u;
+    let bit_index4 = (meta4 ^ (oct_inv4 & (inner * 0xffu))) & 0x1f1f1f1fu;
+    let child_bits4 = (meta4 >> 5u) & 0x07070707u;
+    var hits = 0u;
+    for (var k = 0u; k < 4u; k++) {
+        let s = 8u * k;
+        let lo = vec3<f32>(f32((lo_x >> s) & 0xffu), f32((lo_y >> s) & 0xffu), f32((lo_z >> s) & 0xffu)) * scale_dir + shift;
+        let hi = vec3<f32>(f32((hi_x >> s) & 0xffu), f32((hi_y >> s) & 0xffu), f32((hi_z >> s) & 0xffu)) * scale_dir + shift;
+        let near = max(max(lo.x, lo.y), max(lo.z, 0.0));
+        let far = min(min(hi.x, hi.y), min(hi.z, t_max));
+        if near <= far {
+            hits |= ((child_bits4 >> s) & 0xffu) << ((bit_index4 >> s) & 0xffu);
+        }
+    }
+    return hits;
+}
+
+// Which of the node's eight children the ray enters before t_max, as a hit mask (above).
+fn wide_intersect(n: GpuWideBvhNode, origin: vec3<f32>, inv_dir: vec3<f32>, oct_inv4: u32, t_max: f32) -> u32 {
+    let e = n.exponents_imask;
+    let scale = vec3<f32>(bitcast<f32>((e & 0xffu) << 23u), bitcast<f32>(((e >> 8u) & 0xffu) << 23u), bitcast<f32>(((e >> 16u) & 0xffu) << 23u));
+    // t of grid plane q on each axis = q · scale_dir + shift.
+    let scale_dir = scale * inv_dir;
+    let shift = (n.origin - origin) * inv_dir;
+    // A ray going down an axis enters a box through its max plane.
+    let neg = inv_dir < vec3<f32>(0.0);
+    var hits = 0u;
+    for (var w = 0u; w < 2u; w++) {
+        hits |= wide_hits4(
+            n.child_meta[w], oct_inv4,
+            select(n.q_min_x[w], n.q_max_x[w], neg.x), select(n.q_max_x[w], n.q_min_x[w], neg.x),
+            select(n.q_min_y[w], n.q_max_y[w], neg.y), select(n.q_max_y[w], n.q_min_y[w], neg.y),
+            select(n.q_min_z[w], n.q_max_z[w], neg.z), select(n.q_max_z[w], n.q_min_z[w], neg.z),
+            scale_dir, shift, t_max);
+    }
+    return hits;
+}
+
+fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_hit: bool, hit: ptr<function, Hit>) -> bool {
+    let inv_dir = safe_inverse(dir);
+    let oct_inv4 = wide_octant_inv4(dir);
+    var stack: array<vec2<u32>, BLAS_STACK_SIZE>;
+    var sp = 0u;
+    // The root as a group of one hit inner child at slot 0 of "node" root: bit 24 + (0 ^ oct).
+    var node_group = vec2<u32>(root, 1u << (24u + (oct_inv4 & 7u)));
+    var triangle_group = vec2<u32>(0u);
+    loop {
+        if (node_group.y & 0xff000000u) != 0u {
+            let hits_imask = node_group.y;
+            let bit = firstLeadingBit(hits_imask);
+            node_group.y &= ~(1u << bit);
+            if (node_group.y & 0xff000000u) != 0u && sp < BLAS_STACK_SIZE {
+                stack[sp] = node_group;
+                sp++;
+            }
+            let slot = (bit - 24u) ^ (oct_inv4 & 0xffu);
+            let index = node_group.x + countOneBits(hits_imask & ~(0xffffffffu << slot));
+            let n = wide_nodes[index];
+            let hits = wide_intersect(n, origin, inv_dir, oct_inv4, (*hit).t);
+            node_group = vec2<u32>(n.child_base, (hits & 0xff000000u) | (n.exponents_imask >> 24u));
+            triangle_group = vec2<u32>(n.primitive_base, hits & 0x00ffffffu);
+        }
+        while triangle_group.y != 0u {
+            let bit = firstLeadingBit(triangle_group.y);
+            triangle_group.y &= ~(1u << bit);
+            let i = triangle_group.x + bit;
+            let tri = triangles[i];
+            let r = intersect_triangle(tri, origin, dir, (*hit).t);
+            if r.x < (*hit).t {
+                if (tri.flags & 1u) != 0u && is_alpha_hole(i, r.yz) {
+                    continue;
+                }
+                (*hit).t = r.x;
+                (*hit).triangle = i;
+                (*hit).instance = instance;
+                (*hit).bary = r.yz;
+                if any_hit {
+                    return true;
+                }
+            }
+        }
+        if (node_group.y & 0xff000000u) == 0u {
+            if sp == 0u {
+                break;
+            }
+            sp--;
+            node_group = stack[sp];
         }
     }
     return false;

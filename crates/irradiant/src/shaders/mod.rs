@@ -23,4 +23,5 @@ pub fn library() -> ShaderLibrary {
         .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
         .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))
         .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
+        .with("ddgi_states", include_str!("../ddgi/states.wgsl"))
 }

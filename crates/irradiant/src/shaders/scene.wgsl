@@ -14,6 +14,8 @@
 @group(0) @binding(7) var<uniform> scene_info: GpuSceneInfo;
 @group(0) @binding(8) var scene_textures: texture_2d_array<f32>;
 @group(0) @binding(9) var scene_sampler: sampler;
+// Bottom-level trees in the wide layout (BLAS_WIDE == 1); one unused node otherwise.
+@group(0) @binding(10) var<storage, read> wide_nodes: array<GpuWideBvhNode>;
 
 fn to_object_point(inst: GpuInstance, p: vec3<f32>) -> vec3<f32> {
     let q = vec4<f32>(p, 1.0);

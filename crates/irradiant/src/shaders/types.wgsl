@@ -15,6 +15,25 @@ struct GpuBvhNode {
     b_count: u32,
 }
 
+// A compressed 8-wide bottom-level node (irradiant_bvh::GpuWideBvhNode documents the bits).
+struct GpuWideBvhNode {
+    // min corner of the children's quantisation grid
+    origin: vec3<f32>,
+    // bytes: grid scale exponents of x, y, z; imask (bit k: slot k is an inner node)
+    exponents_imask: u32,
+    child_base: u32,
+    primitive_base: u32,
+    // a byte per slot: leaf (unary count << 5 | first offset), inner (0b001 << 5 | 24 + slot), empty 0
+    child_meta: vec2<u32>,
+    // a byte per slot: quantised child box planes
+    q_min_x: vec2<u32>,
+    q_max_x: vec2<u32>,
+    q_min_y: vec2<u32>,
+    q_max_y: vec2<u32>,
+    q_min_z: vec2<u32>,
+    q_max_z: vec2<u32>,
+}
+
 // Intersection data, in the mesh's object space, in BVH leaf order.
 struct GpuTriangle {
     v0: vec3<f32>,

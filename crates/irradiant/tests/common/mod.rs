@@ -160,3 +160,45 @@ pub fn block_ratios(test: &Image, reference: &Image, mask: &[bool], block: u32) 
     }
     ratios
 }
+
+/// The Cornell box with a red half-metre cube, the instance "block", centred at `at`.
+pub fn cornell_with_block(at: glam::Vec3) -> Scene {
+    use glam::{Mat4, Vec3};
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    let block = scene.meshes.len() as u32;
+    let mut mesh = irradiant_scene::Mesh {
+        name: "block".into(),
+        ..Default::default()
+    };
+    let red = scene
+        .materials
+        .iter()
+        .position(|m| m.name == "red")
+        .unwrap() as u32;
+    let corners: Vec<Vec3> = (0..8)
+        .map(|c| Vec3::new((c & 1) as f32, ((c >> 1) & 1) as f32, ((c >> 2) & 1) as f32) - 0.5)
+        .collect();
+    let order = [0, 1, 3, 2, 4, 5, 7, 6];
+    for face in [
+        [0, 1, 2, 3],
+        [5, 4, 7, 6],
+        [4, 0, 3, 7],
+        [1, 5, 6, 2],
+        [3, 2, 6, 7],
+        [4, 5, 1, 0],
+    ] {
+        let base = mesh.positions.len() as u32;
+        mesh.positions
+            .extend(face.iter().map(|&k| corners[order[k]] * 0.5));
+        mesh.indices
+            .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+        mesh.triangle_materials.extend([red, red]);
+    }
+    scene.meshes.push(mesh);
+    scene.instances.push(irradiant_scene::Instance {
+        name: "block".into(),
+        mesh: block,
+        transform: Mat4::from_translation(at),
+    });
+    scene
+}

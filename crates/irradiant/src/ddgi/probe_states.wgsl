@@ -1,0 +1,68 @@
+// ddgi/probe_states: after the blends, each probe's state for the next frame (003 §6,
+// Listing 5). During the volume's first frames (while relocation runs) it notes whether any
+// front face lies within one grid cell of the probe along every axis, that is, in one of the
+// eight cells the probe is a corner of, where surfaces read it; on the last of those frames a
+// probe still seeing more than 25 % backfaces turns off, one near geometry stays vigilant, and
+// the rest sleep. From then on, sleeping probes inside a wake box (an animated instance's
+// bounds grown by a cell and the self-shadow bias) wake, and sleep again when it leaves.
+#import ddgi_volume
+#import ddgi_rays
+#import ddgi_states
+
+@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(1) @binding(5) var<storage, read> probe_offsets: array<vec4<f32>>;
+@group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(1) @binding(16) var<storage, read_write> states: array<u32>;
+// min, max corners, two vec4 a box
+@group(1) @binding(17) var<storage, read> wake_boxes: array<vec4<f32>>;
+
+@compute @workgroup_size(64, 1, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let probe = id.x + id.y * groups.x * 64u;
+    if probe >= volume.probe_count {
+        return;
+    }
+    let word = states[probe];
+    var state = probe_state(word);
+    var near = (word & PROBE_NEAR_GEOMETRY) != 0u;
+    var blends = probe_blends(word);
+    if probe_updates(word) {
+        // It traced and blended this frame.
+        blends = min(blends + 1u, 0xffffffu);
+    }
+    let phase = volume.state_phase;
+    if phase == STATES_CLASSIFYING || phase == STATES_CLASSIFY_LAST {
+        let m = volume.rays_per_probe;
+        var backfaces = 0u;
+        for (var r = 0u; r < m; r++) {
+            let distance = samples[probe * m + r].distance;
+            if distance < 0.0 {
+                backfaces++;
+            } else if distance < volume.max_ray_distance && all(abs(directions[r].xyz * distance) <= volume.spacing) {
+                near = true;
+            }
+        }
+        if phase == STATES_CLASSIFY_LAST {
+            if f32(backfaces) > 0.25 * f32(m) {
+                state = PROBE_OFF;
+            } else if near {
+                state = PROBE_VIGILANT;
+            } else {
+                state = PROBE_SLEEPING;
+            }
+        }
+    } else if phase == STATES_CLASSIFIED && (state == PROBE_SLEEPING || state == PROBE_AWAKE) {
+        let position = grid_position(probe) + probe_offsets[probe].xyz;
+        var woken = false;
+        for (var b = 0u; b < volume.wake_box_count; b++) {
+            woken = woken || (all(position >= wake_boxes[2u * b].xyz) && all(position <= wake_boxes[2u * b + 1u].xyz));
+        }
+        if woken && state == PROBE_SLEEPING {
+            // Whatever it held is stale: its first blend starts it from scratch.
+            blends = 0u;
+        }
+        state = select(PROBE_SLEEPING, PROBE_AWAKE, woken);
+    }
+    states[probe] = state | select(0u, PROBE_NEAR_GEOMETRY, near) | (blends << PROBE_AGE_SHIFT);
+}

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Runs on the lent NVIDIA machine: the DDGI update on Sibenik at the paper's grids, every
+# variant that BENCHMARKS.md compares, in one call (so ratios come from one machine and run).
+# Expects .dev/ as tools/device/pack.sh lays it out; writes into $OUT.
+set -euo pipefail
+for f in .gl/*.deb; do dpkg -x "$f" /; done
+ldconfig
+export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+cd .dev/repo
+bin=../irradiant
+sibenik=scenes/sibenik/sibenik.toml
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
+common="--scene $sibenik --size 1920x1080 --iterations 30"
+# ${VARIANTS} lets a call pick extra flags; each line is one bench invocation.
+while IFS= read -r flags; do
+    [ -z "$flags" ] && continue
+    name=$(echo "$flags" | md5sum | cut -c1-8)
+    echo "== $flags" | tee -a "$OUT/ddgi-speed.txt"
+    $bin bench $common $flags --json "$OUT/ddgi-$name.json" 2>&1 | grep -v "^ *$" | tee -a "$OUT/ddgi-speed.txt"
+done <<< "${VARIANTS:---ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states off,on}"
