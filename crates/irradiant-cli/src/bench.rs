@@ -61,6 +61,10 @@ pub struct BenchArgs {
     /// and probes far from geometry sleep, 003 §6) and/or off (every probe traces every frame).
     #[arg(long, value_delimiter = ',', default_value = "on")]
     pub ddgi_probe_states: Vec<String>,
+    /// Light choice of the probe rays' shadow rays to time, comma-separated: warp (one random
+    /// light for 32 neighbouring rays, the default) and/or ray (one for each ray).
+    #[arg(long, value_delimiter = ',', default_value = "warp")]
+    pub ddgi_light_choice: Vec<String>,
     /// DDGI weights to time with (the Figure 7 ladder; classic skips the visibility lookups).
     #[arg(long, value_enum, default_value = "full")]
     pub ddgi_weights: crate::render::Weights,
@@ -310,31 +314,45 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                                 )));
                             }
                         };
-                        let settings = DdgiSettings {
-                            probe_states,
-                            rays_per_probe: rays,
-                            shade_all_lights: args.ddgi_shade_all_lights,
-                            coherent_rays,
-                            probes_per_group,
-                            weights: crate::render::probe_weights(args.ddgi_weights),
-                            ..DdgiSettings::balanced()
-                        };
-                        record.ddgi.push(time_ddgi(
-                            &ctx,
-                            &scene,
-                            &gpu_scene,
-                            counts,
-                            &settings,
-                            size,
-                            // The first configuration also warms the GPU up from idle
-                            // (seen on an H200: its first frames ran 5× slow).
-                            warmup.max(match (args.smoke, record.ddgi.is_empty()) {
-                                (true, _) => 1,
-                                (false, true) => 60,
-                                (false, false) => 5,
-                            }),
-                            iterations,
-                        )?);
+                        for light in &args.ddgi_light_choice {
+                            let light_per_warp = match light.as_str() {
+                                "warp" => true,
+                                "ray" => false,
+                                other => {
+                                    return Err(CliError::Usage(format!(
+                                        "unknown --ddgi-light-choice {other:?}: use warp or ray"
+                                    )));
+                                }
+                            };
+                            let settings = DdgiSettings {
+                                probe_states,
+                                light_per_warp,
+                                rays_per_probe: rays,
+                                shade_all_lights: args.ddgi_shade_all_lights,
+                                coherent_rays,
+                                probes_per_group,
+                                weights: crate::render::probe_weights(args.ddgi_weights),
+                                ..DdgiSettings::balanced()
+                            };
+                            let first_of_scene = !record.ddgi.iter().any(|d| d.scene == scene.name);
+                            record.ddgi.push(time_ddgi(
+                                &ctx,
+                                &scene,
+                                &gpu_scene,
+                                counts,
+                                &settings,
+                                size,
+                                // A scene's first configuration also warms the GPU up
+                                // from idle after the scene's load (seen on an H200:
+                                // those frames ran up to 5× slow).
+                                warmup.max(match (args.smoke, first_of_scene) {
+                                    (true, _) => 1,
+                                    (false, true) => 60,
+                                    (false, false) => 5,
+                                }),
+                                iterations,
+                            )?);
+                        }
                     }
                 }
             }
@@ -464,14 +482,19 @@ fn time_ddgi(
         probes: counts,
         rays_per_probe: rays,
         variant: format!(
-            "{}/{}{}",
+            "{}/{}{}{}",
             if settings.coherent_rays {
                 "coherent"
             } else {
                 "fibonacci"
             },
             settings.probes_per_group,
-            if settings.probe_states { "/states" } else { "" }
+            if settings.probe_states { "/states" } else { "" },
+            if settings.light_per_warp {
+                ""
+            } else {
+                "/ray-light"
+            }
         ),
         rays: total_rays,
         updating_probes,
@@ -540,7 +563,7 @@ fn print_table(r: &BenchRecord) {
         })
         .collect();
     print!(
-        "\n{:<10} {:<10} {:>5} {:<19} {:>9}",
+        "\n{:<10} {:<10} {:>5} {:<28} {:>9}",
         "scene", "probes", "rays", "variant", "Mrays"
     );
     for l in &labels {
@@ -552,7 +575,7 @@ fn print_table(r: &BenchRecord) {
     );
     for d in &r.ddgi {
         print!(
-            "{:<10} {:<10} {:>5} {:<19} {:>9.2}",
+            "{:<10} {:<10} {:>5} {:<28} {:>9.2}",
             d.scene,
             format!("{}x{}x{}", d.probes[0], d.probes[1], d.probes[2]),
             d.rays_per_probe,

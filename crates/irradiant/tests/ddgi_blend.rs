@@ -1,5 +1,6 @@
-//! The GPU probe update (blend irradiance, blend distance, borders) equals a CPU oracle of the
-//! same step on synthetic rays, over two frames (hysteresis 0, then the start-up running mean).
+//! The GPU probe update (blend weights, blend irradiance, blend distance, their borders) equals
+//! a CPU oracle of the same step on synthetic rays, over two frames (hysteresis 0, then the
+//! start-up running mean).
 
 mod common;
 
@@ -90,11 +91,22 @@ fn oracle(
 
 #[test]
 fn blend_and_borders_match_the_cpu_oracle() {
+    blend_matches_the_oracle(96);
+}
+
+/// More rays than the blends hold in workgroup memory at once (256): each texel's ray list is
+/// gathered chunk by chunk.
+#[test]
+fn blend_matches_the_oracle_with_rays_in_several_chunks() {
+    blend_matches_the_oracle(300);
+}
+
+fn blend_matches_the_oracle(rays_per_probe: u32) {
     let Some(ctx) = common::gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
     let settings = DdgiSettings {
-        rays_per_probe: 96,
+        rays_per_probe,
         convergence_heuristics: false,
         ..DdgiSettings::balanced()
     };

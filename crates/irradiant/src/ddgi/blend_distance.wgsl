@@ -14,9 +14,14 @@
 @group(1) @binding(8) var<storage, read_write> distance_atlas: array<vec2<f32>>;
 
 // BLEND_THREADS, TILE_TEXELS and BLEND_CHUNK: see ddgi/blend_irradiance.
-const SLOTS: u32 = (TILE_TEXELS + BLEND_THREADS - 1u) / BLEND_THREADS;
+// BLEND_SPLIT threads share each tile texel, each summing every BLEND_SPLIT-th of its
+// entries: small tiles (irradiance: 8×8) still fill the workgroup, and each thread's chain
+// of dependent loads is that much shorter.
+const SLOT_THREADS: u32 = BLEND_THREADS / BLEND_SPLIT;
+const SLOTS: u32 = (TILE_TEXELS + SLOT_THREADS - 1u) / SLOT_THREADS;
 // (distance, distance²) of each ray of the chunk.
 var<workgroup> cache_moments: array<vec2<f32>, BLEND_CHUNK>;
+var<workgroup> partial: array<vec4<f32>, BLEND_THREADS>;
 var<workgroup> tile_values: array<vec2<f32>, TILE_TEXELS>;
 
 @compute @workgroup_size(BLEND_THREADS, 1, 1)
@@ -37,8 +42,11 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     let weights_base = volume.irradiance_texels * volume.irradiance_texels * (m + 1u);
     let origin = tile_origin(probe, tile);
     let width = atlas_width(tile);
+    // Slots: each group of BLEND_SPLIT threads takes tile texels lane, lane + SLOT_THREADS, …
+    // (a uniform count, since the loop holds barriers).
+    let part = li / SLOT_THREADS;
     for (var slot = 0u; slot < SLOTS; slot++) {
-        let i = slot * BLEND_THREADS + li;
+        let i = slot * SLOT_THREADS + li % SLOT_THREADS;
         let x = i % tile;
         let y = i / tile;
         let interior = i < tile * tile && x >= 1u && y >= 1u && x <= texels && y <= texels;
@@ -46,8 +54,8 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         let header = blend_weights[weights_base + t];
         let count = select(0u, header.ray, interior);
         var sum = vec2<f32>(0.0);
-        var cursor = 0u;
-        var entry = blend_weights[weights_base + texel_count + t];
+        var cursor = part;
+        var entry = blend_weights[weights_base + texel_count + min(part, max(count, 1u) - 1u) * texel_count + t];
         for (var base = 0u; base < m; base += BLEND_CHUNK) {
             workgroupBarrier();
             for (var r = li; r < BLEND_CHUNK; r += BLEND_THREADS) {
@@ -59,7 +67,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             workgroupBarrier();
             if m <= BLEND_CHUNK {
                 // One chunk holds every ray: a counted loop whose loads do not wait on each other.
-                for (var k = 0u; k < count; k++) {
+                for (var k = part; k < count; k += BLEND_SPLIT) {
                     let e = blend_weights[weights_base + texel_count + k * texel_count + t];
                     sum += e.weight * cache_moments[e.ray];
                 }
@@ -70,12 +78,19 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
                         break;
                     }
                     sum += entry.weight * cache_moments[entry.ray - base];
-                    cursor++;
+                    cursor += BLEND_SPLIT;
                     entry = blend_weights[weights_base + texel_count + min(cursor, count - 1u) * texel_count + t];
                 }
             }
         }
-        if interior {
+        if BLEND_SPLIT > 1u {
+            partial[li] = vec4<f32>(sum, 0.0, 0.0);
+            workgroupBarrier();
+            for (var p = 1u; p < BLEND_SPLIT; p++) {
+                sum += partial[p * SLOT_THREADS + li % SLOT_THREADS].xy;
+            }
+        }
+        if interior && part == 0u {
             let index = (origin.y + y) * width + origin.x + x;
             let old = distance_atlas[index];
             var blended = old;
@@ -90,11 +105,10 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         }
     }
     workgroupBarrier();
-    for (var slot = 0u; slot < SLOTS; slot++) {
-        let i = slot * BLEND_THREADS + li;
+    for (var i = li; i < tile * tile; i += BLEND_THREADS) {
         let x = i % tile;
         let y = i / tile;
-        if i >= tile * tile || (x >= 1u && y >= 1u && x <= texels && y <= texels) {
+        if (x >= 1u && y >= 1u && x <= texels && y <= texels) {
             continue;
         }
         let source = border_source(x, y, texels);

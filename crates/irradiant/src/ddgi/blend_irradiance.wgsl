@@ -16,8 +16,13 @@
 
 // BLEND_THREADS (threads a workgroup), TILE_TEXELS (texels of a tile, border included) and
 // BLEND_CHUNK (rays held in workgroup memory at once) come from Ddgi::new.
-const SLOTS: u32 = (TILE_TEXELS + BLEND_THREADS - 1u) / BLEND_THREADS;
+// BLEND_SPLIT threads share each tile texel, each summing every BLEND_SPLIT-th of its
+// entries: small tiles (irradiance: 8×8) still fill the workgroup, and each thread's chain
+// of dependent loads is that much shorter.
+const SLOT_THREADS: u32 = BLEND_THREADS / BLEND_SPLIT;
+const SLOTS: u32 = (TILE_TEXELS + SLOT_THREADS - 1u) / SLOT_THREADS;
 var<workgroup> cache_radiance: array<vec4<f32>, BLEND_CHUNK>;
+var<workgroup> partial: array<vec4<f32>, BLEND_THREADS>;
 var<workgroup> tile_values: array<vec2<u32>, TILE_TEXELS>;
 
 @compute @workgroup_size(BLEND_THREADS, 1, 1)
@@ -37,10 +42,11 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     let m = volume.rays_per_probe;
     let origin = tile_origin(probe, tile);
     let width = atlas_width(tile);
-    // Slots: each thread takes tile texels li, li + BLEND_THREADS, … (a uniform count, since
-    // the loop holds barriers).
+    // Slots: each group of BLEND_SPLIT threads takes tile texels lane, lane + SLOT_THREADS, …
+    // (a uniform count, since the loop holds barriers).
+    let part = li / SLOT_THREADS;
     for (var slot = 0u; slot < SLOTS; slot++) {
-        let i = slot * BLEND_THREADS + li;
+        let i = slot * SLOT_THREADS + li % SLOT_THREADS;
         let x = i % tile;
         let y = i / tile;
         let interior = i < tile * tile && x >= 1u && y >= 1u && x <= texels && y <= texels;
@@ -48,8 +54,8 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         let header = blend_weights[t];
         let count = select(0u, header.ray, interior);
         var sum = vec3<f32>(0.0);
-        var cursor = 0u;
-        var entry = blend_weights[texel_count + t];
+        var cursor = part;
+        var entry = blend_weights[texel_count + min(part, max(count, 1u) - 1u) * texel_count + t];
         for (var base = 0u; base < m; base += BLEND_CHUNK) {
             workgroupBarrier();
             for (var r = li; r < BLEND_CHUNK; r += BLEND_THREADS) {
@@ -60,7 +66,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             workgroupBarrier();
             if m <= BLEND_CHUNK {
                 // One chunk holds every ray: a counted loop whose loads do not wait on each other.
-                for (var k = 0u; k < count; k++) {
+                for (var k = part; k < count; k += BLEND_SPLIT) {
                     let e = blend_weights[texel_count + k * texel_count + t];
                     sum += e.weight * cache_radiance[e.ray].rgb;
                 }
@@ -71,12 +77,19 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
                         break;
                     }
                     sum += entry.weight * cache_radiance[entry.ray - base].rgb;
-                    cursor++;
+                    cursor += BLEND_SPLIT;
                     entry = blend_weights[texel_count + min(cursor, count - 1u) * texel_count + t];
                 }
             }
         }
-        if interior {
+        if BLEND_SPLIT > 1u {
+            partial[li] = vec4<f32>(sum, 0.0);
+            workgroupBarrier();
+            for (var p = 1u; p < BLEND_SPLIT; p++) {
+                sum += partial[p * SLOT_THREADS + li % SLOT_THREADS].xyz;
+            }
+        }
+        if interior && part == 0u {
             let value = select(vec3<f32>(0.0), sum / header.weight, header.weight > 0.0);
             let encoded = pow(max(value, vec3<f32>(0.0)), vec3<f32>(1.0 / volume.irradiance_gamma));
             let index = (origin.y + y) * width + origin.x + x;
@@ -100,11 +113,10 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         }
     }
     workgroupBarrier();
-    for (var slot = 0u; slot < SLOTS; slot++) {
-        let i = slot * BLEND_THREADS + li;
+    for (var i = li; i < tile * tile; i += BLEND_THREADS) {
         let x = i % tile;
         let y = i / tile;
-        if i >= tile * tile || (x >= 1u && y >= 1u && x <= texels && y <= texels) {
+        if (x >= 1u && y >= 1u && x <= texels && y <= texels) {
             continue;
         }
         let source = border_source(x, y, texels);

@@ -70,6 +70,11 @@ pub struct DdgiSettings {
     /// ray per probe ray however many lights there are; the extra noise grows with the light
     /// count and the hysteresis averages it away.
     pub shade_all_lights: bool,
+    /// With one light per probe ray: pick the light once for 32 neighbouring rays (a GPU warp)
+    /// rather than for each ray. The warp's shadow rays then all go to one light instead of
+    /// taking turns for each light, at the price of noise shared by those 32 rays in a frame
+    /// (still unbiased; the hysteresis averages it). Off only to measure what it buys.
+    pub light_per_warp: bool,
     /// Probe states (003 §6): after the first frames, probes stuck in walls switch off and
     /// probes with no static geometry within a grid cell sleep; neither traces, blends nor
     /// shades. Sleeping probes near animated instances wake. Saves the work of every probe no
@@ -122,6 +127,7 @@ impl DdgiSettings {
             convergence_heuristics: true,
             relocation: true,
             shade_all_lights: false,
+            light_per_warp: true,
             probe_states: true,
             coherent_rays: true,
             probes_per_group: 1,

@@ -698,13 +698,19 @@ pub struct Atlases {
 }
 
 /// IEEE half to f32 (the atlases pack f16 pairs with WGSL's pack2x16float).
-/// Constants of a blend pass over tiles of `texels` interior texels: BLEND_THREADS (a
-/// workgroup's threads: the whole tile, border included, up to 256), TILE_TEXELS (the
-/// tile's texels) and BLEND_CHUNK (rays held in workgroup memory at once).
+/// Constants of a blend pass over tiles of `texels` interior texels: TILE_TEXELS (the tile's
+/// texels, border included), BLEND_SPLIT (threads sharing one texel: enough to fill 256
+/// threads), BLEND_THREADS (a workgroup's threads: BLEND_SPLIT for each tile texel, up to
+/// 256) and BLEND_CHUNK (rays held in workgroup memory at once).
 fn blend_constants(texels: u32) -> Vec<(&'static str, String)> {
     let tile_texels = (texels + 2) * (texels + 2);
+    let split = (256 / tile_texels).max(1);
     vec![
-        ("BLEND_THREADS", format!("{}u", tile_texels.min(256))),
+        (
+            "BLEND_THREADS",
+            format!("{}u", (split * tile_texels).min(256)),
+        ),
+        ("BLEND_SPLIT", format!("{split}u")),
         ("TILE_TEXELS", format!("{tile_texels}u")),
         ("BLEND_CHUNK", format!("{BLEND_CHUNK}u")),
     ]
@@ -713,12 +719,19 @@ fn blend_constants(texels: u32) -> Vec<(&'static str, String)> {
 /// Rays the blend passes hold in workgroup memory at once: 4 KiB of radiance.
 const BLEND_CHUNK: u32 = 256;
 
-/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl).
+/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl) and
+/// LIGHT_PER_WARP (ddgi/shade).
 fn ddgi_shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
-    vec![(
-        "PROBES_PER_GROUP",
-        format!("{}u", settings.probes_per_group),
-    )]
+    vec![
+        (
+            "PROBES_PER_GROUP",
+            format!("{}u", settings.probes_per_group),
+        ),
+        (
+            "LIGHT_PER_WARP",
+            format!("{}u", settings.light_per_warp as u32),
+        ),
+    ]
 }
 
 pub fn half_to_f32(h: u16) -> f32 {

@@ -48,7 +48,14 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     if volume.all_lights != 0u {
         l = direct_punctual(s, wo);
     } else {
-        l = direct_punctual_one(s, wo, rand(&rng));
+        // LIGHT_PER_WARP: one random light for each 32 neighbouring threads (a warp) instead
+        // of each ray, so that a warp's shadow rays walk to one light together rather than
+        // taking turns for each light; every ray still sees each light with equal probability.
+        var light_rng = rng;
+        if LIGHT_PER_WARP == 1u {
+            light_rng = rng_seed((group.x + group.y * groups.x) * 2u + local_index / 32u, volume.frame, 0x2c1b3c6du);
+        }
+        l = direct_punctual_one(s, wo, rand(&light_rng));
     }
     if scene_info.emitter_count > 0u {
         l += emitter_light(s, wo, &rng);
