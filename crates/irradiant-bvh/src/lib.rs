@@ -81,17 +81,21 @@ pub struct Blas {
     pub depth: u32,
 }
 
-pub fn build_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> Blas {
-    let tris: Vec<Triangle> = triangles
+/// The triangles as obvhs builds from them.
+fn obvhs_triangles(triangles: &[[Vec3; 3]]) -> Vec<Triangle> {
+    triangles
         .iter()
         .map(|t| Triangle {
             v0: t[0].into(),
             v1: t[1].into(),
             v2: t[2].into(),
         })
-        .collect();
+        .collect()
+}
+
+pub fn build_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> Blas {
     let bvh = obvhs::bvh2::builder::build_bvh2_from_tris(
-        &tris,
+        &obvhs_triangles(triangles),
         quality.params(),
         &mut Duration::default(),
     );

@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use obvhs::{cwbvh::node::CwBvhNode, triangle::Triangle};
+use obvhs::cwbvh::node::CwBvhNode;
 
 use crate::BuildQuality;
 
@@ -72,16 +72,8 @@ pub struct WideBlas {
 }
 
 pub fn build_wide_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> WideBlas {
-    let tris: Vec<Triangle> = triangles
-        .iter()
-        .map(|t| Triangle {
-            v0: t[0].into(),
-            v1: t[1].into(),
-            v2: t[2].into(),
-        })
-        .collect();
     let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(
-        &tris,
+        &crate::obvhs_triangles(triangles),
         quality.params(),
         &mut Duration::default(),
     );
