@@ -65,6 +65,10 @@ pub struct BenchArgs {
     /// light for 32 neighbouring rays, the default) and/or ray (one for each ray).
     #[arg(long, value_delimiter = ',', default_value = "warp")]
     pub ddgi_light_choice: Vec<String>,
+    /// Time DDGI with trace and shade as one pass (on) and/or two (off, the default),
+    /// comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "off")]
+    pub ddgi_fuse_trace_shade: Vec<String>,
     /// DDGI weights to time with (the Figure 7 ladder; classic skips the visibility lookups).
     #[arg(long, value_enum, default_value = "full")]
     pub ddgi_weights: crate::render::Weights,
@@ -184,6 +188,17 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         passes: Vec::new(),
         ddgi: Vec::new(),
     };
+    let fuse_options = args
+        .ddgi_fuse_trace_shade
+        .iter()
+        .map(|f| match f.as_str() {
+            "on" => Ok(true),
+            "off" => Ok(false),
+            other => Err(CliError::Usage(format!(
+                "unknown --ddgi-fuse-trace-shade {other:?}: use on or off"
+            ))),
+        })
+        .collect::<Result<Vec<bool>, CliError>>()?;
     for name in &args.scene {
         let start = Instant::now();
         let scene = irradiant_scene::load(name)?.scene;
@@ -324,34 +339,38 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                                     )));
                                 }
                             };
-                            let settings = DdgiSettings {
-                                probe_states,
-                                light_per_warp,
-                                rays_per_probe: rays,
-                                shade_all_lights: args.ddgi_shade_all_lights,
-                                coherent_rays,
-                                probes_per_group,
-                                weights: crate::render::probe_weights(args.ddgi_weights),
-                                ..DdgiSettings::balanced()
-                            };
-                            let first_of_scene = !record.ddgi.iter().any(|d| d.scene == scene.name);
-                            record.ddgi.push(time_ddgi(
-                                &ctx,
-                                &scene,
-                                &gpu_scene,
-                                counts,
-                                &settings,
-                                size,
-                                // A scene's first configuration also warms the GPU up
-                                // from idle after the scene's load (seen on an H200:
-                                // those frames ran up to 5× slow).
-                                warmup.max(match (args.smoke, first_of_scene) {
-                                    (true, _) => 1,
-                                    (false, true) => 60,
-                                    (false, false) => 5,
-                                }),
-                                iterations,
-                            )?);
+                            for &fuse_trace_and_shade in &fuse_options {
+                                let settings = DdgiSettings {
+                                    fuse_trace_and_shade,
+                                    probe_states,
+                                    light_per_warp,
+                                    rays_per_probe: rays,
+                                    shade_all_lights: args.ddgi_shade_all_lights,
+                                    coherent_rays,
+                                    probes_per_group,
+                                    weights: crate::render::probe_weights(args.ddgi_weights),
+                                    ..DdgiSettings::balanced()
+                                };
+                                let first_of_scene =
+                                    !record.ddgi.iter().any(|d| d.scene == scene.name);
+                                record.ddgi.push(time_ddgi(
+                                    &ctx,
+                                    &scene,
+                                    &gpu_scene,
+                                    counts,
+                                    &settings,
+                                    size,
+                                    // A scene's first configuration also warms the GPU up
+                                    // from idle after the scene's load (seen on an H200:
+                                    // those frames ran up to 5× slow).
+                                    warmup.max(match (args.smoke, first_of_scene) {
+                                        (true, _) => 1,
+                                        (false, true) => 60,
+                                        (false, false) => 5,
+                                    }),
+                                    iterations,
+                                )?);
+                            }
                         }
                     }
                 }
@@ -464,6 +483,7 @@ fn time_ddgi(
         "ddgi/ray_directions",
         "ddgi/trace",
         "ddgi/shade",
+        "ddgi/trace_shade",
         "ddgi/blend_irradiance",
         "ddgi/blend_distance",
         "ddgi/blend_weights",
@@ -482,7 +502,7 @@ fn time_ddgi(
         probes: counts,
         rays_per_probe: rays,
         variant: format!(
-            "{}/{}{}{}",
+            "{}/{}{}{}{}",
             if settings.coherent_rays {
                 "coherent"
             } else {
@@ -494,6 +514,11 @@ fn time_ddgi(
                 ""
             } else {
                 "/ray-light"
+            },
+            if settings.fuse_trace_and_shade {
+                "/fused"
+            } else {
+                ""
             }
         ),
         rays: total_rays,
@@ -553,10 +578,18 @@ fn print_table(r: &BenchRecord) {
     if r.ddgi.is_empty() {
         return;
     }
-    let labels: Vec<&str> = r.ddgi[0]
-        .passes
+    // Every pass any record has, in the order first seen (fused variants lack some passes).
+    let mut full_labels: Vec<&str> = Vec::new();
+    for d in &r.ddgi {
+        for (l, _) in &d.passes {
+            if !full_labels.contains(&l.as_str()) {
+                full_labels.push(l);
+            }
+        }
+    }
+    let labels: Vec<&str> = full_labels
         .iter()
-        .map(|(l, _)| {
+        .map(|l| {
             l.strip_prefix("ddgi/")
                 .or(l.strip_prefix("frame/"))
                 .unwrap_or(l)
@@ -582,7 +615,12 @@ fn print_table(r: &BenchRecord) {
             d.variant,
             d.rays as f64 / 1e6
         );
-        for (_, ms) in &d.passes {
+        for label in &full_labels {
+            let ms = d
+                .passes
+                .iter()
+                .find(|(l, _)| l == label)
+                .map_or(0.0, |p| p.1);
             print!(" {:>12.3}", ms);
         }
         println!(

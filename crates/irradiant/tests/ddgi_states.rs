@@ -82,3 +82,29 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
         "probe states changed the image: {with_states} against {without}"
     );
 }
+
+/// ddgi/trace_shade (DdgiSettings::fuse_trace_and_shade) traces and shades in one pass: the same
+/// rays, hits and random numbers as ddgi/trace then ddgi/shade, so the same image.
+#[test]
+fn fused_trace_and_shade_renders_what_the_two_passes_render() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let two = DdgiSettings {
+        rays_per_probe: 32,
+        ..DdgiSettings::balanced()
+    };
+    let one = DdgiSettings {
+        fuse_trace_and_shade: true,
+        ..two.clone()
+    };
+    let (separate, _) = indirect_and_states(&ctx, &scene, &two, 8);
+    let (fused, _) = indirect_and_states(&ctx, &scene, &one, 8);
+    eprintln!("indirect: trace + shade {separate:.6}, fused {fused:.6}");
+    assert!(separate > 0.01, "the box should have indirect light");
+    // Bound: the same arithmetic in another pass; only the compiler's float contraction may
+    // differ.
+    assert!(
+        (fused / separate - 1.0).abs() < 1e-4,
+        "fused {fused} against separate {separate}"
+    );
+}

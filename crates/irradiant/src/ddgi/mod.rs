@@ -75,6 +75,10 @@ pub struct DdgiSettings {
     /// taking turns for each light, at the price of noise shared by those 32 rays in a frame
     /// (still unbiased; the hysteresis averages it). Off only to measure what it buys.
     pub light_per_warp: bool,
+    /// Trace each probe ray and shade its hit in one pass (ddgi/trace_shade) instead of two
+    /// (ddgi/trace, ddgi/shade): no hit buffer written and read back and one dispatch fewer,
+    /// against the tracing running at the shading's (lower) occupancy. Same results.
+    pub fuse_trace_and_shade: bool,
     /// Probe states (003 §6): after the first frames, probes stuck in walls switch off and
     /// probes with no static geometry within a grid cell sleep; neither traces, blends nor
     /// shades. Sleeping probes near animated instances wake. Saves the work of every probe no
@@ -128,6 +132,7 @@ impl DdgiSettings {
             relocation: true,
             shade_all_lights: false,
             light_per_warp: true,
+            fuse_trace_and_shade: false,
             probe_states: true,
             coherent_rays: true,
             probes_per_group: 1,

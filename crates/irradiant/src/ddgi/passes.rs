@@ -127,7 +127,11 @@ impl Ddgi {
             &[],
         )?;
         let (shade, l_shade) = make(
-            "ddgi/shade",
+            if settings.fuse_trace_and_shade {
+                "ddgi/trace_shade"
+            } else {
+                "ddgi/shade"
+            },
             include_str!("shade.wgsl"),
             &[
                 (0, UNIFORM),
@@ -139,7 +143,10 @@ impl Ddgi {
                 (6, STORAGE_WRITE),
                 (15, STORAGE_READ),
             ],
-            &[],
+            &[(
+                "FUSED_TRACE",
+                format!("{}u", settings.fuse_trace_and_shade as u32),
+            )],
         )?;
         let (relocate, l_relocate) = make(
             "ddgi/relocate",
@@ -502,12 +509,14 @@ impl Ddgi {
             &[s, &g.ray_directions],
             [self.settings.rays_per_probe.div_ceil(64), 1, 1],
         );
-        self.trace.dispatch(
-            encoder,
-            profiler.as_deref_mut(),
-            &[s, &g.trace],
-            fold_groups(ray_groups),
-        );
+        if !self.settings.fuse_trace_and_shade {
+            self.trace.dispatch(
+                encoder,
+                profiler.as_deref_mut(),
+                &[s, &g.trace],
+                fold_groups(ray_groups),
+            );
+        }
         self.shade.dispatch(
             encoder,
             profiler.as_deref_mut(),

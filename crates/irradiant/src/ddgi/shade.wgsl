@@ -21,7 +21,18 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     let index = slot.index;
     let probe = slot.probe;
     let dir = directions[slot.ray].xyz;
-    let hit = hits[index];
+    // FUSED_TRACE: this pass traces the ray itself (ddgi/trace_shade) instead of reading
+    // ddgi/trace's hit: no hit buffer round trip and one dispatch fewer.
+    var hit: GpuDdgiRayHit;
+    if FUSED_TRACE == 1u {
+        let found = trace_ray(probe_position(probe), dir, volume.max_ray_distance, false);
+        hit.t = select(found.t, -1.0, found.triangle == INVALID);
+        hit.triangle = found.triangle;
+        hit.instance = found.instance;
+        hit.bary = pack2x16unorm(found.bary);
+    } else {
+        hit = hits[index];
+    }
     var out: GpuDdgiRaySample;
     if hit.t < 0.0 {
         out.radiance = scene_info.sky;
