@@ -188,17 +188,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         passes: Vec::new(),
         ddgi: Vec::new(),
     };
-    let fuse_options = args
-        .ddgi_fuse_trace_shade
-        .iter()
-        .map(|f| match f.as_str() {
-            "on" => Ok(true),
-            "off" => Ok(false),
-            other => Err(CliError::Usage(format!(
-                "unknown --ddgi-fuse-trace-shade {other:?}: use on or off"
-            ))),
-        })
-        .collect::<Result<Vec<bool>, CliError>>()?;
+    let ddgi_variants = ddgi_variants(args)?;
     for name in &args.scene {
         let start = Instant::now();
         let scene = irradiant_scene::load(name)?.scene;
@@ -304,75 +294,42 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             } else {
                 crate::render::parse_counts(probes).map_err(CliError::Usage)?
             };
+            // Every combination of the listed variants, each timed on its own.
+            let variants = ddgi_variants.iter().flat_map(|v| {
+                args.ddgi_probes_per_group
+                    .iter()
+                    .map(move |&probes_per_group| (*v, probes_per_group))
+            });
             for &rays in &args.ddgi_rays {
-                for order in &args.ddgi_ray_order {
-                    let coherent_rays = match order.as_str() {
-                        "coherent" => true,
-                        "fibonacci" => false,
-                        other => {
-                            return Err(CliError::Usage(format!(
-                                "unknown ray order {other:?}: use coherent or fibonacci"
-                            )));
-                        }
+                for (v, probes_per_group) in variants.clone() {
+                    let settings = DdgiSettings {
+                        rays_per_probe: rays,
+                        coherent_rays: v.coherent_rays,
+                        probe_states: v.probe_states,
+                        probes_per_group,
+                        light_per_warp: v.light_per_warp,
+                        fuse_trace_and_shade: v.fuse_trace_and_shade,
+                        shade_all_lights: args.ddgi_shade_all_lights,
+                        weights: crate::render::probe_weights(args.ddgi_weights),
+                        ..DdgiSettings::balanced()
                     };
-                    for (states, &probes_per_group) in args
-                        .ddgi_probe_states
-                        .iter()
-                        .flat_map(|s| args.ddgi_probes_per_group.iter().map(move |p| (s, p)))
-                    {
-                        let probe_states = match states.as_str() {
-                            "on" => true,
-                            "off" => false,
-                            other => {
-                                return Err(CliError::Usage(format!(
-                                    "unknown --ddgi-probe-states {other:?}: use on or off"
-                                )));
-                            }
-                        };
-                        for light in &args.ddgi_light_choice {
-                            let light_per_warp = match light.as_str() {
-                                "warp" => true,
-                                "ray" => false,
-                                other => {
-                                    return Err(CliError::Usage(format!(
-                                        "unknown --ddgi-light-choice {other:?}: use warp or ray"
-                                    )));
-                                }
-                            };
-                            for &fuse_trace_and_shade in &fuse_options {
-                                let settings = DdgiSettings {
-                                    fuse_trace_and_shade,
-                                    probe_states,
-                                    light_per_warp,
-                                    rays_per_probe: rays,
-                                    shade_all_lights: args.ddgi_shade_all_lights,
-                                    coherent_rays,
-                                    probes_per_group,
-                                    weights: crate::render::probe_weights(args.ddgi_weights),
-                                    ..DdgiSettings::balanced()
-                                };
-                                let first_of_scene =
-                                    !record.ddgi.iter().any(|d| d.scene == scene.name);
-                                record.ddgi.push(time_ddgi(
-                                    &ctx,
-                                    &scene,
-                                    &gpu_scene,
-                                    counts,
-                                    &settings,
-                                    size,
-                                    // A scene's first configuration also warms the GPU up
-                                    // from idle after the scene's load (seen on an H200:
-                                    // those frames ran up to 5× slow).
-                                    warmup.max(match (args.smoke, first_of_scene) {
-                                        (true, _) => 1,
-                                        (false, true) => 60,
-                                        (false, false) => 5,
-                                    }),
-                                    iterations,
-                                )?);
-                            }
-                        }
-                    }
+                    let first_of_scene = !record.ddgi.iter().any(|d| d.scene == scene.name);
+                    record.ddgi.push(time_ddgi(
+                        &ctx,
+                        &scene,
+                        &gpu_scene,
+                        counts,
+                        &settings,
+                        size,
+                        // A scene's first configuration also warms the GPU up from idle after
+                        // the scene's load (seen on an H200: those frames ran up to 5× slow).
+                        warmup.max(match (args.smoke, first_of_scene) {
+                            (true, _) => 1,
+                            (false, true) => 60,
+                            (false, false) => 5,
+                        }),
+                        iterations,
+                    )?);
                 }
             }
         }
@@ -387,6 +344,66 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         println!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// The DDGI switches that `bench` times, one value of each.
+#[derive(Clone, Copy)]
+struct DdgiVariant {
+    coherent_rays: bool,
+    probe_states: bool,
+    light_per_warp: bool,
+    fuse_trace_and_shade: bool,
+}
+
+/// Every combination of the listed values of the two-valued DDGI switches.
+fn ddgi_variants(args: &BenchArgs) -> Result<Vec<DdgiVariant>, CliError> {
+    let switch = |values: &[String], flag: &str, yes: &str, no: &str| {
+        values
+            .iter()
+            .map(|v| match v.as_str() {
+                v if v == yes => Ok(true),
+                v if v == no => Ok(false),
+                other => Err(CliError::Usage(format!(
+                    "unknown {flag} {other:?}: use {yes} or {no}"
+                ))),
+            })
+            .collect::<Result<Vec<bool>, CliError>>()
+    };
+    let orders = switch(
+        &args.ddgi_ray_order,
+        "--ddgi-ray-order",
+        "coherent",
+        "fibonacci",
+    )?;
+    let states = switch(&args.ddgi_probe_states, "--ddgi-probe-states", "on", "off")?;
+    let lights = switch(
+        &args.ddgi_light_choice,
+        "--ddgi-light-choice",
+        "warp",
+        "ray",
+    )?;
+    let fuses = switch(
+        &args.ddgi_fuse_trace_shade,
+        "--ddgi-fuse-trace-shade",
+        "on",
+        "off",
+    )?;
+    let mut variants = Vec::new();
+    for &coherent_rays in &orders {
+        for &probe_states in &states {
+            for &light_per_warp in &lights {
+                for &fuse_trace_and_shade in &fuses {
+                    variants.push(DdgiVariant {
+                        coherent_rays,
+                        probe_states,
+                        light_per_warp,
+                        fuse_trace_and_shade,
+                    });
+                }
+            }
+        }
+    }
+    Ok(variants)
 }
 
 /// Runs `record_pass` warm-up + timed times, one submission each, and returns the timed
