@@ -5,9 +5,7 @@
 # and renders the pictures of the README and docs/. Expects .dev/ as tools/device/pack.sh lays
 # it out; writes into $OUT (at most 8 files come back, so the pictures travel as one tar).
 set -euo pipefail
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 bin=../irradiant
 sponza=scenes/sponza/sponza.toml

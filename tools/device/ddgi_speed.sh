@@ -3,9 +3,7 @@
 # variant that BENCHMARKS.md compares, in one call (so ratios come from one machine and run).
 # Expects .dev/ as tools/device/pack.sh lays it out; writes into $OUT.
 set -euo pipefail
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 bin=../irradiant
 sibenik=scenes/sibenik/sibenik.toml

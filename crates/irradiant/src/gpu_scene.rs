@@ -159,26 +159,25 @@ impl GpuScene {
                 continue;
             }
             let slot_base = triangles.len() as u32;
-            let triangle_order = match settings.blas_layout {
+            // (root node, object-space bounds, depth, leaf triangle order) of the mesh's tree.
+            let (root, bounds, depth, triangle_order) = match settings.blas_layout {
                 BlasLayout::Binary => {
                     let mut blas = build_blas(&tris, settings.bvh_quality);
-                    let node_base = nodes.len() as u32;
-                    blas.offset(node_base, slot_base);
+                    let root = nodes.len() as u32;
+                    blas.offset(root, slot_base);
                     nodes.extend_from_slice(&blas.nodes);
-                    max_depth = max_depth.max(blas.depth);
-                    blas_roots.push((node_base, blas.bounds));
-                    blas.triangle_order
+                    (root, blas.bounds, blas.depth, blas.triangle_order)
                 }
                 BlasLayout::Wide => {
                     let mut blas = build_wide_blas(&tris, settings.bvh_quality);
-                    let node_base = wide_nodes.len() as u32;
-                    blas.offset(node_base, slot_base);
+                    let root = wide_nodes.len() as u32;
+                    blas.offset(root, slot_base);
                     wide_nodes.extend_from_slice(&blas.nodes);
-                    max_depth = max_depth.max(blas.depth);
-                    blas_roots.push((node_base, blas.bounds));
-                    blas.triangle_order
+                    (root, blas.bounds, blas.depth, blas.triangle_order)
                 }
             };
+            max_depth = max_depth.max(depth);
+            blas_roots.push((root, bounds));
             let mut emissive = Vec::new();
             for &t in &triangle_order {
                 let [a, b, c] = tris[t as usize];
