@@ -69,11 +69,15 @@ pub struct BenchArgs {
     /// comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "off")]
     pub ddgi_fuse_trace_shade: Vec<String>,
+    /// Time DDGI with the probe rays' shadow rays queued for a dense pass (on, the default)
+    /// and/or traced in ddgi/shade (off), comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "on")]
+    pub ddgi_shadow_queue: Vec<String>,
     /// DDGI weights to time with (the Figure 7 ladder; classic skips the visibility lookups).
     #[arg(long, value_enum, default_value = "full")]
     pub ddgi_weights: crate::render::Weights,
-    /// BVH build effort: fast, balanced (the default) or quality (spatial pre-splits).
-    #[arg(long, value_enum, default_value = "balanced")]
+    /// BVH build effort: fast, balanced or quality (spatial pre-splits, the default).
+    #[arg(long, value_enum, default_value = "quality")]
     pub bvh_quality: BvhQuality,
     /// Bottom-level BVH layout: wide (compressed 8-wide nodes, the default) or binary.
     #[arg(long, value_enum, default_value = "wide")]
@@ -118,6 +122,8 @@ struct DdgiRecord {
     updating_probes: u32,
     /// Rays actually traced a frame: updating probes × rays per probe.
     traced_rays: u64,
+    /// Shadow rays ddgi/shade queued for ddgi/shadow in the last frame (0 without the queue).
+    queued_shadow_rays: u32,
     /// Median milliseconds of each pass of the frame.
     passes: Vec<(String, f64)>,
     /// ddgi/trace alone.
@@ -309,6 +315,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                         probes_per_group,
                         light_per_warp: v.light_per_warp,
                         fuse_trace_and_shade: v.fuse_trace_and_shade,
+                        shadow_queue: v.shadow_queue,
                         shade_all_lights: args.ddgi_shade_all_lights,
                         weights: crate::render::probe_weights(args.ddgi_weights),
                         ..DdgiSettings::balanced()
@@ -353,6 +360,7 @@ struct DdgiVariant {
     probe_states: bool,
     light_per_warp: bool,
     fuse_trace_and_shade: bool,
+    shadow_queue: bool,
 }
 
 /// Every combination of the listed values of the two-valued DDGI switches.
@@ -388,17 +396,21 @@ fn ddgi_variants(args: &BenchArgs) -> Result<Vec<DdgiVariant>, CliError> {
         "on",
         "off",
     )?;
+    let queues = switch(&args.ddgi_shadow_queue, "--ddgi-shadow-queue", "on", "off")?;
     let mut variants = Vec::new();
     for &coherent_rays in &orders {
         for &probe_states in &states {
             for &light_per_warp in &lights {
                 for &fuse_trace_and_shade in &fuses {
-                    variants.push(DdgiVariant {
-                        coherent_rays,
-                        probe_states,
-                        light_per_warp,
-                        fuse_trace_and_shade,
-                    });
+                    for &shadow_queue in &queues {
+                        variants.push(DdgiVariant {
+                            coherent_rays,
+                            probe_states,
+                            light_per_warp,
+                            fuse_trace_and_shade,
+                            shadow_queue,
+                        });
+                    }
                 }
             }
         }
@@ -501,6 +513,7 @@ fn time_ddgi(
         "ddgi/trace",
         "ddgi/shade",
         "ddgi/trace_shade",
+        "ddgi/shadow",
         "ddgi/blend_irradiance",
         "ddgi/blend_distance",
         "ddgi/blend_weights",
@@ -519,7 +532,7 @@ fn time_ddgi(
         probes: counts,
         rays_per_probe: rays,
         variant: format!(
-            "{}/{}{}{}{}",
+            "{}/{}{}{}{}{}",
             if settings.coherent_rays {
                 "coherent"
             } else {
@@ -536,11 +549,17 @@ fn time_ddgi(
                 "/fused"
             } else {
                 ""
+            },
+            if settings.queues_shadow_rays() {
+                "/queue"
+            } else {
+                ""
             }
         ),
         rays: total_rays,
         updating_probes,
         traced_rays,
+        queued_shadow_rays: ddgi.read_queued_shadow_rays(ctx)?,
         trace_mrays_per_s: total_rays as f64 / (ms("ddgi/trace") * 1e-3) / 1e6,
         update_ms: update,
         update_mrays_per_s: total_rays as f64 / (update * 1e-3) / 1e6,

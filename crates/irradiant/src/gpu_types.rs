@@ -302,6 +302,21 @@ pub struct GpuDdgiRaySample {
     pub distance: f32,
 }
 
+/// A probe ray's shadow ray, queued by ddgi/shade for ddgi/shadow (`DdgiSettings::shadow_queue`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuDdgiShadowRay {
+    pub origin: [f32; 3],
+    /// Index of the probe ray's [`GpuDdgiRaySample`].
+    pub sample: u32,
+    /// The light's f · L · cos if nothing blocks it: rgb as f16, `pack2x16float` (xy, z0).
+    pub contribution: [u32; 2],
+    /// Index into the scene's lights.
+    pub light: u32,
+    pub _pad: u32,
+}
+const _: () = assert!(size_of::<GpuDdgiShadowRay>() == 32);
+
 /// One ray's weight in one texel's blend (ddgi/blend_weights.wgsl); a texel's header entry
 /// holds its entry count in `ray` and their weight sum in `weight`.
 #[repr(C)]
@@ -509,5 +524,12 @@ pub fn all_layouts() -> Vec<Expected> {
         }),
         gpu_layout!(GpuDdgiRaySample { radiance, distance }),
         gpu_layout!(GpuDdgiBlendWeight { ray, weight }),
+        gpu_layout!(GpuDdgiShadowRay {
+            origin,
+            sample,
+            contribution,
+            light,
+            _pad
+        }),
     ]
 }

@@ -65,6 +65,30 @@ impl ComputeStage {
         bind_groups: &[&wgpu::BindGroup],
         workgroups: [u32; 3],
     ) {
+        let mut pass = self.begin(encoder, profiler, bind_groups);
+        pass.dispatch_workgroups(workgroups[0], workgroups[1], workgroups[2]);
+    }
+
+    /// Like [`Self::dispatch`], with the workgroup counts read on the GPU: three u32 at
+    /// `offset` in `args`, written by an earlier pass.
+    pub fn dispatch_indirect(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: Option<&mut irradiant_gpu::Profiler>,
+        bind_groups: &[&wgpu::BindGroup],
+        args: &wgpu::Buffer,
+        offset: u64,
+    ) {
+        let mut pass = self.begin(encoder, profiler, bind_groups);
+        pass.dispatch_workgroups_indirect(args, offset);
+    }
+
+    fn begin<'e>(
+        &self,
+        encoder: &'e mut wgpu::CommandEncoder,
+        profiler: Option<&mut irradiant_gpu::Profiler>,
+        bind_groups: &[&wgpu::BindGroup],
+    ) -> wgpu::ComputePass<'e> {
         let timestamp_writes = profiler.and_then(|p| p.pass(self.label));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(self.label),
@@ -74,7 +98,7 @@ impl ComputeStage {
         for (i, group) in bind_groups.iter().enumerate() {
             pass.set_bind_group(i as u32, *group, &[]);
         }
-        pass.dispatch_workgroups(workgroups[0], workgroups[1], workgroups[2]);
+        pass
     }
 }
 

@@ -101,6 +101,10 @@ fn blend_matches_the_oracle_with_rays_in_several_chunks() {
     blend_matches_the_oracle(300);
 }
 
+/// Probes whose state changes in the second frame (see the states written there).
+const SLEEPING: usize = 1;
+const RESTARTED: usize = 4;
+
 fn blend_matches_the_oracle(rays_per_probe: u32) {
     let Some(ctx) = common::gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
@@ -146,8 +150,16 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
             bytemuck::cast_slice(&rays.samples),
         );
         ddgi.frame = frame;
-        // Every probe vigilant (state 0), having blended `frame` times (ddgi/states.wgsl).
-        let states = vec![frame << 8; probes];
+        // Every probe vigilant (state 0), having blended `frame` times (ddgi/states.wgsl) —
+        // but in frame 1, SLEEPING keeps its texels and RESTARTED starts over (age 0), so
+        // that a blend workgroup's probes (several a workgroup) differ in state and age.
+        let states: Vec<u32> = (0..probes)
+            .map(|p| match (frame, p) {
+                (1, SLEEPING) => 2 | frame << 8,
+                (1, RESTARTED) => 0,
+                _ => frame << 8,
+            })
+            .collect();
         ctx.queue
             .write_buffer(&ddgi.resources.states, 0, bytemuck::cast_slice(&states));
         ddgi.prepare(&ctx);
@@ -166,6 +178,14 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
             settings.distance_hysteresis.min(0.5)
         };
         for probe in 0..probes {
+            if frame == 1 && probe == SLEEPING {
+                continue;
+            }
+            let (hysteresis, distance_hysteresis) = if frame == 1 && probe == RESTARTED {
+                (0.0, 0.0)
+            } else {
+                (hysteresis, distance_hysteresis)
+            };
             for (t, texels) in [
                 (0, settings.irradiance_texels),
                 (1, settings.distance_texels),

@@ -16,6 +16,17 @@ fn indirect_and_states(
     settings: &DdgiSettings,
     frames: u32,
 ) -> (f64, ProbeStateCounts) {
+    let (indirect, states, _) = render_ddgi(ctx, scene, settings, frames);
+    (indirect, states)
+}
+
+/// indirect_and_states, and the shadow rays ddgi/shade queued in the last frame.
+fn render_ddgi(
+    ctx: &irradiant::GpuContext,
+    scene: &Scene,
+    settings: &DdgiSettings,
+    frames: u32,
+) -> (f64, ProbeStateCounts, u32) {
     let size = (32, 32);
     let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
     let mut frame =
@@ -39,6 +50,7 @@ fn indirect_and_states(
     (
         masked_mean(&indirect, &everywhere),
         ddgi.read_state_counts(ctx).unwrap(),
+        ddgi.read_queued_shadow_rays(ctx).unwrap(),
     )
 }
 
@@ -106,5 +118,40 @@ fn fused_trace_and_shade_renders_what_the_two_passes_render() {
     assert!(
         (fused / separate - 1.0).abs() < 1e-4,
         "fused {fused} against separate {separate}"
+    );
+}
+
+/// With DdgiSettings::shadow_queue, ddgi/shade leaves the chosen light's shadow ray to
+/// ddgi/shadow: the same rays and random numbers, so the same image but for the light's
+/// contribution kept as f16.
+#[test]
+fn queued_shadow_rays_render_what_inline_shadow_rays_render() {
+    let Some(ctx) = gpu() else { return };
+    // two-rooms: a point light in one room, so that most hits need a shadow ray.
+    let scene = irradiant_scene::load("two-rooms").unwrap().scene;
+    let inline = DdgiSettings {
+        rays_per_probe: 32,
+        shadow_queue: false,
+        ..DdgiSettings::balanced()
+    };
+    let queued = DdgiSettings {
+        shadow_queue: true,
+        ..inline.clone()
+    };
+    let (direct, _, none) = render_ddgi(&ctx, &scene, &inline, 8);
+    let (deferred, states, count) = render_ddgi(&ctx, &scene, &queued, 8);
+    let rays = states.updating() * 32;
+    eprintln!("indirect: inline {direct:.6}, queued {deferred:.6}; {count} of {rays} rays queued");
+    assert_eq!(none, 0, "nothing is queued with the queue off");
+    // Rays that miss, hit backfaces or face away from the light queue nothing.
+    assert!(
+        count > rays / 10 && count < rays,
+        "{count} of {rays} probe rays queued a shadow ray"
+    );
+    assert!(direct > 1e-3, "the rooms should have indirect light");
+    // Bound: f16 rounding of each contribution (2⁻¹¹ relative) and float contraction.
+    assert!(
+        (deferred / direct - 1.0).abs() < 2e-3,
+        "queued {deferred} against inline {direct}"
     );
 }

@@ -4,7 +4,7 @@
 //! probe states). See docs/ddgi.md.
 //!
 //! Each frame [`Ddgi::update`] records `ddgi/ray_directions → ddgi/trace → ddgi/shade →
-//! (ddgi/relocate) → ddgi/blend_weights → ddgi/blend_irradiance → ddgi/blend_distance →
+//! (ddgi/shadow) → (ddgi/relocate) → ddgi/blend_weights → ddgi/blend_irradiance → ddgi/blend_distance →
 //! ddgi/probe_states` (the blends fill their tiles' borders), and [`Ddgi::resolve`] turns a
 //! G-buffer into indirect diffuse light (`ddgi/resolve`).
 
@@ -79,6 +79,14 @@ pub struct DdgiSettings {
     /// (ddgi/trace, ddgi/shade): no hit buffer written and read back and one dispatch fewer,
     /// against the tracing running at the shading's (lower) occupancy. Same results.
     pub fuse_trace_and_shade: bool,
+    /// Shadow rays of the probe rays' hits go to a queue that a second pass (ddgi/shadow)
+    /// traces densely, instead of being traced in ddgi/shade, where only the lanes whose hit
+    /// faces the chosen light trace and the rest of each warp waits for them (the wavefront
+    /// idea of Laine, Karras and Aila 2013). Costs a 32-byte queue entry per probe ray of
+    /// memory and an extra pass; the same image (the light's contribution is kept as f16).
+    /// Applies with one light per ray (`shade_all_lights` off); emitter samples still trace
+    /// in ddgi/shade.
+    pub shadow_queue: bool,
     /// Probe states (003 §6): after the first frames, probes stuck in walls switch off and
     /// probes with no static geometry within a grid cell sleep; neither traces, blends nor
     /// shades. Sleeping probes near animated instances wake. Saves the work of every probe no
@@ -133,6 +141,7 @@ impl DdgiSettings {
             shade_all_lights: false,
             light_per_warp: true,
             fuse_trace_and_shade: false,
+            shadow_queue: true,
             probe_states: true,
             coherent_rays: true,
             probes_per_group: 1,
@@ -147,6 +156,12 @@ impl DdgiSettings {
             shade_all_lights: true,
             ..Self::balanced()
         }
+    }
+
+    /// Whether ddgi/shade queues shadow rays for ddgi/shadow: `shadow_queue`, with one light
+    /// per probe ray.
+    pub fn queues_shadow_rays(&self) -> bool {
+        self.shadow_queue && !self.shade_all_lights
     }
 
     /// Refuses settings that cannot work, saying which and why.

@@ -2,7 +2,7 @@ use glam::{Mat3, Quat};
 use irradiant_gpu::{GpuContext, Profiler, read_buffer_as, wgpu};
 use irradiant_scene::ProbeVolumeDesc;
 
-use super::resources::{DdgiResources, VolumeLayout};
+use super::resources::{DdgiResources, SHADOW_QUEUE_HEADER, VolumeLayout};
 use super::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
 use crate::RenderError;
 use crate::frame::FrameBuffers;
@@ -45,6 +45,7 @@ pub struct Ddgi {
     ray_directions: ComputeStage,
     trace: ComputeStage,
     shade: ComputeStage,
+    shadow: ComputeStage,
     relocate: ComputeStage,
     probe_states: ComputeStage,
     blend_weights: ComputeStage,
@@ -71,6 +72,7 @@ struct UpdateGroups {
     ray_directions: wgpu::BindGroup,
     trace: wgpu::BindGroup,
     shade: wgpu::BindGroup,
+    shadow: wgpu::BindGroup,
     relocate: wgpu::BindGroup,
     probe_states: wgpu::BindGroup,
     blend_weights: wgpu::BindGroup,
@@ -97,7 +99,7 @@ impl Ddgi {
         // Bindings, by the names in the WGSL: 0 volume, 1 irradiance (read), 2 distance (read),
         // 3 directions, 4 hits, 6 samples, 7 irradiance (write), 8 distance (write),
         // 9 gbuffer, 10 indirect, 11 frame, 12 radiance, 13 offsets (write), 14 ray set,
-        // 15 states (read), 16 states (write), 17 wake boxes, 18 blend weights.
+        // 15 states (read), 16 states (write), 17 wake boxes, 18 blend weights, 19 shadow queue.
         let make = |label: &'static str,
                     source: &str,
                     entries: &[(u32, wgpu::BufferBindingType)],
@@ -142,11 +144,24 @@ impl Ddgi {
                 (5, STORAGE_READ),
                 (6, STORAGE_WRITE),
                 (15, STORAGE_READ),
+                (19, STORAGE_WRITE),
             ],
-            &[(
-                "FUSED_TRACE",
-                format!("{}u", settings.fuse_trace_and_shade as u32),
-            )],
+            &[
+                (
+                    "FUSED_TRACE",
+                    format!("{}u", settings.fuse_trace_and_shade as u32),
+                ),
+                (
+                    "SHADOW_QUEUE",
+                    format!("{}u", settings.queues_shadow_rays() as u32),
+                ),
+            ],
+        )?;
+        let (shadow, l_shadow) = make(
+            "ddgi/shadow",
+            include_str!("shadow.wgsl"),
+            &[(0, UNIFORM), (6, STORAGE_WRITE), (19, STORAGE_READ)],
+            &[],
         )?;
         let (relocate, l_relocate) = make(
             "ddgi/relocate",
@@ -264,7 +279,14 @@ impl Ddgi {
                     (5, &r.offsets),
                     (6, &r.samples),
                     (15, &r.states),
+                    (19, &r.shadow_queue),
                 ],
+            ),
+            shadow: bind_at(
+                device,
+                "ddgi/shadow",
+                &l_shadow,
+                &[(0, &r.volume), (6, &r.samples), (19, &r.shadow_queue)],
             ),
             relocate: bind_at(
                 device,
@@ -330,6 +352,7 @@ impl Ddgi {
             ray_directions,
             trace,
             shade,
+            shadow,
             relocate,
             probe_states,
             blend_weights,
@@ -517,12 +540,25 @@ impl Ddgi {
                 fold_groups(ray_groups),
             );
         }
+        let shadow_queue = self.settings.queues_shadow_rays();
+        if shadow_queue {
+            encoder.clear_buffer(&self.resources.shadow_queue, 0, Some(SHADOW_QUEUE_HEADER));
+        }
         self.shade.dispatch(
             encoder,
             profiler.as_deref_mut(),
             &[s, &g.shade],
             fold_groups(ray_groups),
         );
+        if shadow_queue {
+            self.shadow.dispatch_indirect(
+                encoder,
+                profiler.as_deref_mut(),
+                &[s, &g.shadow],
+                &self.resources.shadow_queue,
+                4,
+            );
+        }
         if self.relocating() {
             if self.relocation_pending {
                 encoder.clear_buffer(&self.resources.offsets, 0, None);
@@ -653,6 +689,15 @@ impl Ddgi {
 
     /// Each probe's relocation offset and the share of its rays that hit backfaces.
     /// How many probes are in each state (003 §6), read back from the GPU.
+    /// Shadow rays ddgi/shade queued in the last update (0 without the shadow queue).
+    pub fn read_queued_shadow_rays(&self, ctx: &GpuContext) -> Result<u32, RenderError> {
+        if !self.settings.queues_shadow_rays() {
+            return Ok(0);
+        }
+        let count = irradiant_gpu::read_buffer(ctx, &self.resources.shadow_queue, 0, 4)?;
+        Ok(u32::from_le_bytes([count[0], count[1], count[2], count[3]]))
+    }
+
     pub fn read_state_counts(&self, ctx: &GpuContext) -> Result<ProbeStateCounts, RenderError> {
         let words: Vec<u32> = read_buffer_as(ctx, &self.resources.states)?;
         let mut counts = ProbeStateCounts::default();
@@ -706,7 +751,6 @@ pub struct Atlases {
     pub distance_size: (u32, u32),
 }
 
-/// IEEE half to f32 (the atlases pack f16 pairs with WGSL's pack2x16float).
 /// Constants of a blend pass over tiles of `texels` interior texels: TILE_TEXELS (the tile's
 /// texels, border included), BLEND_SPLIT (threads sharing one texel: enough to fill 256
 /// threads), BLEND_THREADS (a workgroup's threads: BLEND_SPLIT for each tile texel, up to
@@ -743,6 +787,7 @@ fn ddgi_shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)>
     ]
 }
 
+/// IEEE half to f32 (the atlases pack f16 pairs with WGSL's pack2x16float).
 pub fn half_to_f32(h: u16) -> f32 {
     let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
     let exponent = ((h >> 10) & 0x1f) as i32;

@@ -15,6 +15,19 @@ struct GpuDdgiRaySample {
     distance: f32,
 }
 
+// A probe ray's shadow ray, queued by ddgi/shade for ddgi/shadow (DdgiSettings::shadow_queue).
+struct GpuDdgiShadowRay {
+    // shadow_origin of the hit surface
+    origin: vec3<f32>,
+    // index of the probe ray's GpuDdgiRaySample
+    sample: u32,
+    // the light's f · L · cos if nothing blocks it, rgb as f16 (pack2x16float: xy, z0)
+    contribution: vec2<u32>,
+    // index into the scene's lights
+    light: u32,
+    _pad: u32,
+}
+
 // One ray's weight in one texel's blend (ddgi/blend_weights). The first entry of each texel
 // is its header instead: ray holds the texel's entry count, weight their sum.
 struct GpuDdgiBlendWeight {

@@ -6,7 +6,7 @@ use irradiant_scene::ProbeVolumeDesc;
 
 use super::DdgiSettings;
 use crate::RenderError;
-use crate::gpu_types::{GpuDdgiRayHit, GpuDdgiRaySample};
+use crate::gpu_types::{GpuDdgiRayHit, GpuDdgiRaySample, GpuDdgiShadowRay};
 use crate::pipeline::{storage_buffer, uniform_buffer};
 
 /// Where the probes are and how the atlases are laid out.
@@ -86,7 +86,15 @@ pub struct DdgiResources {
     /// GpuDdgiBlendWeight lists: per tile texel, the rays of its blend and their weights, the
     /// same for every probe (layout in ddgi/blend_weights.wgsl).
     pub blend_weights: wgpu::Buffer,
+    /// ddgi/shade's queue of shadow rays for ddgi/shadow: a 16-byte header (count, then the
+    /// shadow pass's indirect dispatch) and a GpuDdgiShadowRay a probe ray. Header only when
+    /// `shadow_queue` is off.
+    pub shadow_queue: wgpu::Buffer,
 }
+
+/// Bytes before the queued rays in `shadow_queue`; the indirect dispatch's (x, y, z) start
+/// at byte 4.
+pub const SHADOW_QUEUE_HEADER: u64 = 16;
 
 /// Wake boxes the buffer holds; further animated instances merge into the last box.
 pub const MAX_WAKE_BOXES: usize = 64;
@@ -105,6 +113,15 @@ impl DdgiResources {
             ("ddgi/samples", rays * size_of::<GpuDdgiRaySample>() as u64),
             ("ddgi/irradiance_atlas", iw as u64 * ih as u64 * 8),
             ("ddgi/distance_atlas", dw as u64 * dh as u64 * 8),
+            (
+                "ddgi/shadow_queue",
+                SHADOW_QUEUE_HEADER
+                    + if settings.shadow_queue {
+                        rays * size_of::<GpuDdgiShadowRay>() as u64
+                    } else {
+                        0
+                    },
+            ),
         ];
         let limit = ctx.info.max_storage_buffer_binding_size;
         for (label, size) in sizes {
@@ -145,6 +162,17 @@ impl DdgiResources {
             offsets: storage_buffer(device, "ddgi/probe_offsets", layout.probe_count as u64 * 16),
             states: storage_buffer(device, "ddgi/probe_states", layout.probe_count as u64 * 4),
             wake_boxes: storage_buffer(device, "ddgi/wake_boxes", MAX_WAKE_BOXES as u64 * 32),
+            shadow_queue: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(sizes[4].0),
+                size: sizes[4]
+                    .1
+                    .max(SHADOW_QUEUE_HEADER + size_of::<GpuDdgiShadowRay>() as u64),
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::INDIRECT
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
             blend_weights: storage_buffer(
                 device,
                 "ddgi/blend_weights",

@@ -11,13 +11,47 @@
 @group(1) @binding(4) var<storage, read> hits: array<GpuDdgiRayHit>;
 @group(1) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
 
+// SHADOW_QUEUE (0 or 1, DdgiSettings::shadow_queue): instead of tracing the punctual light's
+// shadow ray here, where only the lanes whose hit faces the light trace while the rest of the
+// warp waits, append it to this queue; ddgi/shadow traces the queue densely and adds the
+// light to the sample where nothing blocks it. The header doubles as ddgi/shadow's indirect
+// dispatch: (count, workgroups x, y, z), cleared before this pass.
+struct DdgiShadowQueue {
+    count: atomic<u32>,
+    groups_x: atomic<u32>,
+    groups_y: atomic<u32>,
+    groups_z: atomic<u32>,
+    rays: array<GpuDdgiShadowRay>,
+}
+@group(1) @binding(19) var<storage, read_write> shadow_queue: DdgiShadowQueue;
+
+var<workgroup> queued_in_group: atomic<u32>;
+var<workgroup> group_base: u32;
+
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
     let slot = ray_slot(group, groups, local_index);
-    if !slot.valid || !probe_shades(slot.probe) {
-        return;
+    var shadow: GpuDdgiShadowRay;
+    var queued = false;
+    if slot.valid && probe_shades(slot.probe) {
+        // LIGHT_PER_WARP: one random light for each 32 neighbouring threads (a warp) instead
+        // of each ray, so that a warp's shadow rays walk to one light together rather than
+        // taking turns for each light; every ray still sees each light with equal probability.
+        var light_rng = rng_seed(slot.index, volume.frame, 0x68bc21ebu);
+        if LIGHT_PER_WARP == 1u {
+            light_rng = rng_seed((group.x + group.y * groups.x) * 2u + local_index / 32u, volume.frame, 0x2c1b3c6du);
+        }
+        queued = shade_ray(slot, rand(&light_rng), &shadow);
     }
+    if SHADOW_QUEUE == 1u {
+        enqueue_shadow(queued, shadow, local_index);
+    }
+}
+
+// Shades one probe ray into samples[slot.index]; with SHADOW_QUEUE, leaves out the chosen
+// light and returns true with its shadow ray in `shadow` where that light can reach the hit.
+fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay>) -> bool {
     let index = slot.index;
     let probe = slot.probe;
     let dir = directions[slot.ray].xyz;
@@ -38,7 +72,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         out.radiance = scene_info.sky;
         out.distance = volume.max_ray_distance;
         samples[index] = out;
-        return;
+        return false;
     }
     let origin = probe_position(probe);
     let tri = triangles[hit.triangle];
@@ -50,23 +84,33 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         out.radiance = vec3<f32>(0.0);
         out.distance = -BACKFACE_DEPTH_SCALE * hit.t;
         samples[index] = out;
-        return;
+        return false;
     }
     let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, unpack2x16unorm(hit.bary));
     let wo = -dir;
     var rng = rng_seed(index, volume.frame, 0x68bc21ebu);
-    var l: vec3<f32>;
+    var l = vec3<f32>(0.0);
+    var queued = false;
     if volume.all_lights != 0u {
         l = direct_punctual(s, wo);
-    } else {
-        // LIGHT_PER_WARP: one random light for each 32 neighbouring threads (a warp) instead
-        // of each ray, so that a warp's shadow rays walk to one light together rather than
-        // taking turns for each light; every ray still sees each light with equal probability.
-        var light_rng = rng;
-        if LIGHT_PER_WARP == 1u {
-            light_rng = rng_seed((group.x + group.y * groups.x) * 2u + local_index / 32u, volume.frame, 0x2c1b3c6du);
+    } else if scene_info.light_count > 0u {
+        let light = pick_light(light_u);
+        let weight = f32(scene_info.light_count);
+        if SHADOW_QUEUE == 1u {
+            let shadow_from = shadow_origin(s);
+            let contribution = unshadowed_light(s, wo, light_ray(light, shadow_from)) * weight;
+            if any(contribution != vec3<f32>(0.0)) {
+                // f16 holds up to 65504; brighter contributions are clamped, not lost to ∞.
+                let c = min(contribution, vec3<f32>(65504.0));
+                (*shadow).origin = shadow_from;
+                (*shadow).sample = index;
+                (*shadow).contribution = vec2<u32>(pack2x16float(c.xy), pack2x16float(vec2<f32>(c.z, 0.0)));
+                (*shadow).light = light;
+                queued = true;
+            }
+        } else {
+            l = direct_from_light(s, wo, light) * weight;
         }
-        l = direct_punctual_one(s, wo, rand(&light_rng));
     }
     if scene_info.emitter_count > 0u {
         l += emitter_light(s, wo, &rng);
@@ -76,4 +120,35 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     // The sign marks backfaces for relocation, whatever the weights.
     out.distance = select(hit.t, -hit.t, backface);
     samples[index] = out;
+    return queued;
+}
+
+// Appends the workgroup's queued shadow rays to the queue with one global atomic a workgroup,
+// and raises ddgi/shadow's workgroup count (folded like fold_groups) to cover them.
+fn enqueue_shadow(queued: bool, ray: GpuDdgiShadowRay, local_index: u32) {
+    if local_index == 0u {
+        atomicStore(&queued_in_group, 0u);
+    }
+    workgroupBarrier();
+    var place = 0u;
+    if queued {
+        place = atomicAdd(&queued_in_group, 1u);
+    }
+    workgroupBarrier();
+    if local_index == 0u {
+        let count = atomicLoad(&queued_in_group);
+        var base = 0u;
+        if count > 0u {
+            base = atomicAdd(&shadow_queue.count, count);
+            let workgroups = (base + count + 63u) / 64u;
+            atomicMax(&shadow_queue.groups_x, min(workgroups, 32768u));
+            atomicMax(&shadow_queue.groups_y, (workgroups + 32767u) / 32768u);
+            atomicMax(&shadow_queue.groups_z, 1u);
+        }
+        group_base = base;
+    }
+    workgroupBarrier();
+    if queued {
+        shadow_queue.rays[group_base + place] = ray;
+    }
 }

@@ -20,37 +20,66 @@ fn direct_punctual_one(s: Surface, wo: vec3<f32>, u: f32) -> vec3<f32> {
     if n == 0u {
         return vec3<f32>(0.0);
     }
-    return direct_from_light(s, wo, min(u32(u * f32(n)), n - 1u)) * f32(n);
+    return direct_from_light(s, wo, pick_light(u)) * f32(n);
+}
+
+// The light direct_punctual_one takes for a uniform random u (the scene must have lights).
+fn pick_light(u: f32) -> u32 {
+    let n = scene_info.light_count;
+    return min(u32(u * f32(n)), n - 1u);
+}
+
+// Light i as seen from a shadow ray's origin: the direction to it, how far the shadow ray
+// goes, and the radiance (irradiance for a punctual light) that arrives when nothing blocks it.
+struct LightRay {
+    wi: vec3<f32>,
+    distance: f32,
+    radiance: vec3<f32>,
+}
+
+fn light_ray(i: u32, origin: vec3<f32>) -> LightRay {
+    let light = lights[i];
+    var ray: LightRay;
+    if light.kind == LIGHT_DIRECTIONAL {
+        ray.wi = -light.direction;
+        ray.distance = RAY_FAR;
+        ray.radiance = light.power;
+    } else {
+        let to_light = light.position - origin;
+        ray.distance = length(to_light);
+        ray.wi = to_light / ray.distance;
+        ray.radiance = light.power / max(ray.distance * ray.distance, 1e-8);
+        if light.kind == LIGHT_SPOT {
+            ray.radiance *= smoothstep(light.cos_outer, light.cos_inner, dot(-ray.wi, light.direction));
+        }
+    }
+    return ray;
+}
+
+// The origin of a surface's shadow rays: off the surface along its geometric normal.
+fn shadow_origin(s: Surface) -> vec3<f32> {
+    return offset_ray(s.position, s.geometric_normal);
+}
+
+// f · L · cos from a light along `ray` if nothing blocks it; zero where the light cannot
+// reach the surface's side, so that no shadow ray is needed.
+fn unshadowed_light(s: Surface, wo: vec3<f32>, ray: LightRay) -> vec3<f32> {
+    let cos_l = dot(s.normal, ray.wi);
+    if cos_l <= 0.0 || dot(s.geometric_normal, ray.wi) <= 0.0 || max(ray.radiance.x, max(ray.radiance.y, ray.radiance.z)) <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    return brdf_eval(s, wo, ray.wi) * ray.radiance * cos_l;
 }
 
 // f · L · cos from light i, with its shadow ray.
 fn direct_from_light(s: Surface, wo: vec3<f32>, i: u32) -> vec3<f32> {
-    let origin = offset_ray(s.position, s.geometric_normal);
-    let light = lights[i];
-    var wi: vec3<f32>;
-    var distance: f32;
-    var radiance: vec3<f32>;
-    if light.kind == LIGHT_DIRECTIONAL {
-        wi = -light.direction;
-        distance = RAY_FAR;
-        radiance = light.power;
-    } else {
-        let to_light = light.position - origin;
-        distance = length(to_light);
-        wi = to_light / distance;
-        radiance = light.power / max(distance * distance, 1e-8);
-        if light.kind == LIGHT_SPOT {
-            radiance *= smoothstep(light.cos_outer, light.cos_inner, dot(-wi, light.direction));
-        }
-    }
-    let cos_l = dot(s.normal, wi);
-    if cos_l <= 0.0 || dot(s.geometric_normal, wi) <= 0.0 || max(radiance.x, max(radiance.y, radiance.z)) <= 0.0 {
+    let origin = shadow_origin(s);
+    let ray = light_ray(i, origin);
+    let light = unshadowed_light(s, wo, ray);
+    if any(light != vec3<f32>(0.0)) && occluded(origin, ray.wi, ray.distance) {
         return vec3<f32>(0.0);
     }
-    if occluded(origin, wi, distance) {
-        return vec3<f32>(0.0);
-    }
-    return brdf_eval(s, wo, wi) * radiance * cos_l;
+    return light;
 }
 
 // f · Le · cos / pdf for one point on an emissive triangle (chosen ∝ power), with its shadow

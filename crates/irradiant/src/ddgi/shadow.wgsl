@@ -1,0 +1,34 @@
+// ddgi/shadow: the shadow rays ddgi/shade queued (DdgiSettings::shadow_queue), one a thread
+// with no idle lanes; each adds its light to its probe ray's sample where nothing blocks it.
+#import ddgi_volume
+#import ddgi_rays
+#import lights
+
+// (ddgi_rays' ray_slot reads the volume; this pass does not.)
+@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(1) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
+
+// ddgi/shade's DdgiShadowQueue, read only.
+struct DdgiShadowQueueRead {
+    count: u32,
+    groups_x: u32,
+    groups_y: u32,
+    groups_z: u32,
+    rays: array<GpuDdgiShadowRay>,
+}
+@group(1) @binding(19) var<storage, read> shadow_queue: DdgiShadowQueueRead;
+
+@compute @workgroup_size(64, 1, 1)
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+    bvh_thread(local_index);
+    let i = (group.x + group.y * groups.x) * 64u + local_index;
+    if i >= shadow_queue.count {
+        return;
+    }
+    let ray = shadow_queue.rays[i];
+    let light = light_ray(ray.light, ray.origin);
+    if !occluded(ray.origin, light.wi, light.distance) {
+        let c = vec3<f32>(unpack2x16float(ray.contribution.x), unpack2x16float(ray.contribution.y).x);
+        samples[ray.sample].radiance += c;
+    }
+}
