@@ -3,19 +3,26 @@
 # pass at 1920×1080 (ray casting and the path tracer on three scenes; the DDGI frame on
 # Sibenik at the paper's probe grids and ray counts, and on the other scenes' own volumes),
 # and renders the pictures of the README and docs/. Expects .dev/ as tools/device/pack.sh lays
-# it out; writes into $OUT (at most 8 files come back, so the pictures travel as one tar).
+# it out; writes into $OUT two tars (at most 8 files come back): bench.tar (the figures: text
+# and JSON) and images.tar (the pictures).
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 bin=../irradiant
+res=$(mktemp -d)
 sponza=scenes/sponza/sponza.toml
 sibenik=scenes/sibenik/sibenik.toml
-nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
-$bin info | tee "$OUT/info.txt"
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$res/nvidia-smi.txt" 2>&1 || true
+$bin info | tee "$res/info.txt"
 if [ "${BENCH:-1}" = 1 ]; then
-$bin bench --scene cornell,$sponza,$sibenik --size 1920x1080 --iterations 30 --json "$OUT/bench.json" | tee "$OUT/bench.txt"
-$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --ddgi-probes 16x8x16,32x8x32 --ddgi-rays 32,64,128,256 --json "$OUT/ddgi-sibenik.json" | tee "$OUT/ddgi.txt"
-$bin bench --scene cornell,two-rooms,$sponza --size 1920x1080 --iterations 30 --ddgi-probes scene --ddgi-rays 128,256 --json "$OUT/ddgi-scenes.json" | tee -a "$OUT/ddgi.txt"
+$bin bench --scene cornell,$sponza,$sibenik --size 1920x1080 --iterations 30 --json "$res/bench.json" | tee "$res/bench.txt"
+$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --ddgi-probes 16x8x16,32x8x32 --ddgi-rays 32,64,128,256 --ddgi-probe-states off,on --ddgi-probes-per-group 1,4 --json "$res/ddgi-sibenik.json" | tee "$res/ddgi.txt"
+$bin bench --scene cornell,two-rooms,$sponza --size 1920x1080 --iterations 30 --ddgi-probes scene --ddgi-rays 256 --ddgi-probe-states off,on --json "$res/ddgi-scenes.json" | tee -a "$res/ddgi.txt"
+# What the shadow queue and the BVH build effort each buy, same call.
+$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states off,on --ddgi-probes-per-group 1,4 --ddgi-shadow-queue off,on --json "$res/ddgi-queue.json" | tee "$res/ddgi-queue.txt"
+for q in balanced quality; do
+    $bin bench --scene $sibenik --size 1920x1080 --iterations 30 --bvh-quality $q --ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states off,on --ddgi-probes-per-group 4 --json "$res/bvh-$q.json" | tee "$res/bvh-$q.txt"
+done
 fi
 if [ "${RENDER:-1}" = 1 ]; then
     img=$(mktemp -d)
@@ -39,3 +46,4 @@ if [ "${RENDER:-1}" = 1 ]; then
     $bin render --scene $sibenik --time 4 --fps 15 --frames 61 --size 240x150 --sequence --out "$img/anim/sibenik.png"
     tar -C "$img" -cf "$OUT/images.tar" .
 fi
+tar -C "$res" -cf "$OUT/bench.tar" .

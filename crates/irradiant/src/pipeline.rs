@@ -52,9 +52,23 @@ impl ComputeStage {
         constants: &[(&str, String)],
         group: &wgpu::BindGroupLayout,
     ) -> Result<Self, RenderError> {
+        Self::tracing_with_groups(ctx, scene, label, source, constants, &[group])
+    }
+
+    /// [`Self::tracing`] with several bind groups after the scene's (groups 1, 2, …).
+    pub fn tracing_with_groups(
+        ctx: &GpuContext,
+        scene: &crate::GpuScene,
+        label: &'static str,
+        source: &str,
+        constants: &[(&str, String)],
+        groups: &[&wgpu::BindGroupLayout],
+    ) -> Result<Self, RenderError> {
         let mut all = scene.shader_constants();
         all.extend(constants.iter().cloned());
-        Self::new(ctx, label, source, &all, &[&scene.layout, group])
+        let mut layouts = vec![&scene.layout];
+        layouts.extend_from_slice(groups);
+        Self::new(ctx, label, source, &all, &layouts)
     }
 
     /// Records one dispatch in its own compute pass (so that it gets its own timestamps).

@@ -54,6 +54,8 @@ pub struct Ddgi {
     resolve: ComputeStage,
     visualize: ComputeStage,
     groups: UpdateGroups,
+    /// The atlas textures and their samplers: group 2 of the passes that query the probes.
+    atlas_group: wgpu::BindGroup,
     frame_layout: wgpu::BindGroupLayout,
     visualize_layout: wgpu::BindGroupLayout,
     frame_groups: Option<(wgpu::BindGroup, wgpu::BindGroup)>,
@@ -88,7 +90,10 @@ impl Ddgi {
         settings: &DdgiSettings,
     ) -> Result<Self, RenderError> {
         settings.validate().map_err(RenderError::Settings)?;
-        let layout = VolumeLayout::new(desc);
+        let layout = VolumeLayout::new(
+            desc,
+            &[settings.irradiance_texels + 2, settings.distance_texels + 2],
+        );
         let resources = DdgiResources::new(ctx, &layout, settings)?;
         let device = &ctx.device;
         let max_ray_distance = settings
@@ -96,19 +101,33 @@ impl Ddgi {
             .unwrap_or((desc.max - desc.min).length().max(1e-3) * 1.5);
         let r = &resources;
         let ddgi_constants = ddgi_shader_constants(settings);
-        // Bindings, by the names in the WGSL: 0 volume, 1 irradiance (read), 2 distance (read),
-        // 3 directions, 4 hits, 6 samples, 7 irradiance (write), 8 distance (write),
-        // 9 gbuffer, 10 indirect, 11 frame, 12 radiance, 13 offsets (write), 14 ray set,
-        // 15 states (read), 16 states (write), 17 wake boxes, 18 blend weights, 19 shadow queue.
+        // Bindings, by the names in the WGSL: 0 volume, 3 directions, 4 hits, 6 samples,
+        // 7 irradiance (write), 8 distance (write), 9 gbuffer, 10 indirect, 11 frame,
+        // 12 radiance, 13 offsets (write), 14 ray set, 15 states (read), 16 states (write),
+        // 17 wake boxes, 18 blend weights, 19 shadow queue. Passes that query the probes
+        // (ddgi_query) also take the atlas textures as group 2.
+        let (atlas_layout, atlas_group) = atlas_textures(device, r);
+        let make_with = |label: &'static str,
+                         source: &str,
+                         entries: &[(u32, wgpu::BufferBindingType)],
+                         constants: &[(&str, String)],
+                         queries: bool| {
+            let group_layout = buffer_layout(device, label, entries);
+            let mut all = ddgi_constants.clone();
+            all.extend(constants.iter().cloned());
+            let groups: &[&wgpu::BindGroupLayout] = if queries {
+                &[&group_layout, &atlas_layout]
+            } else {
+                &[&group_layout]
+            };
+            let stage = ComputeStage::tracing_with_groups(ctx, scene, label, source, &all, groups)?;
+            Ok::<_, RenderError>((stage, group_layout))
+        };
         let make = |label: &'static str,
                     source: &str,
                     entries: &[(u32, wgpu::BufferBindingType)],
                     constants: &[(&str, String)]| {
-            let group_layout = buffer_layout(device, label, entries);
-            let mut all = ddgi_constants.clone();
-            all.extend(constants.iter().cloned());
-            let stage = ComputeStage::tracing(ctx, scene, label, source, &all, &group_layout)?;
-            Ok::<_, RenderError>((stage, group_layout))
+            make_with(label, source, entries, constants, false)
         };
         let (ray_directions, l_dirs) = make(
             "ddgi/ray_directions",
@@ -128,7 +147,7 @@ impl Ddgi {
             ],
             &[],
         )?;
-        let (shade, l_shade) = make(
+        let (shade, l_shade) = make_with(
             if settings.fuse_trace_and_shade {
                 "ddgi/trace_shade"
             } else {
@@ -137,8 +156,6 @@ impl Ddgi {
             include_str!("shade.wgsl"),
             &[
                 (0, UNIFORM),
-                (1, STORAGE_READ),
-                (2, STORAGE_READ),
                 (3, STORAGE_READ),
                 (4, STORAGE_READ),
                 (5, STORAGE_READ),
@@ -156,6 +173,7 @@ impl Ddgi {
                     format!("{}u", settings.queues_shadow_rays() as u32),
                 ),
             ],
+            true,
         )?;
         let (shadow, l_shadow) = make(
             "ddgi/shadow",
@@ -217,13 +235,11 @@ impl Ddgi {
             ],
             &blend_constants(settings.distance_texels),
         )?;
-        let (resolve, frame_layout) = make(
+        let (resolve, frame_layout) = make_with(
             "ddgi/resolve",
             include_str!("resolve.wgsl"),
             &[
                 (0, UNIFORM),
-                (1, STORAGE_READ),
-                (2, STORAGE_READ),
                 (5, STORAGE_READ),
                 (9, STORAGE_READ),
                 (10, STORAGE_WRITE),
@@ -231,14 +247,13 @@ impl Ddgi {
                 (15, STORAGE_READ),
             ],
             &[],
+            true,
         )?;
-        let (visualize, visualize_layout) = make(
+        let (visualize, visualize_layout) = make_with(
             "ddgi/visualize",
             include_str!("visualize.wgsl"),
             &[
                 (0, UNIFORM),
-                (1, STORAGE_READ),
-                (2, STORAGE_READ),
                 (5, STORAGE_READ),
                 (9, STORAGE_READ),
                 (11, UNIFORM),
@@ -246,6 +261,7 @@ impl Ddgi {
                 (15, STORAGE_READ),
             ],
             &[],
+            true,
         )?;
         let groups = UpdateGroups {
             ray_directions: bind_at(
@@ -272,8 +288,6 @@ impl Ddgi {
                 &l_shade,
                 &[
                     (0, &r.volume),
-                    (1, &r.irradiance),
-                    (2, &r.distance),
                     (3, &r.directions),
                     (4, &r.hits),
                     (5, &r.offsets),
@@ -361,6 +375,7 @@ impl Ddgi {
             resolve,
             visualize,
             groups,
+            atlas_group,
             frame_layout,
             visualize_layout,
             frame_groups: None,
@@ -547,7 +562,7 @@ impl Ddgi {
         self.shade.dispatch(
             encoder,
             profiler.as_deref_mut(),
-            &[s, &g.shade],
+            &[s, &g.shade, &self.atlas_group],
             fold_groups(ray_groups),
         );
         if shadow_queue {
@@ -610,6 +625,27 @@ impl Ddgi {
         );
         self.blend_distance
             .dispatch(encoder, profiler, &[s, &g.blend_distance], probes);
+        // The query samples texture copies of the atlases (DdgiResources::irradiance_texture).
+        let r = &self.resources;
+        for (label, buffer, texture) in [
+            ("irradiance", &r.irradiance, &r.irradiance_texture),
+            ("distance", &r.distance, &r.distance_texture),
+        ] {
+            let size = texture.size();
+            debug_assert_eq!(size.width * 8 % 256, 0, "{label} atlas rows are aligned");
+            encoder.copy_buffer_to_texture(
+                wgpu::TexelCopyBufferInfo {
+                    buffer,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(size.width * 8),
+                        rows_per_image: Some(size.height),
+                    },
+                },
+                texture.as_image_copy(),
+                size,
+            );
+        }
     }
 
     /// Binds the frame's G-buffer and outputs; call again when they are recreated.
@@ -621,8 +657,6 @@ impl Ddgi {
             &self.frame_layout,
             &[
                 (0, &r.volume),
-                (1, &r.irradiance),
-                (2, &r.distance),
                 (5, &r.offsets),
                 (9, &frame.gbuffer),
                 (10, &frame.indirect),
@@ -636,8 +670,6 @@ impl Ddgi {
             &self.visualize_layout,
             &[
                 (0, &r.volume),
-                (1, &r.irradiance),
-                (2, &r.distance),
                 (5, &r.offsets),
                 (9, &frame.gbuffer),
                 (11, &frame.params),
@@ -663,7 +695,7 @@ impl Ddgi {
         self.resolve.dispatch(
             encoder,
             profiler,
-            &[&scene.bind_group, group],
+            &[&scene.bind_group, group, &self.atlas_group],
             [frame.width.div_ceil(8), frame.height.div_ceil(8), 1],
         );
     }
@@ -682,13 +714,11 @@ impl Ddgi {
         self.visualize.dispatch(
             encoder,
             None,
-            &[&scene.bind_group, group],
+            &[&scene.bind_group, group, &self.atlas_group],
             [frame.width.div_ceil(8), frame.height.div_ceil(8), 1],
         );
     }
 
-    /// Each probe's relocation offset and the share of its rays that hit backfaces.
-    /// How many probes are in each state (003 §6), read back from the GPU.
     /// Shadow rays ddgi/shade queued in the last update (0 without the shadow queue).
     pub fn read_queued_shadow_rays(&self, ctx: &GpuContext) -> Result<u32, RenderError> {
         if !self.settings.queues_shadow_rays() {
@@ -698,6 +728,7 @@ impl Ddgi {
         Ok(u32::from_le_bytes([count[0], count[1], count[2], count[3]]))
     }
 
+    /// How many probes are in each state (003 §6), read back from the GPU.
     pub fn read_state_counts(&self, ctx: &GpuContext) -> Result<ProbeStateCounts, RenderError> {
         let words: Vec<u32> = read_buffer_as(ctx, &self.resources.states)?;
         let mut counts = ProbeStateCounts::default();
@@ -712,6 +743,7 @@ impl Ddgi {
         Ok(counts)
     }
 
+    /// Each probe's relocation offset and the share of its rays that hit backfaces.
     pub fn read_offsets(&self, ctx: &GpuContext) -> Result<Vec<[f32; 4]>, RenderError> {
         let offsets: Vec<[f32; 4]> = read_buffer_as(ctx, &self.resources.offsets)?;
         Ok(offsets[..self.layout.probe_count as usize].to_vec())
@@ -749,6 +781,75 @@ pub struct Atlases {
     pub irradiance_size: (u32, u32),
     pub distance: Vec<[f32; 2]>,
     pub distance_size: (u32, u32),
+}
+
+/// Group 2 of the passes that query the probes (ddgi_query): the irradiance atlas texture
+/// with a bilinear sampler, and the distance atlas texture (f32, so not filterable on every
+/// adapter) with a sampler for gathering.
+fn atlas_textures(
+    device: &wgpu::Device,
+    r: &DdgiResources,
+) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
+    let texture = |binding, filterable| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    let sampler = |binding, kind| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Sampler(kind),
+        count: None,
+    };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("ddgi/atlas_textures"),
+        entries: &[
+            texture(0, true),
+            texture(1, false),
+            sampler(2, wgpu::SamplerBindingType::Filtering),
+            sampler(3, wgpu::SamplerBindingType::NonFiltering),
+        ],
+    });
+    let make_sampler = |label, filter| {
+        device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some(label),
+            mag_filter: filter,
+            min_filter: filter,
+            ..Default::default()
+        })
+    };
+    let bilinear = make_sampler("ddgi/atlas_bilinear", wgpu::FilterMode::Linear);
+    let gather = make_sampler("ddgi/atlas_gather", wgpu::FilterMode::Nearest);
+    let irradiance = r.irradiance_texture.create_view(&Default::default());
+    let distance = r.distance_texture.create_view(&Default::default());
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("ddgi/atlas_textures"),
+        layout: &layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&irradiance),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(&distance),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::Sampler(&bilinear),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::Sampler(&gather),
+            },
+        ],
+    });
+    (layout, group)
 }
 
 /// Constants of a blend pass over tiles of `texels` interior texels: TILE_TEXELS (the tile's

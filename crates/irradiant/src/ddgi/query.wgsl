@@ -4,21 +4,16 @@
 #import ddgi_probes
 
 @group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-// per texel: rgb as two packed f16 pairs (value^(1/gamma))
-@group(1) @binding(1) var<storage, read> irradiance_atlas: array<vec2<u32>>;
-// per texel: mean distance, mean squared distance
-@group(1) @binding(2) var<storage, read> distance_atlas: array<vec2<f32>>;
+// Texture copies of the atlases (DdgiResources::irradiance_texture): irradiance rgb
+// (value^(1/gamma)) as rgba16float, sampled bilinearly; (mean distance, mean squared distance)
+// as rg32float, gathered and blended here, since f32 textures do not filter everywhere.
+@group(2) @binding(0) var irradiance_texture: texture_2d<f32>;
+@group(2) @binding(1) var distance_texture: texture_2d<f32>;
+@group(2) @binding(2) var atlas_bilinear: sampler;
+@group(2) @binding(3) var atlas_gather: sampler;
 
-fn load_irradiance(x: u32, y: u32) -> vec3<f32> {
-    let v = irradiance_atlas[y * atlas_width(volume.irradiance_texels + 2u) + x];
-    return vec3<f32>(unpack2x16float(v.x), unpack2x16float(v.y).x);
-}
-
-fn load_distance(x: u32, y: u32) -> vec2<f32> {
-    return distance_atlas[y * atlas_width(volume.distance_texels + 2u) + x];
-}
-
-// Bilinear position in a probe's tile for direction d: integer corner and fraction.
+// Position in a probe's tile for direction d, in texels of the atlas: texel centres at whole
+// numbers, so floor() is the top-left texel of the bilinear footprint.
 fn tile_coord(probe: u32, texels: u32, d: vec3<f32>) -> vec2<f32> {
     let origin = vec2<f32>(tile_origin(probe, texels + 2u)) + 1.0;
     return origin + (oct_encode(d) * 0.5 + 0.5) * f32(texels) - 0.5;
@@ -26,23 +21,21 @@ fn tile_coord(probe: u32, texels: u32, d: vec3<f32>) -> vec2<f32> {
 
 fn sample_irradiance_encoded(probe: u32, d: vec3<f32>) -> vec3<f32> {
     let c = tile_coord(probe, volume.irradiance_texels, d);
-    let c0 = floor(c);
-    let f = c - c0;
-    let x = u32(c0.x);
-    let y = u32(c0.y);
-    let top = mix(load_irradiance(x, y), load_irradiance(x + 1u, y), f.x);
-    let bottom = mix(load_irradiance(x, y + 1u), load_irradiance(x + 1u, y + 1u), f.x);
-    return mix(top, bottom, f.y);
+    let size = vec2<f32>(textureDimensions(irradiance_texture));
+    return textureSampleLevel(irradiance_texture, atlas_bilinear, (c + 0.5) / size, 0.0).rgb;
 }
 
 fn sample_distance(probe: u32, d: vec3<f32>) -> vec2<f32> {
     let c = tile_coord(probe, volume.distance_texels, d);
     let c0 = floor(c);
     let f = c - c0;
-    let x = u32(c0.x);
-    let y = u32(c0.y);
-    let top = mix(load_distance(x, y), load_distance(x + 1u, y), f.x);
-    let bottom = mix(load_distance(x, y + 1u), load_distance(x + 1u, y + 1u), f.x);
+    // Gathering at the corner between the footprint's four texels returns them as
+    // (bottom-left, bottom-right, top-right, top-left).
+    let corner = (c0 + 1.0) / vec2<f32>(textureDimensions(distance_texture));
+    let mean = textureGather(0, distance_texture, atlas_gather, corner);
+    let square = textureGather(1, distance_texture, atlas_gather, corner);
+    let top = mix(vec2<f32>(mean.w, square.w), vec2<f32>(mean.z, square.z), f.x);
+    let bottom = mix(vec2<f32>(mean.x, square.x), vec2<f32>(mean.y, square.y), f.x);
     return mix(top, bottom, f.y);
 }
 

@@ -21,8 +21,11 @@ pub struct VolumeLayout {
 }
 
 impl VolumeLayout {
-    /// Probes on a regular grid from `min` to `max` (one probe a volume of count 1 sits in the middle).
-    pub fn new(desc: &ProbeVolumeDesc) -> Self {
+    /// Probes on a regular grid from `min` to `max` (one probe a volume of count 1 sits in the
+    /// middle), their tiles laid out in rows whose width (tiles of `tile_sides` texels, border
+    /// included, 8 bytes a texel) is a multiple of 256 bytes: a buffer-to-texture copy's row
+    /// alignment.
+    pub fn new(desc: &ProbeVolumeDesc, tile_sides: &[u32]) -> Self {
         let counts = UVec3::from(desc.counts).max(UVec3::ONE);
         let steps = (counts.as_vec3() - 1.0).max(Vec3::ONE);
         let extent = desc.max - desc.min;
@@ -33,7 +36,12 @@ impl VolumeLayout {
             desc.min,
         );
         let probe_count = counts.x * counts.y * counts.z;
-        let probes_per_row = (probe_count as f32).sqrt().ceil() as u32;
+        // Tiles a row must be a multiple of for each tile side: 32 texels ÷ gcd(side, 32).
+        let multiple = tile_sides
+            .iter()
+            .map(|&side| 32 / gcd(side, 32))
+            .fold(1, lcm);
+        let probes_per_row = ((probe_count as f32).sqrt().ceil() as u32).next_multiple_of(multiple);
         let rows = probe_count.div_ceil(probes_per_row);
         Self {
             origin,
@@ -65,6 +73,14 @@ impl VolumeLayout {
     }
 }
 
+fn gcd(a: u32, b: u32) -> u32 {
+    if b == 0 { a } else { gcd(b, a % b) }
+}
+
+fn lcm(a: u32, b: u32) -> u32 {
+    a / gcd(a, b) * b
+}
+
 pub struct DdgiResources {
     pub volume: wgpu::Buffer,
     /// The ray set before rotation, uploaded once (vec4 a ray, in trace order).
@@ -77,6 +93,11 @@ pub struct DdgiResources {
     pub irradiance: wgpu::Buffer,
     /// Two f32 a texel: mean distance and mean squared distance.
     pub distance: wgpu::Buffer,
+    /// Copies of the two atlases that the query samples (rgba16float and rg32float: the
+    /// buffers' bytes as they are), copied after each blend. Hardware bilinear filtering and
+    /// gathers take one or two fetches where loading texels took four.
+    pub irradiance_texture: wgpu::Texture,
+    pub distance_texture: wgpu::Texture,
     /// vec4 a probe: relocation offset (xyz) and the share of its rays that hit backfaces (w).
     pub offsets: wgpu::Buffer,
     /// u32 a probe: state, near-geometry flag and blends since it started (ddgi/states.wgsl).
@@ -133,6 +154,14 @@ impl DdgiResources {
                 )));
             }
         }
+        let side_limit = ctx.device.limits().max_texture_dimension_2d;
+        for (label, (width, height)) in [("irradiance", (iw, ih)), ("distance", (dw, dh))] {
+            if width.max(height) > side_limit {
+                return Err(RenderError::Settings(format!(
+                    "the {label} atlas would be {width}×{height} texels, more than this adapter's textures hold ({side_limit} a side): use fewer probes or fewer texels a probe"
+                )));
+            }
+        }
         let device = &ctx.device;
         let ray_set: Vec<[f32; 4]> =
             super::octahedral::probe_ray_set(settings.rays_per_probe, settings.coherent_rays)
@@ -143,7 +172,33 @@ impl DdgiResources {
             storage_buffer(device, "ddgi/ray_set", settings.rays_per_probe as u64 * 16);
         ctx.queue
             .write_buffer(&ray_set_buffer, 0, bytemuck::cast_slice(&ray_set));
+        let atlas_texture = |label: &str, (width, height): (u32, u32), format| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            })
+        };
         Ok(Self {
+            irradiance_texture: atlas_texture(
+                "ddgi/irradiance_texture",
+                (iw, ih),
+                wgpu::TextureFormat::Rgba16Float,
+            ),
+            distance_texture: atlas_texture(
+                "ddgi/distance_texture",
+                (dw, dh),
+                wgpu::TextureFormat::Rg32Float,
+            ),
             ray_set: ray_set_buffer,
             volume: uniform_buffer(
                 device,
