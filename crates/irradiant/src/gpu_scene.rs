@@ -24,8 +24,8 @@ pub struct GpuSceneSettings {
     pub texture_size: u32,
     /// BVH build effort: faster builds or faster rays. The bottom-level trees are built once
     /// per mesh (animation moves instances, not triangles), so the default spends the time:
-    /// `Quality` builds Sibenik in 116 ms against 67 for `Balanced` and traces its rays
-    /// 4–9 % faster on an H200 (BENCHMARKS.md).
+    /// `Quality` takes 1.7–2× `Balanced`'s build time (Sibenik: 116–174 ms against 67–89 on
+    /// the device machine's CPU) and traces its rays 2–9 % faster on an H200 (BENCHMARKS.md).
     pub bvh_quality: BuildQuality,
     /// Where each thread keeps its bottom-level traversal stack: private (per-thread) memory,
     /// or a slice of workgroup memory. Which is faster depends on the GPU: on an H200 the
