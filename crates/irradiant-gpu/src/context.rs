@@ -169,6 +169,8 @@ impl GpuContext {
             max_storage_buffer_binding_size: available.max_storage_buffer_binding_size,
             max_buffer_size: available.max_buffer_size,
             max_texture_array_layers: available.max_texture_array_layers,
+            // Large DDGI volumes need wide atlas textures.
+            max_texture_dimension_2d: available.max_texture_dimension_2d,
             ..Limits::default()
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

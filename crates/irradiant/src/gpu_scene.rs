@@ -66,6 +66,7 @@ impl GpuSceneSettings {
             ..Self::default()
         }
     }
+    /// The default: 512² textures and `Quality` BVH builds (paid once a mesh).
     pub fn balanced() -> Self {
         Self::default()
     }

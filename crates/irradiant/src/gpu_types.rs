@@ -309,11 +309,10 @@ pub struct GpuDdgiShadowRay {
     pub origin: [f32; 3],
     /// Index of the probe ray's [`GpuDdgiRaySample`].
     pub sample: u32,
-    /// The light's f · L · cos if nothing blocks it: rgb as f16, `pack2x16float` (xy, z0).
-    pub contribution: [u32; 2],
+    /// The light's f · L · cos if nothing blocks it.
+    pub contribution: [f32; 3],
     /// Index into the scene's lights.
     pub light: u32,
-    pub _pad: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiShadowRay>() == 32);
 
@@ -528,8 +527,7 @@ pub fn all_layouts() -> Vec<Expected> {
             origin,
             sample,
             contribution,
-            light,
-            _pad
+            light
         }),
     ]
 }

@@ -83,7 +83,7 @@ pub struct DdgiSettings {
     /// traces densely, instead of being traced in ddgi/shade, where only the lanes whose hit
     /// faces the chosen light trace and the rest of each warp waits for them (the wavefront
     /// idea of Laine, Karras and Aila 2013). Costs a 32-byte queue entry per probe ray of
-    /// memory and an extra pass; the same image (the light's contribution is kept as f16).
+    /// memory and an extra pass; the same image.
     /// Applies with one light per ray (`shade_all_lights` off); emitter samples still trace
     /// in ddgi/shade.
     pub shadow_queue: bool,

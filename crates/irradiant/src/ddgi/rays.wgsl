@@ -21,11 +21,10 @@ struct GpuDdgiShadowRay {
     origin: vec3<f32>,
     // index of the probe ray's GpuDdgiRaySample
     sample: u32,
-    // the light's f · L · cos if nothing blocks it, rgb as f16 (pack2x16float: xy, z0)
-    contribution: vec2<u32>,
+    // the light's f · L · cos if nothing blocks it
+    contribution: vec3<f32>,
     // index into the scene's lights
     light: u32,
-    _pad: u32,
 }
 
 // One ray's weight in one texel's blend (ddgi/blend_weights). The first entry of each texel

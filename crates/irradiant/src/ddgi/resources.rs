@@ -109,7 +109,7 @@ pub struct DdgiResources {
     pub blend_weights: wgpu::Buffer,
     /// ddgi/shade's queue of shadow rays for ddgi/shadow: a 16-byte header (count, then the
     /// shadow pass's indirect dispatch) and a GpuDdgiShadowRay a probe ray. Header only when
-    /// `shadow_queue` is off.
+    /// no shadow ray is queued (DdgiSettings::queues_shadow_rays).
     pub shadow_queue: wgpu::Buffer,
 }
 
@@ -137,7 +137,7 @@ impl DdgiResources {
             (
                 "ddgi/shadow_queue",
                 SHADOW_QUEUE_HEADER
-                    + if settings.shadow_queue {
+                    + if settings.queues_shadow_rays() {
                         rays * size_of::<GpuDdgiShadowRay>() as u64
                     } else {
                         0

@@ -100,11 +100,9 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
             let shadow_from = shadow_origin(s);
             let contribution = unshadowed_light(s, wo, light_ray(light, shadow_from)) * weight;
             if any(contribution != vec3<f32>(0.0)) {
-                // f16 holds up to 65504; brighter contributions are clamped, not lost to ∞.
-                let c = min(contribution, vec3<f32>(65504.0));
                 (*shadow).origin = shadow_from;
                 (*shadow).sample = index;
-                (*shadow).contribution = vec2<u32>(pack2x16float(c.xy), pack2x16float(vec2<f32>(c.z, 0.0)));
+                (*shadow).contribution = contribution;
                 (*shadow).light = light;
                 queued = true;
             }

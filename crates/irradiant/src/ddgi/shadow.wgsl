@@ -28,7 +28,6 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     let ray = shadow_queue.rays[i];
     let light = light_ray(ray.light, ray.origin);
     if !occluded(ray.origin, light.wi, light.distance) {
-        let c = vec3<f32>(unpack2x16float(ray.contribution.x), unpack2x16float(ray.contribution.y).x);
-        samples[ray.sample].radiance += c;
+        samples[ray.sample].radiance += ray.contribution;
     }
 }
