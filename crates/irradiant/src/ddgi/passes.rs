@@ -36,7 +36,9 @@ impl ProbeStateCounts {
 
 /// One probe volume and its passes.
 pub struct Ddgi {
-    pub settings: DdgiSettings,
+    /// Fixed at creation: buffer sizes and shader constants follow from them
+    /// ([`Ddgi::settings`] reads them; a new `Ddgi` takes new ones).
+    settings: DdgiSettings,
     pub layout: VolumeLayout,
     pub resources: DdgiResources,
     max_ray_distance: f32,
@@ -385,6 +387,11 @@ impl Ddgi {
             wake_boxes: Some(scene.dynamic_bounds()),
             wake_box_count: 0,
         })
+    }
+
+    /// The settings the volume was created with.
+    pub fn settings(&self) -> &DdgiSettings {
+        &self.settings
     }
 
     /// Starts the probes over (the next update blends with hysteresis 0, relocation reruns).
