@@ -300,25 +300,11 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             } else {
                 crate::render::parse_counts(probes).map_err(CliError::Usage)?
             };
-            // Every combination of the listed variants, each timed on its own.
-            let variants = ddgi_variants.iter().flat_map(|v| {
-                args.ddgi_probes_per_group
-                    .iter()
-                    .map(move |&probes_per_group| (*v, probes_per_group))
-            });
             for &rays in &args.ddgi_rays {
-                for (v, probes_per_group) in variants.clone() {
+                for variant in &ddgi_variants {
                     let settings = DdgiSettings {
                         rays_per_probe: rays,
-                        coherent_rays: v.coherent_rays,
-                        probe_states: v.probe_states,
-                        probes_per_group,
-                        light_per_warp: v.light_per_warp,
-                        fuse_trace_and_shade: v.fuse_trace_and_shade,
-                        shadow_queue: v.shadow_queue,
-                        shade_all_lights: args.ddgi_shade_all_lights,
-                        weights: crate::render::probe_weights(args.ddgi_weights),
-                        ..DdgiSettings::balanced()
+                        ..variant.clone()
                     };
                     let first_of_scene = !record.ddgi.iter().any(|d| d.scene == scene.name);
                     record.ddgi.push(time_ddgi(
@@ -353,18 +339,9 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The DDGI switches that `bench` times, one value of each.
-#[derive(Clone, Copy)]
-struct DdgiVariant {
-    coherent_rays: bool,
-    probe_states: bool,
-    light_per_warp: bool,
-    fuse_trace_and_shade: bool,
-    shadow_queue: bool,
-}
-
-/// Every combination of the listed values of the two-valued DDGI switches.
-fn ddgi_variants(args: &BenchArgs) -> Result<Vec<DdgiVariant>, CliError> {
+/// The DDGI settings `bench` times (rays per probe aside): every combination of the listed
+/// values of the DDGI switches and of probes per group, in the order they are listed.
+fn ddgi_variants(args: &BenchArgs) -> Result<Vec<DdgiSettings>, CliError> {
     let switch = |values: &[String], flag: &str, yes: &str, no: &str| {
         values
             .iter()
@@ -377,45 +354,73 @@ fn ddgi_variants(args: &BenchArgs) -> Result<Vec<DdgiVariant>, CliError> {
             })
             .collect::<Result<Vec<bool>, CliError>>()
     };
-    let orders = switch(
-        &args.ddgi_ray_order,
-        "--ddgi-ray-order",
-        "coherent",
-        "fibonacci",
-    )?;
-    let states = switch(&args.ddgi_probe_states, "--ddgi-probe-states", "on", "off")?;
-    let lights = switch(
-        &args.ddgi_light_choice,
-        "--ddgi-light-choice",
-        "warp",
-        "ray",
-    )?;
-    let fuses = switch(
-        &args.ddgi_fuse_trace_shade,
-        "--ddgi-fuse-trace-shade",
-        "on",
-        "off",
-    )?;
-    let queues = switch(&args.ddgi_shadow_queue, "--ddgi-shadow-queue", "on", "off")?;
-    let mut variants = Vec::new();
-    for &coherent_rays in &orders {
-        for &probe_states in &states {
-            for &light_per_warp in &lights {
-                for &fuse_trace_and_shade in &fuses {
-                    for &shadow_queue in &queues {
-                        variants.push(DdgiVariant {
-                            coherent_rays,
-                            probe_states,
-                            light_per_warp,
-                            fuse_trace_and_shade,
-                            shadow_queue,
-                        });
-                    }
-                }
-            }
-        }
+    type Set = fn(&mut DdgiSettings, bool);
+    let switches: [(Vec<bool>, Set); 5] = [
+        (
+            switch(
+                &args.ddgi_ray_order,
+                "--ddgi-ray-order",
+                "coherent",
+                "fibonacci",
+            )?,
+            |s, on| s.coherent_rays = on,
+        ),
+        (
+            switch(&args.ddgi_probe_states, "--ddgi-probe-states", "on", "off")?,
+            |s, on| s.probe_states = on,
+        ),
+        (
+            switch(
+                &args.ddgi_light_choice,
+                "--ddgi-light-choice",
+                "warp",
+                "ray",
+            )?,
+            |s, on| s.light_per_warp = on,
+        ),
+        (
+            switch(
+                &args.ddgi_fuse_trace_shade,
+                "--ddgi-fuse-trace-shade",
+                "on",
+                "off",
+            )?,
+            |s, on| s.fuse_trace_and_shade = on,
+        ),
+        (
+            switch(&args.ddgi_shadow_queue, "--ddgi-shadow-queue", "on", "off")?,
+            |s, on| s.shadow_queue = on,
+        ),
+    ];
+    let mut variants = vec![DdgiSettings {
+        shade_all_lights: args.ddgi_shade_all_lights,
+        weights: crate::render::probe_weights(args.ddgi_weights),
+        ..DdgiSettings::balanced()
+    }];
+    // Each switch multiplies the variants so far by its values (the first listed outermost).
+    for (values, set) in switches {
+        variants = variants
+            .iter()
+            .flat_map(|v| {
+                values.iter().map(move |&on| {
+                    let mut v = v.clone();
+                    set(&mut v, on);
+                    v
+                })
+            })
+            .collect();
     }
-    Ok(variants)
+    Ok(variants
+        .iter()
+        .flat_map(|v| {
+            args.ddgi_probes_per_group
+                .iter()
+                .map(move |&probes_per_group| DdgiSettings {
+                    probes_per_group,
+                    ..v.clone()
+                })
+        })
+        .collect())
 }
 
 /// Runs `record_pass` warm-up + timed times, one submission each, and returns the timed

@@ -14,6 +14,7 @@ use wgpu::util::DeviceExt;
 
 use crate::RenderError;
 use crate::gpu_types::*;
+use crate::pipeline::{STORAGE_READ, UNIFORM, buffer_entry, sampler_entry, texture_entry};
 
 /// How the scene is prepared for the GPU.
 #[derive(Clone, Debug)]
@@ -599,53 +600,21 @@ fn gpu_light(light: &irradiant_scene::Light) -> GpuLight {
 
 /// Group 0 of every ray-tracing pass, by name: what `shaders/scene.wgsl` declares.
 pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let storage = |binding| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
+    let storage = |binding| buffer_entry(binding, STORAGE_READ);
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("scene/layout"),
         entries: &[
-            storage(0), // bvh_nodes
-            storage(1), // triangles
-            storage(2), // triangle_shading
-            storage(3), // instances
-            storage(4), // materials
-            storage(5), // lights
-            storage(6), // emitters
-            wgpu::BindGroupLayoutEntry {
-                binding: 7, // scene_info
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 8, // scene_textures
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2Array,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 9, // scene_sampler
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
-            },
-            storage(10), // wide_nodes
+            storage(0),                                                  // bvh_nodes
+            storage(1),                                                  // triangles
+            storage(2),                                                  // triangle_shading
+            storage(3),                                                  // instances
+            storage(4),                                                  // materials
+            storage(5),                                                  // lights
+            storage(6),                                                  // emitters
+            buffer_entry(7, UNIFORM),                                    // scene_info
+            texture_entry(8, wgpu::TextureViewDimension::D2Array, true), // scene_textures
+            sampler_entry(9, wgpu::SamplerBindingType::Filtering),       // scene_sampler
+            storage(10),                                                 // wide_nodes
         ],
     })
 }

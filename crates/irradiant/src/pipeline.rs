@@ -130,6 +130,34 @@ pub fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGrou
     }
 }
 
+/// A bind group layout entry for a sampled compute-stage texture.
+pub fn texture_entry(
+    binding: u32,
+    view_dimension: wgpu::TextureViewDimension,
+    filterable: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A bind group layout entry for a compute-stage sampler.
+pub fn sampler_entry(binding: u32, kind: wgpu::SamplerBindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Sampler(kind),
+        count: None,
+    }
+}
+
 pub const UNIFORM: wgpu::BufferBindingType = wgpu::BufferBindingType::Uniform;
 pub const STORAGE_READ: wgpu::BufferBindingType =
     wgpu::BufferBindingType::Storage { read_only: true };

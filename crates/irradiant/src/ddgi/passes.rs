@@ -797,29 +797,13 @@ fn atlas_textures(
     device: &wgpu::Device,
     r: &DdgiResources,
 ) -> (wgpu::BindGroupLayout, wgpu::BindGroup) {
-    let texture = |binding, filterable| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    };
-    let sampler = |binding, kind| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Sampler(kind),
-        count: None,
-    };
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("ddgi/atlas_textures"),
         entries: &[
-            texture(0, true),
-            texture(1, false),
-            sampler(2, wgpu::SamplerBindingType::Filtering),
-            sampler(3, wgpu::SamplerBindingType::NonFiltering),
+            texture_entry(0, wgpu::TextureViewDimension::D2, true),
+            texture_entry(1, wgpu::TextureViewDimension::D2, false),
+            sampler_entry(2, wgpu::SamplerBindingType::Filtering),
+            sampler_entry(3, wgpu::SamplerBindingType::NonFiltering),
         ],
     });
     let make_sampler = |label, filter| {

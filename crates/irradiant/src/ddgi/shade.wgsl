@@ -38,7 +38,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         // LIGHT_PER_WARP: one random light for each 32 neighbouring threads (a warp) instead
         // of each ray, so that a warp's shadow rays walk to one light together rather than
         // taking turns for each light; every ray still sees each light with equal probability.
-        var light_rng = rng_seed(slot.index, volume.frame, 0x68bc21ebu);
+        var light_rng = ray_rng(slot.index);
         if LIGHT_PER_WARP == 1u {
             light_rng = rng_seed((group.x + group.y * groups.x) * 2u + local_index / 32u, volume.frame, 0x2c1b3c6du);
         }
@@ -47,6 +47,12 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
     if SHADOW_QUEUE == 1u {
         enqueue_shadow(queued, shadow, local_index);
     }
+}
+
+// Probe ray `index`'s random numbers this frame (its light choice takes the first unless
+// LIGHT_PER_WARP; emitter_light starts over from the seed).
+fn ray_rng(index: u32) -> u32 {
+    return rng_seed(index, volume.frame, 0x68bc21ebu);
 }
 
 // Shades one probe ray into samples[slot.index]; with SHADOW_QUEUE, leaves out the chosen
@@ -88,7 +94,7 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
     }
     let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, unpack2x16unorm(hit.bary));
     let wo = -dir;
-    var rng = rng_seed(index, volume.frame, 0x68bc21ebu);
+    var rng = ray_rng(index);
     var l = vec3<f32>(0.0);
     var queued = false;
     if volume.all_lights != 0u {
