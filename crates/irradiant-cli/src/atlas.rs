@@ -4,12 +4,12 @@
 use std::path::Path;
 
 use irradiant::GpuContext;
-use irradiant::ddgi::Ddgi;
+use irradiant::ddgi::DdgiVolume;
 use irradiant::frame::{Image, write_png};
 
 use crate::CliError;
 
-pub fn dump(ctx: &GpuContext, ddgi: &Ddgi, dir: &Path) -> Result<(), CliError> {
+pub fn dump(ctx: &GpuContext, ddgi: &DdgiVolume, dir: &Path) -> Result<(), CliError> {
     let atlases = ddgi.read_atlases(ctx)?;
     let (iw, ih) = atlases.irradiance_size;
     let irradiance = Image {

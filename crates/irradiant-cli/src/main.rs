@@ -5,6 +5,8 @@ mod bench;
 mod compare;
 mod info;
 mod options;
+mod over_time;
+mod reference;
 mod render;
 
 use std::process::ExitCode;
@@ -73,6 +75,8 @@ pub enum CliError {
     Render(#[from] irradiant::RenderError),
     #[error(transparent)]
     Gpu(#[from] irradiant::GpuError),
+    #[error(transparent)]
+    Settings(#[from] irradiant::SettingsError),
     #[error("{0}")]
     Usage(String),
     #[error("{path}: {message}")]

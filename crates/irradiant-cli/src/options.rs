@@ -1,11 +1,18 @@
-//! Parsing and checking of the options commands share.
+//! Parsing and checking of the options commands share: sizes, outputs, cameras, and how a
+//! command's flags, a `--settings` file and a manifest's tables combine into the frame's and
+//! the technique's settings.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use irradiant::frame::FrameSettings;
+use irradiant::{Preset, SettingsFile, TechniqueSpec};
+use irradiant_scene::Scene;
 
 use crate::CliError;
 
-/// Largest image side: 16384 is the common GPU texture limit, and 16384² already needs 4 GiB
-/// of accumulation buffer.
+/// Largest image side: 16384 is the common GPU texture limit; what fits in memory at a given
+/// size is checked against the adapter before anything is allocated.
 pub const MAX_SIDE: u32 = 16384;
 
 /// `WxH`, e.g. `1280x720`.
@@ -30,6 +37,51 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+/// `XxYxZ` probes per axis, e.g. `8x4x8`.
+pub fn parse_counts(text: &str) -> Result<[u32; 3], String> {
+    let parts: Vec<_> = text
+        .split(['x', 'X'])
+        .map(|p| p.trim().parse::<u32>())
+        .collect();
+    let limit = irradiant_scene::MAX_PROBES_PER_AXIS;
+    match parts.as_slice() {
+        [Ok(x), Ok(y), Ok(z)] if [x, y, z].iter().all(|c| (1..=limit).contains(*c)) => {
+            Ok([*x, *y, *z])
+        }
+        _ => Err(format!(
+            "'{text}' is not a probe count: write XxYxZ with 1…{limit} each, e.g. 8x4x8"
+        )),
+    }
+}
+
+/// "px,py,pz,tx,ty,tz[,fov]": a view instead of the scene's camera.
+pub fn parse_camera(text: &str) -> Result<irradiant_scene::Camera, String> {
+    let numbers: Vec<f32> = text
+        .split(',')
+        .map(|n| n.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("'{text}' is not a camera: write px,py,pz,tx,ty,tz[,fov_degrees]"))?;
+    if !(numbers.len() == 6 || numbers.len() == 7) || numbers.iter().any(|n| !n.is_finite()) {
+        return Err(format!(
+            "'{text}' is not a camera: write six or seven finite numbers, px,py,pz,tx,ty,tz[,fov_degrees]"
+        ));
+    }
+    let camera = irradiant_scene::Camera {
+        position: glam::Vec3::new(numbers[0], numbers[1], numbers[2]),
+        target: glam::Vec3::new(numbers[3], numbers[4], numbers[5]),
+        up: glam::Vec3::Y,
+        fov_y_degrees: numbers.get(6).copied().unwrap_or(45.0),
+    };
+    if camera.position == camera.target
+        || !(camera.fov_y_degrees > 0.5 && camera.fov_y_degrees < 179.0)
+    {
+        return Err(format!(
+            "'{text}': the position must differ from the target and the field of view lie in 0.5…179°"
+        ));
+    }
+    Ok(camera)
+}
+
 /// Checks that an output file can be written before spending GPU time on it.
 pub fn check_output(path: &Path, extensions: &[&str]) -> Result<(), CliError> {
     let extension = path
@@ -43,6 +95,11 @@ pub fn check_output(path: &Path, extensions: &[&str]) -> Result<(), CliError> {
             extensions.join(" or .")
         )));
     }
+    check_folder(path)
+}
+
+/// Checks that the folder a file or folder goes into exists.
+pub fn check_folder(path: &Path) -> Result<(), CliError> {
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -54,6 +111,151 @@ pub fn check_output(path: &Path, extensions: &[&str]) -> Result<(), CliError> {
         });
     }
     Ok(())
+}
+
+/// The DDGI paper's Figure 7 ladder, as a flag.
+#[derive(Clone, Copy, Debug, PartialEq, clap::ValueEnum)]
+pub enum Weights {
+    /// Classic irradiance probes: trilinear weights only.
+    Classic,
+    /// + smooth backface weight.
+    Backface,
+    /// + Chebyshev visibility.
+    Chebyshev,
+    /// + self-shadow bias and backface-hit rule (the full method).
+    Full,
+}
+
+impl Weights {
+    pub fn name(self) -> &'static str {
+        match self {
+            Weights::Classic => "classic",
+            Weights::Backface => "backface",
+            Weights::Chebyshev => "chebyshev",
+            Weights::Full => "full",
+        }
+    }
+}
+
+/// The settings every command that renders frames takes.
+#[derive(Args, Clone, Debug)]
+pub struct SettingsArgs {
+    /// Settings preset of the frame and the technique: fast, balanced or quality.
+    #[arg(long, default_value = "balanced", value_parser = parse_preset)]
+    pub preset: Preset,
+    /// A settings file with [frame] and [technique] tables (see docs/architecture.md); it
+    /// overrides the scene manifest's tables, and the flags override both.
+    #[arg(long)]
+    pub settings: Option<PathBuf>,
+    /// Trace one ray through each pixel centre and blend no history (TAA is on by default).
+    #[arg(long)]
+    pub no_taa: bool,
+    /// DDGI weights (the paper's Figure 7 ladder).
+    #[arg(long, value_enum)]
+    pub weights: Option<Weights>,
+    /// DDGI rays per probe per frame (default: the preset's).
+    #[arg(long)]
+    pub rays: Option<u32>,
+    /// DDGI irradiance hysteresis (default: the preset's).
+    #[arg(long)]
+    pub hysteresis: Option<f32>,
+    /// DDGI probes per axis in every volume, e.g. 8x4x8 (default: the scene's volumes).
+    #[arg(long, value_parser = parse_counts)]
+    pub probes: Option<[u32; 3]>,
+}
+
+fn parse_preset(text: &str) -> Result<Preset, String> {
+    Preset::parse(text).map_err(|e| e.to_string())
+}
+
+/// The frame's and a technique's settings for a run: the manifest's tables, then the settings
+/// file's, then the flags, each over the one before; warnings for unknown keys.
+pub struct RunSettings {
+    pub frame: FrameSettings,
+    pub warnings: Vec<String>,
+    file: SettingsFile,
+}
+
+impl RunSettings {
+    pub fn new(args: &SettingsArgs, scene: &Scene, seed: u32) -> Result<Self, CliError> {
+        let mut warnings = Vec::new();
+        // The manifest's tables, then the file's over them.
+        let mut file = SettingsFile::default();
+        if !scene.settings.is_empty() {
+            let text =
+                toml::to_string(&scene.settings).map_err(|e| CliError::Usage(e.to_string()))?;
+            file = SettingsFile::parse(&text, &format!("scene {}", scene.name), &mut warnings)?;
+        }
+        if let Some(path) = &args.settings {
+            let from_file = SettingsFile::read(path, &mut warnings)?;
+            if let Some(frame) = from_file.frame {
+                let mut merged = file.frame.take().unwrap_or_default();
+                merged.extend(frame);
+                file.frame = Some(merged);
+            }
+            if from_file.technique.is_some() {
+                file.technique = from_file.technique;
+            }
+        }
+        let mut frame = file.frame_settings(args.preset, &mut warnings)?;
+        if args.no_taa {
+            frame.taa.enabled = false;
+        }
+        frame.seed = seed;
+        Ok(Self {
+            frame,
+            warnings,
+            file,
+        })
+    }
+
+    /// The spec of technique `name`: the settings file's or manifest's own table where it names
+    /// the same technique, with the command's flags over it.
+    pub fn technique(
+        &self,
+        name: &str,
+        args: &SettingsArgs,
+        seed: u32,
+    ) -> Result<TechniqueSpec, CliError> {
+        let mut spec = match &self.file.technique {
+            Some(spec) if spec.name == name => spec.clone(),
+            _ => TechniqueSpec::new(name, args.preset),
+        };
+        if args.preset != Preset::Balanced {
+            spec.preset = args.preset;
+        }
+        let set = |spec: &mut TechniqueSpec, group: &str, key: &str, value: toml::Value| {
+            let table = spec
+                .settings
+                .entry(group)
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            if let toml::Value::Table(t) = table {
+                t.insert(key.into(), value);
+            }
+        };
+        // The DDGI flags only concern the DDGI family; elsewhere they would be unknown keys.
+        if name == "ddgi" || name == "classic-probes" {
+            if let Some(w) = args.weights {
+                set(&mut spec, "update", "weights", w.name().into());
+            }
+            if let Some(r) = args.rays {
+                set(&mut spec, "volume", "rays_per_probe", (r as i64).into());
+            }
+            if let Some(h) = args.hysteresis {
+                set(&mut spec, "update", "hysteresis", (h as f64).into());
+            }
+            if let Some(c) = args.probes {
+                set(
+                    &mut spec,
+                    "volume",
+                    "probe_counts",
+                    toml::Value::Array(c.iter().map(|&v| (v as i64).into()).collect()),
+                );
+            }
+            set(&mut spec, "update", "seed", (seed as i64).into());
+        }
+        Ok(spec)
+    }
 }
 
 #[cfg(test)]

@@ -1,46 +1,28 @@
-use std::path::{Path, PathBuf};
+//! `irradiant render`: a scene through a real-time technique (frames driven by the session) or
+//! the reference path tracer, to PNG (tonemapped) or EXR (linear).
 
-use clap::{Args, ValueEnum};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use irradiant::ddgi::{Ddgi, DdgiSettings, ProbeWeights};
-use irradiant::frame::{
-    FrameRenderer, FrameSettings, Technique as FrameTechnique, ToneSettings, Tonemapper,
-    apply_pose, write_png,
-};
+use irradiant::frame::{Image, write_png};
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
-use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
+use irradiant::{
+    AdapterChoice, GpuContext, GpuScene, GpuSceneSettings, Preset, Session, SessionSettings,
+};
 
 use crate::CliError;
-use crate::options::{check_output, parse_size};
+use crate::options::{RunSettings, SettingsArgs, check_folder, check_output, parse_size};
 
-#[derive(Clone, Copy, Debug, PartialEq, ValueEnum)]
-pub enum Technique {
-    /// The reference path tracer (ground truth).
-    Path,
-    /// Direct light only: no indirect light at all (the baseline every technique improves on).
-    None,
-    /// Dynamic diffuse global illumination: ray-traced probes with Chebyshev visibility.
-    Ddgi,
-}
+/// The reference path tracer's name on the command line, beside the registered techniques.
+pub const PATH: &str = "path";
 
-/// The DDGI paper's Figure 7 ladder.
-#[derive(Clone, Copy, Debug, PartialEq, ValueEnum)]
-pub enum Weights {
-    /// Classic irradiance probes: trilinear weights only.
-    Classic,
-    /// + smooth backface weight.
-    Backface,
-    /// + Chebyshev visibility.
-    Chebyshev,
-    /// + self-shadow bias and backface-hit rule (the full method).
-    Full,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Preset {
-    Fast,
-    Balanced,
-    Quality,
+/// `--technique` values: the path tracer and every registered technique.
+pub fn technique_values() -> Vec<&'static str> {
+    let mut names = vec![PATH];
+    names.extend(irradiant::technique::names());
+    names
 }
 
 #[derive(Args)]
@@ -49,11 +31,9 @@ pub struct RenderArgs {
     /// mesh (.obj, .gltf, .glb).
     #[arg(long, default_value = "cornell")]
     pub scene: String,
-    #[arg(long, value_enum, default_value = "ddgi")]
-    pub technique: Technique,
-    /// Settings preset; --spp and --max-bounces override it.
-    #[arg(long, value_enum, default_value = "balanced")]
-    pub preset: Preset,
+    /// `path` (the reference path tracer) or a registered real-time technique.
+    #[arg(long, default_value = "ddgi", value_parser = clap::builder::PossibleValuesParser::new(technique_values()))]
+    pub technique: String,
     /// Samples per pixel (path tracer).
     #[arg(long)]
     pub spp: Option<u32>,
@@ -87,53 +67,17 @@ pub struct RenderArgs {
     /// Write every frame, numbered: OUT stem + "-0001.png", …
     #[arg(long)]
     pub sequence: bool,
-    #[command(flatten)]
-    pub ddgi: DdgiArgs,
-}
-
-#[derive(Args, Clone, Debug)]
-pub struct DdgiArgs {
-    /// DDGI weights (the paper's Figure 7 ladder).
-    #[arg(long, value_enum, default_value = "full")]
-    pub weights: Weights,
-    /// Rays per probe per frame (default: the preset's).
-    #[arg(long)]
-    pub rays: Option<u32>,
-    /// Irradiance hysteresis (default: the preset's).
-    #[arg(long)]
-    pub hysteresis: Option<f32>,
-    /// Probes per axis, e.g. 8x4x8 (default: the scene's probe volume).
-    #[arg(long, value_parser = parse_counts)]
-    pub probes: Option<[u32; 3]>,
     /// Draw the probes as spheres showing their irradiance.
     #[arg(long)]
     pub show_probes: bool,
-    /// Write the irradiance and distance atlases into this folder after the last frame.
+    /// Write the DDGI irradiance and distance atlases into this folder after the last frame.
     #[arg(long)]
     pub dump_atlas: Option<PathBuf>,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
 }
 
-pub fn parse_counts(text: &str) -> Result<[u32; 3], String> {
-    let parts: Vec<_> = text
-        .split(['x', 'X'])
-        .map(|p| p.trim().parse::<u32>())
-        .collect();
-    match parts.as_slice() {
-        [Ok(x), Ok(y), Ok(z)]
-            if (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(x)
-                && (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(y)
-                && (1..=irradiant_scene::MAX_PROBES_PER_AXIS).contains(z) =>
-        {
-            Ok([*x, *y, *z])
-        }
-        _ => Err(format!(
-            "'{text}' is not a probe count: write XxYxZ with 1…{} each, e.g. 8x4x8",
-            irradiant_scene::MAX_PROBES_PER_AXIS
-        )),
-    }
-}
-
-pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
+fn check_args(args: &RenderArgs) -> Result<(), CliError> {
     check_output(&args.out, &["png", "exr"])?;
     if !(args.exposure.is_finite() && args.exposure > 0.0) {
         return Err(CliError::Usage(format!(
@@ -141,7 +85,7 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             args.exposure
         )));
     }
-    if args.technique != Technique::Path && (args.frames == 0 || args.frames > 100_000) {
+    if args.technique != PATH && (args.frames == 0 || args.frames > 100_000) {
         return Err(CliError::Usage(format!(
             "--frames {} is out of range: use 1…100000",
             args.frames
@@ -159,124 +103,78 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             args.time
         )));
     }
-    if let Some(dir) = &args.ddgi.dump_atlas {
-        if !dir.is_dir() {
-            return Err(CliError::Io {
-                path: dir.clone(),
-                message: "the atlas folder does not exist; create it first".into(),
-            });
-        }
+    if let Some(dir) = &args.dump_atlas
+        && !dir.is_dir()
+    {
+        return Err(CliError::Io {
+            path: dir.clone(),
+            message: "the atlas folder does not exist; create it first".into(),
+        });
     }
-    let settings = path_settings(args)?;
-    let ddgi_settings = ddgi_settings(args)?;
+    Ok(())
+}
+
+pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
+    check_args(args)?;
+    let path_settings = path_settings(args)?;
     let loaded = irradiant_scene::load(&args.scene)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
     let scene = loaded.scene;
-    let ctx = GpuContext::new(adapter)?;
-    let (width, height) = args.size;
-    let mut gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings::default())?;
-    if args.technique == Technique::Path {
-        gpu_scene.update(&ctx, &scene.pose_at(args.time));
+    let mut run_settings = RunSettings::new(&args.settings, &scene, args.seed)?;
+    run_settings.frame.tone.exposure = args.exposure;
+    run_settings.frame.tone.filmic = !args.no_filmic;
+    let spec = run_settings.technique(&args.technique, &args.settings, args.seed)?;
+    if args.technique != PATH {
+        // Settings errors come before any GPU work.
+        let kind = spec.kind()?;
+        run_settings.warnings.extend(kind.check(&spec)?);
     }
-    let tone = ToneSettings {
-        exposure: args.exposure,
-        filmic: !args.no_filmic,
-    };
-    let image = match args.technique {
-        Technique::Path => {
-            let mut tracer = PathTracer::new(&ctx, &gpu_scene, width, height)?;
-            let bar = ProgressBar::new(settings.samples_per_pixel as u64);
-            bar.set_style(
-                ProgressStyle::with_template(
-                    "{spinner} path tracing {pos}/{len} spp [{elapsed_precise} < {eta}] {wide_bar}",
-                )
-                .unwrap(),
-            );
-            let image = tracer.render(&ctx, &gpu_scene, &scene.camera, &settings, |done, _| {
-                bar.set_position(done as u64)
-            })?;
-            bar.finish_and_clear();
-            if is_png(&args.out) {
-                let rgba =
-                    Tonemapper::new(&ctx)?.run(&ctx, &tracer.accumulation, width, height, &tone)?;
-                write_png(&args.out, &rgba, width, height)?;
-            }
-            image
+    for w in &run_settings.warnings {
+        eprintln!("warning: {w}");
+    }
+    let ctx = Arc::new(GpuContext::new(adapter)?);
+    let (width, height) = args.size;
+    let (image, what) = if args.technique == PATH {
+        ctx.check_allocations(&PathTracer::plan(width, height))?;
+        let mut gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings::default())?;
+        gpu_scene.update(&ctx, &scene.pose_at(args.time));
+        let mut tracer = PathTracer::new(&ctx, &gpu_scene, width, height)?;
+        let bar = progress(
+            path_settings.samples_per_pixel,
+            "path tracing {pos}/{len} spp",
+        );
+        let image = tracer.render(
+            &ctx,
+            &gpu_scene,
+            &scene.camera,
+            &path_settings,
+            |done, _| bar.set_position(done as u64),
+        )?;
+        bar.finish_and_clear();
+        if is_png(&args.out) {
+            let rgba = srgb_rgba(&image, &run_settings.frame.tone);
+            write_png(&args.out, &rgba, width, height)?;
         }
-        Technique::None | Technique::Ddgi => {
-            let mut frame =
-                FrameRenderer::new(&ctx, &gpu_scene, width, height, FrameSettings::default())?;
-            let mut ddgi = match args.technique {
-                Technique::Ddgi => {
-                    let mut volume = scene
-                        .probe_volumes
-                        .first()
-                        .cloned()
-                        .unwrap_or_else(|| default_volume(&scene));
-                    if let Some(counts) = args.ddgi.probes {
-                        volume.counts = counts;
-                    }
-                    let mut ddgi = Ddgi::new(&ctx, &gpu_scene, &volume, &ddgi_settings)?;
-                    ddgi.bind_frame(&ctx, &frame.buffers);
-                    Some(ddgi)
-                }
-                _ => None,
-            };
-            let bar = ProgressBar::new(args.frames as u64);
-            bar.set_style(
-                ProgressStyle::with_template(
-                    "{spinner} frame {pos}/{len} [{elapsed_precise} < {eta}] {wide_bar}",
-                )
-                .unwrap(),
-            );
-            let frame_time =
-                |i: u32| (args.time - (args.frames - 1 - i) as f32 / args.fps).max(0.0);
-            let mut pose = scene.pose_at(frame_time(0));
-            gpu_scene.update(&ctx, &pose);
-            for i in 0..args.frames {
-                let next = scene.pose_at(frame_time(i));
-                apply_pose(
-                    &ctx,
-                    &mut gpu_scene,
-                    &mut frame,
-                    ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique),
-                    &pose,
-                    &next,
-                );
-                pose = next;
-                frame.render(
-                    &ctx,
-                    &gpu_scene,
-                    &scene.camera,
-                    ddgi.as_mut().map(|d| d as &mut dyn FrameTechnique),
-                    args.ddgi.show_probes,
-                    None,
-                )?;
-                if args.sequence {
-                    write_frame(&ctx, &frame, &numbered(&args.out, i + 1), &tone)?;
-                }
-                bar.set_position(i as u64 + 1);
-            }
-            bar.finish_and_clear();
-            if let (Some(dir), Some(ddgi)) = (&args.ddgi.dump_atlas, &ddgi) {
-                crate::atlas::dump(&ctx, ddgi, dir)?;
-            }
-            if is_png(&args.out) && !args.sequence {
-                write_png(&args.out, &frame.tonemapped(&ctx, &tone)?, width, height)?;
-            }
-            frame.image(&ctx)?
-        }
+        (image, format!("{} spp", path_settings.samples_per_pixel))
+    } else {
+        let image = render_frames(
+            args,
+            ctx.clone(),
+            scene.clone(),
+            run_settings.frame.clone(),
+            spec,
+        )?;
+        (
+            image,
+            format!("{} after {} frames", args.technique, args.frames),
+        )
     };
     if !is_png(&args.out) && !args.sequence {
         image.write_exr(&args.out)?;
     }
     let m = image.mean();
-    let what = match args.technique {
-        Technique::Path => format!("{} spp", settings.samples_per_pixel),
-        _ => format!("{:?} after {} frames", args.technique, args.frames).to_lowercase(),
-    };
     println!(
         "{}: {} {}x{}, {what} on {} — mean radiance ({:.4}, {:.4}, {:.4})",
         args.out.display(),
@@ -291,8 +189,76 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A real-time technique's frames leading up to --time; writes the last (or every) frame.
+fn render_frames(
+    args: &RenderArgs,
+    ctx: Arc<GpuContext>,
+    scene: irradiant_scene::Scene,
+    frame: irradiant::frame::FrameSettings,
+    spec: irradiant::TechniqueSpec,
+) -> Result<Image, CliError> {
+    let frame_time = |i: u32| (args.time - (args.frames - 1 - i) as f32 / args.fps).max(0.0);
+    let mut session = Session::new(
+        ctx.clone(),
+        scene,
+        SessionSettings {
+            size: args.size,
+            frame,
+            technique: spec,
+            scene: GpuSceneSettings::default(),
+            time: frame_time(0),
+        },
+    )?;
+    session.set_show_probes(args.show_probes);
+    let bar = progress(args.frames, "frame {pos}/{len}");
+    for i in 0..args.frames {
+        session.seek(frame_time(i));
+        session.render()?;
+        if args.sequence {
+            write_frame(&session, &numbered(&args.out, i + 1))?;
+        }
+        bar.set_position(i as u64 + 1);
+    }
+    bar.finish_and_clear();
+    if let Some(dir) = &args.dump_atlas {
+        match session.technique_as::<irradiant::ddgi::Ddgi>() {
+            Some(ddgi) => crate::atlas::dump(&ctx, ddgi.volume(), dir)?,
+            None => eprintln!(
+                "warning: --dump-atlas: technique '{}' has no probe atlases",
+                args.technique
+            ),
+        }
+    }
+    if is_png(&args.out) && !args.sequence {
+        let (w, h) = args.size;
+        write_png(&args.out, &session.tonemapped()?, w, h)?;
+    }
+    Ok(session.image()?)
+}
+
+fn progress(len: u32, what: &str) -> ProgressBar {
+    let bar = ProgressBar::new(len as u64);
+    bar.set_style(
+        ProgressStyle::with_template(&format!(
+            "{{spinner}} {what} [{{elapsed_precise}} < {{eta}}] {{wide_bar}}"
+        ))
+        .expect("a valid progress template"),
+    );
+    bar
+}
+
+/// sRGB RGBA8 of a linear image, through the frame's curve (Image::to_srgb8 is frame/tonemap's
+/// CPU twin).
+pub fn srgb_rgba(image: &Image, tone: &irradiant::frame::ToneSettings) -> Vec<u8> {
+    image
+        .to_srgb8(tone.exposure, tone.filmic)
+        .chunks_exact(3)
+        .flat_map(|p| [p[0], p[1], p[2], 255])
+        .collect()
+}
+
 fn path_settings(args: &RenderArgs) -> Result<PathTraceSettings, CliError> {
-    let mut settings = match args.preset {
+    let mut settings = match args.settings.preset {
         Preset::Fast => PathTraceSettings::fast(),
         Preset::Balanced => PathTraceSettings::balanced(),
         Preset::Quality => PathTraceSettings::quality(),
@@ -317,54 +283,6 @@ fn path_settings(args: &RenderArgs) -> Result<PathTraceSettings, CliError> {
     Ok(settings)
 }
 
-pub fn probe_weights(weights: Weights) -> ProbeWeights {
-    match weights {
-        Weights::Classic => ProbeWeights::Classic,
-        Weights::Backface => ProbeWeights::Backface,
-        Weights::Chebyshev => ProbeWeights::Chebyshev,
-        Weights::Full => ProbeWeights::Full,
-    }
-}
-
-fn ddgi_settings(args: &RenderArgs) -> Result<DdgiSettings, CliError> {
-    let mut s = match args.preset {
-        Preset::Fast => DdgiSettings::fast(),
-        Preset::Balanced => DdgiSettings::balanced(),
-        Preset::Quality => DdgiSettings::quality(),
-    };
-    s.weights = probe_weights(args.ddgi.weights);
-    if let Some(r) = args.ddgi.rays {
-        s.rays_per_probe = r;
-    }
-    if let Some(h) = args.ddgi.hysteresis {
-        s.hysteresis = h;
-    }
-    s.seed = args.seed;
-    s.validate()
-        .map_err(|e| CliError::Usage(format!("DDGI settings: {e}")))?;
-    Ok(s)
-}
-
-/// A probe volume over the scene's bounds when its manifest names none: about 8 probes along
-/// the longest side.
-pub fn default_volume(scene: &irradiant_scene::Scene) -> irradiant_scene::ProbeVolumeDesc {
-    let (lo, hi) = scene.bounds();
-    let extent = (hi - lo).max(glam::Vec3::splat(1e-3));
-    let step = extent.max_element() / 8.0;
-    let counts = (extent / step)
-        .ceil()
-        .as_uvec3()
-        .max(glam::UVec3::splat(2))
-        .min(glam::UVec3::splat(32));
-    let inset = extent / counts.as_vec3() * 0.5;
-    irradiant_scene::ProbeVolumeDesc {
-        name: "auto".into(),
-        min: lo + inset,
-        max: hi - inset,
-        counts: counts.into(),
-    }
-}
-
 fn numbered(out: &Path, index: u32) -> PathBuf {
     let stem = out
         .file_stem()
@@ -377,21 +295,13 @@ fn numbered(out: &Path, index: u32) -> PathBuf {
     out.with_file_name(format!("{stem}-{index:04}.{ext}"))
 }
 
-fn write_frame(
-    ctx: &GpuContext,
-    frame: &FrameRenderer,
-    path: &Path,
-    tone: &ToneSettings,
-) -> Result<(), CliError> {
+fn write_frame(session: &Session, path: &Path) -> Result<(), CliError> {
+    check_folder(path)?;
+    let (w, h) = session.frame().size();
     if is_png(path) {
-        write_png(
-            path,
-            &frame.tonemapped(ctx, tone)?,
-            frame.buffers.width,
-            frame.buffers.height,
-        )?;
+        write_png(path, &session.tonemapped()?, w, h)?;
     } else {
-        frame.image(ctx)?.write_exr(path)?;
+        session.image()?.write_exr(path)?;
     }
     Ok(())
 }

@@ -26,6 +26,15 @@ pub enum GpuError {
     DeviceLost(String),
     #[error("waiting for the GPU failed: {0}")]
     Poll(String),
+    #[error(
+        "{what} would need {needs}, more than this adapter allows ({allows}): lower {setting}, or pick a larger adapter with --adapter"
+    )]
+    TooLarge {
+        what: String,
+        needs: String,
+        allows: String,
+        setting: String,
+    },
 }
 
 /// Which adapter to use: the first usable one, one by index in `irradiant info`'s list, or the
@@ -70,6 +79,9 @@ pub struct GpuInfo {
     pub max_buffer_size: u64,
     pub max_compute_workgroup_size_x: u32,
     pub max_storage_buffers_per_shader_stage: u32,
+    pub max_compute_workgroups_per_dimension: u32,
+    /// The largest device-local memory heap in bytes, where the driver reports it (Vulkan).
+    pub memory: Option<u64>,
 }
 
 pub struct GpuContext {
@@ -85,6 +97,9 @@ pub struct GpuContext {
 
 /// Storage buffers one shader stage may bind: the scene takes 8, a DDGI pass up to 8 more.
 const STORAGE_BUFFERS_NEEDED: u32 = 16;
+
+/// Storage textures one shader stage may bind: frame/gbuffer writes its five channels.
+const STORAGE_TEXTURES_NEEDED: u32 = 8;
 
 impl GpuContext {
     /// Every adapter wgpu can see (Vulkan only: the backend Irradiant is tested on).
@@ -155,13 +170,38 @@ impl GpuContext {
             adapter: adapter_info.name.clone(),
             reason,
         };
+        if available.max_storage_textures_per_shader_stage < STORAGE_TEXTURES_NEEDED {
+            return Err(unsuitable(format!(
+                "it allows {} storage textures per shader stage and Irradiant needs {STORAGE_TEXTURES_NEEDED}",
+                available.max_storage_textures_per_shader_stage
+            )));
+        }
         if available.max_storage_buffers_per_shader_stage < STORAGE_BUFFERS_NEEDED {
             return Err(unsuitable(format!(
                 "it allows {} storage buffers per shader stage and Irradiant needs {STORAGE_BUFFERS_NEEDED}",
                 available.max_storage_buffers_per_shader_stage
             )));
         }
-        let features = adapter.features() & Features::TIMESTAMP_QUERY;
+        // Read-write storage textures of rgba32float (the frame's running means, the path
+        // tracer's accumulation) need the adapter's own format capabilities, which every
+        // Vulkan adapter has; clearing textures is a Vulkan command too.
+        let needed = Features::TEXTURE_ADAPTER_SPECIFIC_FORMAT_FEATURES | Features::CLEAR_TEXTURE;
+        if !adapter.features().contains(needed) {
+            return Err(unsuitable(format!(
+                "it lacks {:?}, which Irradiant needs",
+                needed - adapter.features()
+            )));
+        }
+        let read_write = adapter
+            .get_texture_format_features(wgpu::TextureFormat::Rgba32Float)
+            .flags
+            .contains(wgpu::TextureFormatFeatureFlags::STORAGE_READ_WRITE);
+        if !read_write {
+            return Err(unsuitable(
+                "it cannot read and write rgba32float storage textures in one pass".into(),
+            ));
+        }
+        let features = (adapter.features() & Features::TIMESTAMP_QUERY) | needed;
         let limits = Limits {
             max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED
                 .max(Limits::default().max_storage_buffers_per_shader_stage),
@@ -171,6 +211,9 @@ impl GpuContext {
             max_texture_array_layers: available.max_texture_array_layers,
             // Large DDGI volumes need wide atlas textures.
             max_texture_dimension_2d: available.max_texture_dimension_2d,
+            // frame/gbuffer writes five channels; Vulkan adapters allow far more than 4.
+            max_storage_textures_per_shader_stage: STORAGE_TEXTURES_NEEDED
+                .max(Limits::default().max_storage_textures_per_shader_stage),
             ..Limits::default()
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -203,6 +246,8 @@ impl GpuContext {
             max_buffer_size: limits.max_buffer_size,
             max_compute_workgroup_size_x: limits.max_compute_workgroup_size_x,
             max_storage_buffers_per_shader_stage: limits.max_storage_buffers_per_shader_stage,
+            max_compute_workgroups_per_dimension: limits.max_compute_workgroups_per_dimension,
+            memory: device_local_memory(&adapter),
         };
         Ok(Self {
             instance,
@@ -242,6 +287,11 @@ impl GpuContext {
         self.check("GPU work")
     }
 
+    /// Checks that `allocations` fit this adapter (see [`crate::Budget`]).
+    pub fn check_allocations(&self, allocations: &[crate::Allocation]) -> Result<(), GpuError> {
+        crate::Budget::of(self).check(allocations)
+    }
+
     /// Runs `build` inside a validation error scope, turning errors into values.
     pub fn scoped<T>(&self, what: &str, build: impl FnOnce(&Device) -> T) -> Result<T, GpuError> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
@@ -253,5 +303,21 @@ impl GpuContext {
             }),
             None => Ok(value),
         }
+    }
+}
+
+/// The largest device-local memory heap of a Vulkan adapter (wgpu has no portable query).
+fn device_local_memory(adapter: &Adapter) -> Option<u64> {
+    // SAFETY: only reads the physical device's memory properties; nothing is created or
+    // destroyed through the hal handles, which outlive this call.
+    unsafe {
+        let hal = adapter.as_hal::<wgpu::hal::api::Vulkan>()?;
+        let instance = hal.shared_instance().raw_instance();
+        let properties = instance.get_physical_device_memory_properties(hal.raw_physical_device());
+        properties.memory_heaps[..properties.memory_heap_count as usize]
+            .iter()
+            .filter(|h| h.flags.contains(ash::vk::MemoryHeapFlags::DEVICE_LOCAL))
+            .map(|h| h.size)
+            .max()
     }
 }

@@ -1,18 +1,28 @@
-//! Irradiant's GPU layer on wgpu: adapter and device, WGSL composition, GPU-struct layout
-//! checks, timestamp profiling and readback. Techniques build on this; nothing here knows
-//! about scenes or global illumination.
+//! Irradiant's GPU layer on wgpu: adapter and device, WGSL composition, passes declared once
+//! in their WGSL and bound by name, sizes checked before allocation, GPU-struct layout checks,
+//! timestamp profiling and readback. Techniques build on this; nothing here knows about scenes
+//! or global illumination.
 
+mod budget;
 mod context;
 mod layout;
+mod pass;
 mod profiler;
 mod readback;
 mod shader;
 
+pub use budget::{Allocation, AllocationKind, Budget, bytes};
 pub use context::{AdapterChoice, GpuContext, GpuError, GpuInfo};
 pub use layout::{Expected, StructLayoutError, check_struct_layouts};
+pub use pass::{
+    BindingDecl, BoundPass, ComputePass, MAX_WORKGROUPS_PER_DIMENSION, PassDesc, PassError,
+    Resource, ResourceTable, Workgroups,
+};
 pub use profiler::{PassTiming, Profiler};
-pub use readback::{read_buffer, read_buffer_as};
-pub use shader::{ShaderError, ShaderLibrary, compose};
+pub use readback::{read_buffer, read_buffer_as, read_texture};
+pub use shader::{
+    Composed, ShaderError, ShaderLibrary, WgslValue, compose, compose_module, wgsl_const,
+};
 
 pub use bytemuck;
 pub use wgpu;

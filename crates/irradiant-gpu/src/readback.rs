@@ -48,3 +48,64 @@ pub fn read_buffer_as<T: bytemuck::Pod>(
     let bytes = read_buffer(ctx, buffer, 0, buffer.size())?;
     Ok(bytemuck::pod_collect_to_vec(&bytes))
 }
+
+/// Copies mip level 0 of a 2D texture and waits for it: `texel_bytes` a texel, rows packed
+/// (the copy's 256-byte row padding removed).
+pub fn read_texture(
+    ctx: &GpuContext,
+    texture: &wgpu::Texture,
+    texel_bytes: u32,
+) -> Result<Vec<u8>, GpuError> {
+    let size = texture.size();
+    let row = size.width * texel_bytes;
+    let padded = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback/texture_staging"),
+        size: padded as u64 * size.height as u64,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("readback/texture_copy"),
+        });
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &staging,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(size.height),
+            },
+        },
+        wgpu::Extent3d {
+            width: size.width,
+            height: size.height,
+            depth_or_array_layers: 1,
+        },
+    );
+    ctx.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = sender.send(r);
+    });
+    ctx.wait()?;
+    receiver
+        .recv()
+        .map_err(|e| GpuError::Poll(e.to_string()))?
+        .map_err(|e| GpuError::Poll(format!("mapping the readback buffer failed: {e}")))?;
+    let mapped = slice
+        .get_mapped_range()
+        .map_err(|e| GpuError::Poll(e.to_string()))?;
+    let mut data = Vec::with_capacity(row as usize * size.height as usize);
+    for y in 0..size.height as usize {
+        let start = y * padded as usize;
+        data.extend_from_slice(&mapped[start..start + row as usize]);
+    }
+    drop(mapped);
+    staging.unmap();
+    Ok(data)
+}

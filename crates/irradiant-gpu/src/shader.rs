@@ -5,7 +5,12 @@
 //! prepends `const NAME = value;` for each constant, which is how optional inputs and sizes
 //! become shader defines. Naga then validates the result, so a broken shader is an error
 //! value, not a panic.
+//!
+//! Constants that Rust and WGSL share are defined once, in Rust, with [`wgsl_constants!`]:
+//! the macro makes the Rust constants and a WGSL module declaring the same values, which the
+//! shader library serves under a name like any other module.
 
+use std::borrow::Cow;
 use std::collections::HashSet;
 
 #[derive(Debug, thiserror::Error)]
@@ -19,21 +24,28 @@ pub enum ShaderError {
 /// Named WGSL modules that `#import` can name.
 #[derive(Clone, Default)]
 pub struct ShaderLibrary {
-    modules: Vec<(&'static str, &'static str)>,
+    modules: Vec<(&'static str, Cow<'static, str>)>,
 }
 
 impl ShaderLibrary {
-    pub fn with(mut self, name: &'static str, source: &'static str) -> Self {
-        self.modules.push((name, source));
+    pub fn with(mut self, name: &'static str, source: impl Into<Cow<'static, str>>) -> Self {
+        self.modules.push((name, source.into()));
         self
     }
 
-    fn get(&self, name: &str) -> Option<&'static str> {
+    fn get(&self, name: &str) -> Option<&str> {
         self.modules
             .iter()
             .find(|(n, _)| *n == name)
-            .map(|(_, s)| *s)
+            .map(|(_, s)| s.as_ref())
     }
+}
+
+/// A composed shader: its text, and naga's parse and analysis of it.
+pub struct Composed {
+    pub text: String,
+    pub module: naga::Module,
+    pub info: naga::valid::ModuleInfo,
 }
 
 /// Resolves imports and constants, and validates the result with naga.
@@ -43,6 +55,16 @@ pub fn compose(
     library: &ShaderLibrary,
     constants: &[(&str, String)],
 ) -> Result<String, ShaderError> {
+    Ok(compose_module(label, source, library, constants)?.text)
+}
+
+/// [`compose`], keeping naga's module and analysis (pass reflection reads them).
+pub fn compose_module(
+    label: &str,
+    source: &str,
+    library: &ShaderLibrary,
+    constants: &[(&str, String)],
+) -> Result<Composed, ShaderError> {
     let mut out = String::new();
     for (name, value) in constants {
         out.push_str(&format!("const {name} = {value};\n"));
@@ -53,7 +75,7 @@ pub fn compose(
         shader: label.to_owned(),
         message: e.emit_to_string(&out),
     })?;
-    naga::valid::Validator::new(
+    let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::all(),
     )
@@ -62,7 +84,11 @@ pub fn compose(
         shader: label.to_owned(),
         message: e.emit_to_string(&out),
     })?;
-    Ok(out)
+    Ok(Composed {
+        text: out,
+        module,
+        info,
+    })
 }
 
 fn include(
@@ -92,6 +118,70 @@ fn include(
     Ok(())
 }
 
+/// A value that can be written as a WGSL constant.
+pub trait WgslValue: Copy {
+    fn wgsl_type() -> &'static str;
+    fn literal(self) -> String;
+}
+
+impl WgslValue for u32 {
+    fn wgsl_type() -> &'static str {
+        "u32"
+    }
+    fn literal(self) -> String {
+        format!("{self}u")
+    }
+}
+
+impl WgslValue for i32 {
+    fn wgsl_type() -> &'static str {
+        "i32"
+    }
+    fn literal(self) -> String {
+        format!("{self}i")
+    }
+}
+
+impl WgslValue for f32 {
+    fn wgsl_type() -> &'static str {
+        "f32"
+    }
+    fn literal(self) -> String {
+        // `{:?}` always writes a decimal point or an exponent, as WGSL's float literals need.
+        format!("{self:?}")
+    }
+}
+
+/// One `const NAME: type = value;` line.
+pub fn wgsl_const<T: WgslValue>(name: &str, value: T) -> String {
+    format!("const {name}: {} = {};\n", T::wgsl_type(), value.literal())
+}
+
+/// Constants shared by Rust and WGSL, defined once: each becomes a Rust `pub const` with its
+/// doc comment, and `wgsl()` returns the same constants as WGSL for the shader library.
+///
+/// ```
+/// irradiant_gpu::wgsl_constants! {
+///     /// A probe that traces every frame.
+///     PROBE_VIGILANT: u32 = 0;
+///     BIAS: f32 = 0.2;
+/// }
+/// assert_eq!(PROBE_VIGILANT, 0);
+/// assert!(wgsl().contains("const BIAS: f32 = 0.2;"));
+/// ```
+#[macro_export]
+macro_rules! wgsl_constants {
+    ($( $(#[$meta:meta])* $name:ident : $ty:ty = $value:expr ; )*) => {
+        $( $(#[$meta])* pub const $name: $ty = $value; )*
+        /// These constants as WGSL declarations (a module of the shader library).
+        pub fn wgsl() -> String {
+            let mut text = String::new();
+            $( text.push_str(&$crate::wgsl_const(stringify!($name), $name)); )*
+            text
+        }
+    };
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -118,5 +208,27 @@ mod tests {
             compose("t", "fn f() -> u32 { return 1.0; }", &lib, &[]),
             Err(ShaderError::Invalid { .. })
         ));
+    }
+
+    mod shared {
+        crate::wgsl_constants! {
+            /// A bit.
+            FLAG: u32 = 4;
+            SCALE: f32 = 0.2;
+            NEGATIVE: i32 = -3;
+            WHOLE: f32 = 1.0;
+        }
+    }
+
+    #[test]
+    fn shared_constants_compile_as_wgsl_with_the_rust_values() {
+        let lib = ShaderLibrary::default().with("shared", shared::wgsl());
+        let src = "#import shared\n@compute @workgroup_size(1) fn main() { _ = f32(FLAG) * SCALE * f32(NEGATIVE) * WHOLE; }";
+        let out = compose("t", src, &lib, &[]).unwrap();
+        assert!(out.contains("const FLAG: u32 = 4u;"), "{out}");
+        assert!(out.contains("const SCALE: f32 = 0.2;"), "{out}");
+        assert!(out.contains("const NEGATIVE: i32 = -3i;"), "{out}");
+        assert!(out.contains("const WHOLE: f32 = 1.0;"), "{out}");
+        assert_eq!(shared::FLAG, 4);
     }
 }

@@ -65,6 +65,13 @@ pub struct Manifest {
     pub regions: Vec<RegionDesc>,
     #[serde(default, rename = "animation", skip_serializing_if = "Vec::is_empty")]
     pub animations: Vec<AnimationDesc>,
+    /// Renderer settings for this scene: the `[frame]` table (the frame's settings) and the
+    /// `[technique]` table (a registered technique and its settings). Kept as written; the
+    /// renderer reads them and warns about unknown keys (irradiant::settings).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frame: Option<toml::Table>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub technique: Option<toml::Table>,
 }
 
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -208,6 +215,13 @@ impl Manifest {
         }
         if let Some(sky) = self.sky {
             scene.sky = sky.into();
+        }
+        for (name, table) in [("frame", &self.frame), ("technique", &self.technique)] {
+            if let Some(table) = table {
+                scene
+                    .settings
+                    .insert(name.into(), toml::Value::Table(table.clone()));
+            }
         }
         for l in &self.lights {
             let kind = match l.kind {

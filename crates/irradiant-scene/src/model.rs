@@ -208,6 +208,9 @@ pub struct Scene {
     pub probe_volumes: Vec<ProbeVolumeDesc>,
     pub regions: Vec<Region>,
     pub animations: Vec<Animation>,
+    /// Renderer settings a manifest carries (its `[frame]` and `[technique]` tables), passed
+    /// through unread: the renderer owns their meaning.
+    pub settings: toml::Table,
 }
 
 impl Scene {

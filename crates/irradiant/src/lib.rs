@@ -1,36 +1,32 @@
 //! Irradiant: real-time global illumination on any GPU, in compute shaders.
 //!
-//! - [`GpuScene`]: the scene on the GPU (two-level BVH, materials, lights, textures).
-//! - [`pathtrace`]: the reference path tracer.
-//! - [`raycast`]: rays in, hits out (tests, benchmarks).
-//! - [`frame`]: tonemapping and images.
+//! - [`Session`]: the one frame loop — scene, frame, technique, camera and clock.
+//! - [`technique`]: the [`Technique`](technique::Technique) trait and the registry of
+//!   real-time techniques ([`none`], [`ddgi`]).
+//! - [`frame`]: the real-time frame (G-buffer, direct light, compose, TAA, tonemap).
+//! - [`scene`]: the scene on the GPU (two-level BVH, materials, lights, textures).
+//! - [`probes`]: probe grids, octahedral maps, ray sets and atlases, shared by the probe
+//!   techniques.
+//! - [`pathtrace`]: the reference path tracer. [`raycast`]: rays in, hits out.
 
 pub mod ddgi;
+mod error;
 pub mod frame;
-pub mod gpu_scene;
 pub mod gpu_types;
+pub mod none;
 pub mod pathtrace;
-mod pipeline;
+pub mod probes;
 pub mod raycast;
+pub mod scene;
+mod session;
+pub mod settings;
 pub mod shaders;
+pub mod technique;
 
-pub use gpu_scene::{BlasLayout, GpuScene, GpuSceneSettings};
+pub use error::RenderError;
 pub use irradiant_bvh::BuildQuality;
 pub use irradiant_gpu::{AdapterChoice, GpuContext, GpuError};
-
-use std::path::PathBuf;
-
-/// Why rendering failed. Messages say what to do.
-#[derive(Debug, thiserror::Error)]
-pub enum RenderError {
-    #[error(transparent)]
-    Gpu(#[from] GpuError),
-    #[error(transparent)]
-    Shader(#[from] irradiant_gpu::ShaderError),
-    #[error("the scene cannot be put on the GPU: {0}")]
-    Scene(String),
-    #[error("{0}: cannot write the image: {1}. Check that the folder exists and is writable.")]
-    Output(PathBuf, String),
-    #[error("{0}")]
-    Settings(String),
-}
+pub use scene::{BlasLayout, GpuScene, GpuSceneSettings};
+pub use session::{Session, SessionSettings};
+pub use settings::{Preset, SettingsError, SettingsFile};
+pub use technique::{Technique, TechniqueSpec};

@@ -5,10 +5,9 @@
 mod common;
 
 use glam::{UVec2, Vec3};
-use irradiant::GpuScene;
-use irradiant::ddgi::octahedral::{border_source, texel_direction};
 use irradiant::ddgi::{Ddgi, DdgiSettings};
 use irradiant::gpu_types::GpuDdgiRaySample;
+use irradiant::probes::octahedral::{border_source, texel_direction};
 use irradiant_scene::ProbeVolumeDesc;
 use rand::{Rng, SeedableRng, rngs::StdRng};
 
@@ -67,7 +66,7 @@ fn oracle(
         let cos = texel_dir.dot(*d).max(0.0);
         irradiance += cos * Vec3::from(s.radiance);
         irradiance_weight += cos;
-        let w = (cos as f64).powf(settings.distance_exponent as f64);
+        let w = (cos as f64).powf(settings.update.distance_exponent as f64);
         let distance = s.distance.abs().min(max_distance) as f64;
         moments[0] += w * distance;
         moments[1] += w * distance * distance;
@@ -107,23 +106,21 @@ const RESTARTED: usize = 4;
 
 fn blend_matches_the_oracle(rays_per_probe: u32) {
     let Some(ctx) = common::gpu() else { return };
-    let scene = irradiant_scene::load("cornell").unwrap().scene;
-    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
-    let settings = DdgiSettings {
-        rays_per_probe,
-        convergence_heuristics: false,
-        ..DdgiSettings::balanced()
-    };
-    let volume = ProbeVolumeDesc {
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.rays_per_probe = rays_per_probe;
+    settings.update.convergence_heuristics = false;
+    scene.probe_volumes = vec![ProbeVolumeDesc {
         name: "test".into(),
         min: Vec3::splat(-0.5),
         max: Vec3::splat(0.5),
         counts: [3, 2, 1],
-    };
-    let mut ddgi = Ddgi::new(&ctx, &gpu_scene, &volume, &settings).unwrap();
+    }];
+    let mut session = common::session(&ctx, &scene, (8, 8), common::spec(Some(&settings)));
+    let ddgi = session.technique_as_mut::<Ddgi>().unwrap().volume_mut();
     let max_distance = ddgi.max_ray_distance();
     let probes = 6;
-    let gamma = settings.irradiance_gamma;
+    let gamma = settings.volume.irradiance_gamma;
     let mut rng = StdRng::seed_from_u64(21);
     let mut expected_encoded: Vec<Vec<Vec3>> = vec![Vec::new(); probes];
     let mut expected_distance: Vec<Vec<[f32; 2]>> = vec![Vec::new(); probes];
@@ -131,7 +128,7 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
         let rays = random_rays(
             &mut rng,
             probes,
-            settings.rays_per_probe as usize,
+            settings.volume.rays_per_probe as usize,
             max_distance,
         );
         let directions: Vec<[f32; 4]> = rays
@@ -164,18 +161,18 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
             .write_buffer(&ddgi.resources.states, 0, bytemuck::cast_slice(&states));
         ddgi.prepare(&ctx);
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        ddgi.record_blend(&mut encoder, &gpu_scene, None);
+        ddgi.record_blend(&mut encoder, None);
         ctx.queue.submit([encoder.finish()]);
         // Frame 0 starts from nothing (hysteresis 0); frame 1 keeps min(h, 1/2) of the old value.
         let hysteresis = if frame == 0 {
             0.0
         } else {
-            settings.hysteresis.min(0.5)
+            settings.update.hysteresis.min(0.5)
         };
         let distance_hysteresis = if frame == 0 {
             0.0
         } else {
-            settings.distance_hysteresis.min(0.5)
+            settings.update.distance_hysteresis.min(0.5)
         };
         for probe in 0..probes {
             if frame == 1 && probe == SLEEPING {
@@ -187,8 +184,8 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
                 (hysteresis, distance_hysteresis)
             };
             for (t, texels) in [
-                (0, settings.irradiance_texels),
-                (1, settings.distance_texels),
+                (0, settings.volume.irradiance_texels),
+                (1, settings.volume.distance_texels),
             ] {
                 for j in 0..texels {
                     for i in 0..texels {
@@ -224,12 +221,12 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
             }
         }
         let atlases = ddgi.read_atlases(&ctx).unwrap();
-        let layout = &ddgi.layout;
+        let layout = &ddgi.atlas;
         for probe in 0..probes as u32 {
             let (col, row) = (probe % layout.probes_per_row, probe / layout.probes_per_row);
             for (t, texels) in [
-                (0u32, settings.irradiance_texels),
-                (1, settings.distance_texels),
+                (0u32, settings.volume.irradiance_texels),
+                (1, settings.volume.distance_texels),
             ] {
                 let tile = texels + 2;
                 let width = layout.probes_per_row * tile;

@@ -5,56 +5,27 @@ mod common;
 
 use common::*;
 use glam::{Mat4, Vec3};
-use irradiant::GpuScene;
-use irradiant::ddgi::{Ddgi, DdgiSettings};
-use irradiant::frame::{FrameRenderer, FrameSettings, Technique, apply_pose};
+use irradiant::ddgi::DdgiSettings;
 use irradiant_scene::{Animation, AnimationTarget, Scene, Tracks};
 
 /// Renders an animated scene at 60 frames a second and returns, per frame, the mean indirect
 /// luminance over the pixels of `region` (as seen in the first frame).
 fn indirect_over_time(
-    ctx: &irradiant::GpuContext,
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
     scene: &Scene,
     settings: &DdgiSettings,
     frames: u32,
     region: &str,
 ) -> Vec<f64> {
-    let size = (48, 36);
-    let mut gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut frame =
-        FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
-    let mut ddgi = Ddgi::new(ctx, &gpu_scene, &scene.probe_volumes[0], settings).unwrap();
-    ddgi.bind_frame(ctx, &frame.buffers);
+    let mut session = session(ctx, scene, (48, 36), spec(Some(settings)));
     let mut mask = None;
-    let mut pose = scene.pose_at(0.0);
     let mut means = Vec::new();
     for i in 0..frames {
-        let next = scene.pose_at(i as f32 / 60.0);
-        apply_pose(
-            ctx,
-            &mut gpu_scene,
-            &mut frame,
-            Some(&mut ddgi as &mut dyn Technique),
-            &pose,
-            &next,
-        );
-        pose = next;
-        frame
-            .render(
-                ctx,
-                &gpu_scene,
-                &scene.camera,
-                Some(&mut ddgi as &mut dyn Technique),
-                false,
-                None,
-            )
-            .unwrap();
-        let gbuffer = frame.read_gbuffer(ctx).unwrap();
+        session.seek(i as f32 / 60.0);
+        session.render().unwrap();
+        let gbuffer = session.gbuffer().unwrap();
         let mask = mask.get_or_insert_with(|| region_mask(&gbuffer, scene.region(region).unwrap()));
-        means.push(masked_mean(
-            &frame.read(ctx, &frame.buffers.indirect).unwrap(),
-            mask,
-        ));
+        means.push(masked_mean(&session.indirect().unwrap(), mask));
     }
     means
 }
@@ -71,14 +42,10 @@ fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag(
             ..Default::default()
         },
     });
-    let with = DdgiSettings {
-        rays_per_probe: 128,
-        ..DdgiSettings::balanced()
-    };
-    let without = DdgiSettings {
-        convergence_heuristics: false,
-        ..with.clone()
-    };
+    let mut with = DdgiSettings::balanced();
+    with.volume.rays_per_probe = 128;
+    let mut without = with.clone();
+    without.update.convergence_heuristics = false;
     let fall = |settings: &DdgiSettings| {
         let means = indirect_over_time(&ctx, &scene, settings, 60 + 30, "dark-room");
         let lit = means[59];
@@ -127,10 +94,8 @@ fn a_moving_object_changes_the_indirect_light_as_a_fresh_render_would() {
         min: Vec3::new(0.2, -0.01, -1.0),
         max: Vec3::new(1.01, 2.0, 1.0),
     });
-    let settings = DdgiSettings {
-        rays_per_probe: 128,
-        ..DdgiSettings::balanced()
-    };
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.rays_per_probe = 128;
     let mut moving = scene.clone();
     moving.animations.push(Animation {
         target: AnimationTarget::Instance("block".into()),

@@ -11,13 +11,12 @@ fn luminance(image: &irradiant::frame::Image) -> f64 {
 }
 
 fn settings(coherent_rays: bool, probes_per_group: u32) -> DdgiSettings {
-    DdgiSettings {
-        // Not a multiple of 64: the last workgroup of each probe is partly idle.
-        rays_per_probe: 100,
-        coherent_rays,
-        probes_per_group,
-        ..DdgiSettings::balanced()
-    }
+    let mut s = DdgiSettings::balanced();
+    // Not a multiple of 64: the last workgroup of each probe is partly idle.
+    s.volume.rays_per_probe = 100;
+    s.speed.coherent_rays = coherent_rays;
+    s.speed.probes_per_group = probes_per_group;
+    s
 }
 
 #[test]

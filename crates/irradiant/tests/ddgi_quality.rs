@@ -9,12 +9,11 @@ use irradiant::ddgi::{DdgiSettings, ProbeWeights};
 /// Settings for converging a static scene quickly on a CPU adapter: hysteresis 0.9 (about ten
 /// frames of memory) instead of 0.97, so that 120 frames carry light through several bounces.
 fn converging(weights: ProbeWeights) -> DdgiSettings {
-    DdgiSettings {
-        weights,
-        hysteresis: 0.9,
-        rays_per_probe: 256,
-        ..DdgiSettings::balanced()
-    }
+    let mut s = DdgiSettings::balanced();
+    s.update.weights = weights;
+    s.update.hysteresis = 0.9;
+    s.volume.rays_per_probe = 256;
+    s
 }
 
 #[test]
@@ -120,10 +119,9 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
         (worst, median)
     };
     let full = tiles(&converging(ProbeWeights::Full));
-    let unrelocated = tiles(&DdgiSettings {
-        relocation: false,
-        ..converging(ProbeWeights::Full)
-    });
+    let mut unrelocated = converging(ProbeWeights::Full);
+    unrelocated.update.relocation = false;
+    let unrelocated = tiles(&unrelocated);
     let classic = tiles(&converging(ProbeWeights::Classic));
     eprintln!(
         "box-cylinders, DDGI ÷ path tracer indirect over 8×8 tiles around the cylinders (worst, median): full {full:.2?}, without relocation {unrelocated:.2?}, classic {classic:.2?}"

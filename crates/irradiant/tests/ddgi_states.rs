@@ -4,9 +4,7 @@
 mod common;
 
 use common::*;
-use irradiant::GpuScene;
 use irradiant::ddgi::{Ddgi, DdgiSettings, ProbeStateCounts};
-use irradiant::frame::{FrameRenderer, FrameSettings, Technique};
 use irradiant::gpu_types::GpuDdgiRaySample;
 use irradiant_gpu::read_buffer_as;
 use irradiant_scene::Scene;
@@ -23,7 +21,7 @@ struct DdgiRun {
 
 /// Mean indirect radiance of the whole image after `frames` frames, and the probe states.
 fn indirect_and_states(
-    ctx: &irradiant::GpuContext,
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
     scene: &Scene,
     settings: &DdgiSettings,
     frames: u32,
@@ -33,36 +31,24 @@ fn indirect_and_states(
 }
 
 fn render_ddgi(
-    ctx: &irradiant::GpuContext,
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
     scene: &Scene,
     settings: &DdgiSettings,
     frames: u32,
 ) -> DdgiRun {
     let size = (32, 32);
-    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut frame =
-        FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
-    let mut ddgi = Ddgi::new(ctx, &gpu_scene, &scene.probe_volumes[0], settings).unwrap();
-    ddgi.bind_frame(ctx, &frame.buffers);
+    let mut session = session(ctx, scene, size, spec(Some(settings)));
     for _ in 0..frames {
-        frame
-            .render(
-                ctx,
-                &gpu_scene,
-                &scene.camera,
-                Some(&mut ddgi as &mut dyn Technique),
-                false,
-                None,
-            )
-            .unwrap();
+        session.render().unwrap();
     }
-    let indirect = frame.read(ctx, &frame.buffers.indirect).unwrap();
+    let indirect = session.indirect().unwrap();
     let everywhere = vec![true; (size.0 * size.1) as usize];
+    let ddgi = session.technique_as::<Ddgi>().unwrap();
     DdgiRun {
         indirect: masked_mean(&indirect, &everywhere),
         states: ddgi.read_state_counts(ctx).unwrap(),
         queued: ddgi.read_queued_shadow_rays(ctx).unwrap(),
-        samples: read_buffer_as(ctx, &ddgi.resources.samples).unwrap(),
+        samples: read_buffer_as(ctx, &ddgi.volume().resources.samples).unwrap(),
     }
 }
 
@@ -73,14 +59,10 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
     // tall block switch off, probes near walls and blocks stay vigilant.
     let mut scene = irradiant_scene::load("cornell").unwrap().scene;
     scene.probe_volumes[0].counts = [7, 7, 7];
-    let on = DdgiSettings {
-        rays_per_probe: 32,
-        ..DdgiSettings::balanced()
-    };
-    let off = DdgiSettings {
-        probe_states: false,
-        ..on.clone()
-    };
+    let mut on = DdgiSettings::balanced();
+    on.volume.rays_per_probe = 32;
+    let mut off = on.clone();
+    off.speed.probe_states = false;
     // Classification ends at frame 5; a few more frames blend with the states in force.
     let frames = 12;
     let (with_states, counts) = indirect_and_states(&ctx, &scene, &on, frames);
@@ -113,14 +95,10 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
 fn fused_trace_and_shade_renders_what_the_two_passes_render() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
-    let two = DdgiSettings {
-        rays_per_probe: 32,
-        ..DdgiSettings::balanced()
-    };
-    let one = DdgiSettings {
-        fuse_trace_and_shade: true,
-        ..two.clone()
-    };
+    let mut two = DdgiSettings::balanced();
+    two.volume.rays_per_probe = 32;
+    let mut one = two.clone();
+    one.speed.fuse_trace_and_shade = true;
     let (separate, _) = indirect_and_states(&ctx, &scene, &two, 8);
     let (fused, _) = indirect_and_states(&ctx, &scene, &one, 8);
     eprintln!("indirect: trace + shade {separate:.6}, fused {fused:.6}");
@@ -147,15 +125,11 @@ fn queued_shadow_rays_render_what_inline_shadow_rays_render() {
     second.color = glam::Vec3::new(0.6, 0.7, 1.0);
     second.intensity = 4.0;
     scene.lights.push(second);
-    let inline = DdgiSettings {
-        rays_per_probe: 32,
-        shadow_queue: false,
-        ..DdgiSettings::balanced()
-    };
-    let queued = DdgiSettings {
-        shadow_queue: true,
-        ..inline.clone()
-    };
+    let mut inline = DdgiSettings::balanced();
+    inline.volume.rays_per_probe = 32;
+    inline.speed.shadow_queue = false;
+    let mut queued = inline.clone();
+    queued.speed.shadow_queue = true;
     let a = render_ddgi(&ctx, &scene, &inline, 8);
     let b = render_ddgi(&ctx, &scene, &queued, 8);
     let rays = b.states.updating() * 32;

@@ -2,16 +2,16 @@
 // cosine^exponent-weighted mean of hit distance and of its square (the moments that Chebyshev
 // visibility needs) and blends them with hysteresis. Which rays weigh in, and how much, comes
 // from ddgi/blend_weights: with exponent 50 about a fifth of them. The workgroup then fills
-// its tile's border too (ddgi_volume's border_source).
+// its tile's border too (probe_atlas's border_source).
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
-@group(1) @binding(15) var<storage, read> probe_states: array<u32>;
-@group(1) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
-@group(1) @binding(8) var<storage, read_write> distance_atlas: array<vec2<f32>>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(2) @binding(15) var<storage, read> probe_states: array<u32>;
+@group(2) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
+@group(2) @binding(8) var<storage, read_write> distance_atlas: array<vec2<f32>>;
 
 // BLEND_THREADS, TILE_TEXELS and BLEND_CHUNK: see ddgi/blend_irradiance.
 // BLEND_SPLIT threads share each tile texel, each summing every BLEND_SPLIT-th of its

@@ -2,17 +2,17 @@
 // mean of the radiance its probe's rays brought back this frame, perceptually encoded
 // (value^(1/gamma)), and blends it into the old value with hysteresis — lowered per texel
 // where the light changed a lot (003, §4.3). Which rays weigh in, and how much, comes from
-// ddgi/blend_weights. The workgroup then fills its tile's border too (ddgi_volume's
+// ddgi/blend_weights. The workgroup then fills its tile's border too (probe_atlas's
 // border_source), so bilinear lookups need no separate pass.
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
-@group(1) @binding(15) var<storage, read> probe_states: array<u32>;
-@group(1) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
-@group(1) @binding(7) var<storage, read_write> irradiance_atlas: array<vec2<u32>>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(2) @binding(15) var<storage, read> probe_states: array<u32>;
+@group(2) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
+@group(2) @binding(7) var<storage, read_write> irradiance_atlas: array<vec2<u32>>;
 
 // BLEND_THREADS (threads a workgroup), TILE_TEXELS (texels of a tile, border included) and
 // BLEND_CHUNK (rays held in workgroup memory at once) come from Ddgi::new.

@@ -12,9 +12,9 @@
 #import ddgi_volume
 #import ddgi_rays
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
-@group(1) @binding(18) var<storage, read_write> blend_weights: array<GpuDdgiBlendWeight>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(2) @binding(18) var<storage, read_write> blend_weights: array<GpuDdgiBlendWeight>;
 
 // Weights under this share of a texel's largest distance weight are left out.
 const NEGLIGIBLE_LOG2: f32 = -34.0;

@@ -9,13 +9,13 @@
 #import ddgi_rays
 #import ddgi_states
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
-@group(1) @binding(5) var<storage, read> probe_offsets: array<vec4<f32>>;
-@group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
-@group(1) @binding(16) var<storage, read_write> states: array<u32>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(2) @binding(5) var<storage, read> probe_offsets: array<vec4<f32>>;
+@group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(2) @binding(16) var<storage, read_write> probe_states: array<u32>;
 // min, max corners, two vec4 a box
-@group(1) @binding(17) var<storage, read> wake_boxes: array<vec4<f32>>;
+@group(2) @binding(17) var<storage, read> wake_boxes: array<vec4<f32>>;
 
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -23,7 +23,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     if probe >= volume.probe_count {
         return;
     }
-    let word = states[probe];
+    let word = probe_states[probe];
     var state = probe_state(word);
     var near = (word & PROBE_NEAR_GEOMETRY) != 0u;
     var blends = probe_blends(word);
@@ -64,5 +64,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         }
         state = select(PROBE_SLEEPING, PROBE_AWAKE, woken);
     }
-    states[probe] = state | select(0u, PROBE_NEAR_GEOMETRY, near) | (blends << PROBE_AGE_SHIFT);
+    probe_states[probe] = state | select(0u, PROBE_NEAR_GEOMETRY, near) | (blends << PROBE_AGE_SHIFT);
 }

@@ -3,8 +3,8 @@
 #import ddgi_volume
 #import ddgi_states
 
-@group(1) @binding(5) var<storage, read> probe_offsets: array<vec4<f32>>;
-@group(1) @binding(15) var<storage, read> probe_states: array<u32>;
+@group(2) @binding(5) var<storage, read> probe_offsets: array<vec4<f32>>;
+@group(2) @binding(15) var<storage, read> probe_states: array<u32>;
 
 fn probe_position(probe: u32) -> vec3<f32> {
     return grid_position(probe) + probe_offsets[probe].xyz;

@@ -3,20 +3,18 @@
 // normalised. Shared by the probe rays' shading (ddgi/shade) and the camera (ddgi/resolve).
 #import ddgi_probes
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 // Texture copies of the atlases (DdgiResources::irradiance_texture): irradiance rgb
 // (value^(1/gamma)) as rgba16float, sampled bilinearly; (mean distance, mean squared distance)
 // as rg32float, gathered and blended here, since f32 textures do not filter everywhere.
-@group(2) @binding(0) var irradiance_texture: texture_2d<f32>;
-@group(2) @binding(1) var distance_texture: texture_2d<f32>;
-@group(2) @binding(2) var atlas_bilinear: sampler;
-@group(2) @binding(3) var atlas_gather: sampler;
+@group(3) @binding(0) var irradiance_texture: texture_2d<f32>;
+@group(3) @binding(1) var distance_texture: texture_2d<f32>;
+@group(3) @binding(2) var atlas_bilinear: sampler;
+@group(3) @binding(3) var atlas_gather: sampler;
 
-// Position in a probe's tile for direction d, in texels of the atlas: texel centres at whole
-// numbers, so floor() is the top-left texel of the bilinear footprint.
+// Position in a probe's tile for direction d, in texels of the atlas (probe_atlas).
 fn tile_coord(probe: u32, texels: u32, d: vec3<f32>) -> vec2<f32> {
-    let origin = vec2<f32>(tile_origin(probe, texels + 2u)) + 1.0;
-    return origin + (oct_encode(d) * 0.5 + 0.5) * f32(texels) - 0.5;
+    return atlas_tile_coord(probe, texels, volume.probes_per_row, d);
 }
 
 fn sample_irradiance_encoded(probe: u32, d: vec3<f32>) -> vec3<f32> {

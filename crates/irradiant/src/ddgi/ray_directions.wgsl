@@ -3,9 +3,9 @@
 // probes see every direction.
 #import ddgi_volume
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(3) var<storage, read_write> directions: array<vec4<f32>>;
-@group(1) @binding(14) var<storage, read> ray_set: array<vec4<f32>>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(3) var<storage, read_write> directions: array<vec4<f32>>;
+@group(2) @binding(14) var<storage, read> ray_set: array<vec4<f32>>;
 
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

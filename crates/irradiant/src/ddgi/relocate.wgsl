@@ -5,10 +5,10 @@
 #import ddgi_volume
 #import ddgi_rays
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
-@group(1) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
-@group(1) @binding(13) var<storage, read_write> offsets: array<vec4<f32>>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
+@group(2) @binding(13) var<storage, read_write> probe_offsets: array<vec4<f32>>;
 
 fn within(offset: vec3<f32>, limit: vec3<f32>) -> bool {
     return all(abs(offset) < limit);
@@ -46,7 +46,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
             }
         }
     }
-    let current = offsets[probe].xyz;
+    let current = probe_offsets[probe].xyz;
     let limit = 0.45 * volume.spacing;
     var next = current;
     if f32(backfaces) > 0.25 * f32(m) {
@@ -69,5 +69,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
             next = candidate;
         }
     }
-    offsets[probe] = vec4<f32>(next, f32(backfaces) / f32(m));
+    probe_offsets[probe] = vec4<f32>(next, f32(backfaces) / f32(m));
 }

@@ -1,25 +1,45 @@
-// ddgi/resolve: indirect diffuse light at each G-buffer pixel from the probe volume.
+// ddgi/resolve: indirect diffuse light at each G-buffer pixel from this probe volume, blended
+// into `indirect` (rgb: weighted sum, a: weight so far). Volumes run finest first; each takes
+// the weight the finer ones left where the point lies inside it (fading out over the last
+// grid cell before its outermost probes), and the coarsest takes all that is left, so that one
+// volume alone lights everything, as it always did.
 #import ddgi_query
-#import frame_types
-#import gbuffer_surface
+#import gbuffer
 #import brdf
 
-@group(1) @binding(9) var<storage, read> gbuffer: array<GpuGBufferTexel>;
-@group(1) @binding(10) var<storage, read_write> indirect: array<vec4<f32>>;
-@group(1) @binding(11) var<uniform> frame: GpuFrameParams;
+@group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
+
+// 1 inside the volume's probe box by more than a cell, falling to 0 at its outermost probes.
+fn volume_weight(p: vec3<f32>) -> f32 {
+    let last = volume.origin + vec3<f32>(volume.counts - 1u) * volume.spacing;
+    let inside = min(p - volume.origin, last - p) / volume.spacing;
+    // Axes with one probe have no extent to fade over.
+    let fade = select(saturate(inside), vec3<f32>(1.0), volume.counts == vec3<u32>(1u));
+    return fade.x * fade.y * fade.z;
+}
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= frame.width || id.y >= frame.height {
+    if !in_frame(id.xy) {
         return;
     }
-    let index = id.y * frame.width + id.x;
-    let g = gbuffer[index];
-    if g.depth < 0.0 {
-        indirect[index] = vec4<f32>(0.0);
+    var sum = vec4<f32>(0.0);
+    if volume.volume_index > 0u {
+        sum = textureLoad(indirect, id.xy);
+    }
+    if gbuffer_depth_at(id.xy) < 0.0 {
+        textureStore(indirect, id.xy, sum);
         return;
     }
-    let s = surface_from_gbuffer(g);
-    let wo = normalize(frame.camera.position - s.position);
-    indirect[index] = vec4<f32>(diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, wo), 1.0);
+    let s = gbuffer_surface(id.xy);
+    var weight = 1.0 - sum.a;
+    if volume.volume_is_last == 0u {
+        weight *= volume_weight(s.position);
+    }
+    if weight <= 0.0 {
+        textureStore(indirect, id.xy, sum);
+        return;
+    }
+    let light = diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, view_dir(s.position));
+    textureStore(indirect, id.xy, sum + vec4<f32>(light * weight, weight));
 }

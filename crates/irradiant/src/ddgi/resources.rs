@@ -1,84 +1,106 @@
-//! DDGI's GPU memory: the volume uniform, the ray buffers and the two probe atlases.
+//! A DDGI volume's GPU memory: the volume uniform, the ray buffers, the probe state and the two
+//! probe atlases (storage buffers the blends write, and texture copies the query samples),
+//! offered to the passes by the names their WGSL declares.
 
-use glam::{UVec3, Vec3};
-use irradiant_gpu::{GpuContext, wgpu};
-use irradiant_scene::ProbeVolumeDesc;
+use irradiant_gpu::{Allocation, GpuContext, ResourceTable, wgpu};
 
-use super::DdgiSettings;
+use super::settings::DdgiSettings;
+use super::types::{
+    GpuDdgiBlendWeight, GpuDdgiRayHit, GpuDdgiRaySample, GpuDdgiShadowRay, GpuDdgiVolume,
+};
 use crate::RenderError;
-use crate::gpu_types::{GpuDdgiRayHit, GpuDdgiRaySample, GpuDdgiShadowRay};
-use crate::pipeline::{storage_buffer, uniform_buffer};
+use crate::probes::{AtlasLayout, ProbeGrid, atlas};
 
-/// Where the probes are and how the atlases are laid out.
-#[derive(Clone, Debug, PartialEq)]
-pub struct VolumeLayout {
-    pub origin: Vec3,
-    pub spacing: Vec3,
-    pub counts: UVec3,
-    pub probe_count: u32,
-    pub probes_per_row: u32,
-    pub rows: u32,
+/// Bytes before the queued rays in `shadow_queue`; the indirect dispatch's (x, y, z) start
+/// at byte 4.
+pub const SHADOW_QUEUE_HEADER: u64 = 16;
+
+/// Wake boxes the buffer holds; further animated instances merge into the last box.
+pub const MAX_WAKE_BOXES: usize = 64;
+
+/// Bytes a texel of either atlas: irradiance as two packed f16 pairs (rgb, value^(1/gamma)),
+/// distance as two f32 (mean, mean²) — so that the copies into rgba16float and rg32float
+/// textures are byte for byte.
+pub const ATLAS_TEXEL_BYTES: u32 = 8;
+
+/// What sizes the probe buffers, for the messages that refuse too large a volume.
+const PROBE_SETTING: &str = "the probe counts (the manifest's probe_volume counts, --probes) or technique.volume.rays_per_probe";
+
+/// The tile sides (border included) every atlas row must align for.
+pub fn tile_sides(settings: &DdgiSettings) -> [u32; 2] {
+    [
+        settings.volume.irradiance_texels + 2,
+        settings.volume.distance_texels + 2,
+    ]
 }
 
-impl VolumeLayout {
-    /// Probes on a regular grid from `min` to `max` (one probe a volume of count 1 sits in the
-    /// middle), their tiles laid out in rows whose width (tiles of `tile_sides` texels, border
-    /// included, 8 bytes a texel) is a multiple of 256 bytes: a buffer-to-texture copy's row
-    /// alignment.
-    pub fn new(desc: &ProbeVolumeDesc, tile_sides: &[u32]) -> Self {
-        let counts = UVec3::from(desc.counts).max(UVec3::ONE);
-        let steps = (counts.as_vec3() - 1.0).max(Vec3::ONE);
-        let extent = desc.max - desc.min;
-        let spacing = extent / steps;
-        let origin = Vec3::select(
-            counts.cmpeq(UVec3::ONE).into(),
-            (desc.min + desc.max) * 0.5,
-            desc.min,
-        );
-        let probe_count = counts.x * counts.y * counts.z;
-        // Tiles a row must be a multiple of for each tile side: 32 texels ÷ gcd(side, 32).
-        let multiple = tile_sides
-            .iter()
-            .map(|&side| 32 / gcd(side, 32))
-            .fold(1, lcm);
-        let probes_per_row = ((probe_count as f32).sqrt().ceil() as u32).next_multiple_of(multiple);
-        let rows = probe_count.div_ceil(probes_per_row);
-        Self {
-            origin,
-            spacing: Vec3::select(
-                counts.cmpeq(UVec3::ONE).into(),
-                extent.max(Vec3::splat(1e-3)),
-                spacing,
-            ),
-            counts,
-            probe_count,
-            probes_per_row,
-            rows,
-        }
-    }
-
-    pub fn min_spacing(&self) -> f32 {
-        self.spacing.min_element()
-    }
-
-    pub fn probe_position(&self, probe: u32) -> Vec3 {
-        let c = self.counts;
-        let coord = UVec3::new(probe % c.x, (probe / c.x) % c.y, probe / (c.x * c.y));
-        self.origin + coord.as_vec3() * self.spacing
-    }
-
-    /// Atlas size in texels for tiles of `texels` interior texels.
-    pub fn atlas_size(&self, texels: u32) -> (u32, u32) {
-        (self.probes_per_row * (texels + 2), self.rows * (texels + 2))
-    }
+/// Every allocation of one volume, from its grid and settings alone.
+pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
+    let v = &settings.volume;
+    let probes = grid.probe_count as u64;
+    let rays = probes * v.rays_per_probe as u64;
+    let atlas = AtlasLayout::new(grid.probe_count, &tile_sides(settings));
+    let texel = ATLAS_TEXEL_BYTES as u64;
+    let atlas_setting = "the probe counts or technique.volume.irradiance_texels / distance_texels";
+    vec![
+        Allocation::storage(
+            "ddgi/hits",
+            rays * size_of::<GpuDdgiRayHit>() as u64,
+            PROBE_SETTING,
+        ),
+        Allocation::storage(
+            "ddgi/samples",
+            rays * size_of::<GpuDdgiRaySample>() as u64,
+            PROBE_SETTING,
+        ),
+        Allocation::storage(
+            "ddgi/shadow_queue",
+            SHADOW_QUEUE_HEADER
+                + if settings.queues_shadow_rays() {
+                    rays * size_of::<GpuDdgiShadowRay>() as u64
+                } else {
+                    size_of::<GpuDdgiShadowRay>() as u64
+                },
+            PROBE_SETTING,
+        ),
+        Allocation::storage(
+            "ddgi/blend_weights",
+            (v.irradiance_texels.pow(2) + v.distance_texels.pow(2)) as u64
+                * (v.rays_per_probe as u64 + 1)
+                * size_of::<GpuDdgiBlendWeight>() as u64,
+            "technique.volume.rays_per_probe or the texel counts",
+        ),
+        Allocation::storage(
+            "ddgi/irradiance_atlas",
+            area(atlas.size(v.irradiance_texels)) * texel,
+            atlas_setting,
+        ),
+        Allocation::storage(
+            "ddgi/distance_atlas",
+            area(atlas.size(v.distance_texels)) * texel,
+            atlas_setting,
+        ),
+        Allocation::texture(
+            "ddgi/irradiance_texture",
+            atlas.size(v.irradiance_texels),
+            texel,
+            1,
+            atlas_setting,
+        ),
+        Allocation::texture(
+            "ddgi/distance_texture",
+            atlas.size(v.distance_texels),
+            texel,
+            1,
+            atlas_setting,
+        ),
+        Allocation::storage("ddgi/probe_offsets", probes * 16, PROBE_SETTING),
+        Allocation::storage("ddgi/probe_states", probes * 4, PROBE_SETTING),
+    ]
 }
 
-fn gcd(a: u32, b: u32) -> u32 {
-    if b == 0 { a } else { gcd(b, a % b) }
-}
-
-fn lcm(a: u32, b: u32) -> u32 {
-    a / gcd(a, b) * b
+fn area((w, h): (u32, u32)) -> u64 {
+    w as u64 * h as u64
 }
 
 pub struct DdgiResources {
@@ -98,9 +120,13 @@ pub struct DdgiResources {
     /// gathers take one or two fetches where loading texels took four.
     pub irradiance_texture: wgpu::Texture,
     pub distance_texture: wgpu::Texture,
+    irradiance_view: wgpu::TextureView,
+    distance_view: wgpu::TextureView,
+    bilinear: wgpu::Sampler,
+    gather: wgpu::Sampler,
     /// vec4 a probe: relocation offset (xyz) and the share of its rays that hit backfaces (w).
     pub offsets: wgpu::Buffer,
-    /// u32 a probe: state, near-geometry flag and blends since it started (ddgi/states.wgsl).
+    /// u32 a probe: state, near-geometry flag and blends since it started (ddgi::constants).
     pub states: wgpu::Buffer,
     /// Two vec4 (min, max) a box: where animated instances may wake sleeping probes.
     pub wake_boxes: wgpu::Buffer,
@@ -113,128 +139,123 @@ pub struct DdgiResources {
     pub shadow_queue: wgpu::Buffer,
 }
 
-/// Bytes before the queued rays in `shadow_queue`; the indirect dispatch's (x, y, z) start
-/// at byte 4.
-pub const SHADOW_QUEUE_HEADER: u64 = 16;
-
-/// Wake boxes the buffer holds; further animated instances merge into the last box.
-pub const MAX_WAKE_BOXES: usize = 64;
-
 impl DdgiResources {
+    /// Allocates what [`plan`] lists (which the session checked against the adapter first).
     pub fn new(
         ctx: &GpuContext,
-        layout: &VolumeLayout,
+        grid: &ProbeGrid,
+        atlas_layout: &AtlasLayout,
         settings: &DdgiSettings,
     ) -> Result<Self, RenderError> {
-        let rays = layout.probe_count as u64 * settings.rays_per_probe as u64;
-        let (iw, ih) = layout.atlas_size(settings.irradiance_texels);
-        let (dw, dh) = layout.atlas_size(settings.distance_texels);
-        let sizes = [
-            ("ddgi/hits", rays * size_of::<GpuDdgiRayHit>() as u64),
-            ("ddgi/samples", rays * size_of::<GpuDdgiRaySample>() as u64),
-            ("ddgi/irradiance_atlas", iw as u64 * ih as u64 * 8),
-            ("ddgi/distance_atlas", dw as u64 * dh as u64 * 8),
-            (
-                "ddgi/shadow_queue",
-                SHADOW_QUEUE_HEADER
-                    + if settings.queues_shadow_rays() {
-                        rays * size_of::<GpuDdgiShadowRay>() as u64
-                    } else {
-                        0
-                    },
-            ),
-        ];
-        let limit = ctx.info.max_storage_buffer_binding_size;
-        for (label, size) in sizes {
-            if size > limit {
-                return Err(RenderError::Settings(format!(
-                    "{label} would need {} MiB, more than this adapter binds ({} MiB): use fewer probes or fewer rays per probe",
-                    size >> 20,
-                    limit >> 20
-                )));
-            }
-        }
-        let side_limit = ctx.device.limits().max_texture_dimension_2d;
-        for (label, (width, height)) in [("irradiance", (iw, ih)), ("distance", (dw, dh))] {
-            if width.max(height) > side_limit {
-                return Err(RenderError::Settings(format!(
-                    "the {label} atlas would be {width}×{height} texels, more than this adapter's textures hold ({side_limit} a side): use fewer probes or fewer texels a probe"
-                )));
-            }
-        }
+        let allocations = plan(grid, settings);
+        ctx.check_allocations(&allocations)?;
+        let size = |label: &str| {
+            allocations
+                .iter()
+                .find(|a| a.label == label)
+                .map(|a| a.bytes)
+                .expect("every buffer is planned")
+        };
         let device = &ctx.device;
+        let storage = |label: &str, size: u64| {
+            storage_buffer(device, label, size, wgpu::BufferUsages::empty())
+        };
+        let v = &settings.volume;
         let ray_set: Vec<[f32; 4]> =
-            super::octahedral::probe_ray_set(settings.rays_per_probe, settings.coherent_rays)
+            crate::probes::rays::probe_ray_set(v.rays_per_probe, settings.speed.coherent_rays)
                 .iter()
                 .map(|d| d.extend(0.0).to_array())
                 .collect();
-        let ray_set_buffer =
-            storage_buffer(device, "ddgi/ray_set", settings.rays_per_probe as u64 * 16);
+        let ray_set_buffer = storage("ddgi/ray_set", v.rays_per_probe as u64 * 16);
         ctx.queue
             .write_buffer(&ray_set_buffer, 0, bytemuck::cast_slice(&ray_set));
-        let atlas_texture = |label: &str, (width, height): (u32, u32), format| {
-            device.create_texture(&wgpu::TextureDescriptor {
+        let irradiance_texture = atlas::atlas_texture(
+            device,
+            "ddgi/irradiance_texture",
+            atlas_layout.size(v.irradiance_texels),
+            wgpu::TextureFormat::Rgba16Float,
+        );
+        let distance_texture = atlas::atlas_texture(
+            device,
+            "ddgi/distance_texture",
+            atlas_layout.size(v.distance_texels),
+            wgpu::TextureFormat::Rg32Float,
+        );
+        let sampler = |label, filter| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
+                mag_filter: filter,
+                min_filter: filter,
+                ..Default::default()
             })
         };
         Ok(Self {
-            irradiance_texture: atlas_texture(
-                "ddgi/irradiance_texture",
-                (iw, ih),
-                wgpu::TextureFormat::Rgba16Float,
-            ),
-            distance_texture: atlas_texture(
-                "ddgi/distance_texture",
-                (dw, dh),
-                wgpu::TextureFormat::Rg32Float,
-            ),
+            irradiance_view: irradiance_texture.create_view(&Default::default()),
+            distance_view: distance_texture.create_view(&Default::default()),
+            irradiance_texture,
+            distance_texture,
+            bilinear: sampler("ddgi/atlas_bilinear", wgpu::FilterMode::Linear),
+            gather: sampler("ddgi/atlas_gather", wgpu::FilterMode::Nearest),
             ray_set: ray_set_buffer,
-            volume: uniform_buffer(
-                device,
-                "ddgi/volume",
-                size_of::<crate::gpu_types::GpuDdgiVolume>(),
-            ),
-            directions: storage_buffer(
-                device,
-                "ddgi/directions",
-                settings.rays_per_probe as u64 * 16,
-            ),
-            hits: storage_buffer(device, sizes[0].0, sizes[0].1),
-            samples: storage_buffer(device, sizes[1].0, sizes[1].1),
-            irradiance: storage_buffer(device, sizes[2].0, sizes[2].1),
-            distance: storage_buffer(device, sizes[3].0, sizes[3].1),
-            offsets: storage_buffer(device, "ddgi/probe_offsets", layout.probe_count as u64 * 16),
-            states: storage_buffer(device, "ddgi/probe_states", layout.probe_count as u64 * 4),
-            wake_boxes: storage_buffer(device, "ddgi/wake_boxes", MAX_WAKE_BOXES as u64 * 32),
-            shadow_queue: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(sizes[4].0),
-                size: sizes[4]
-                    .1
-                    .max(SHADOW_QUEUE_HEADER + size_of::<GpuDdgiShadowRay>() as u64),
-                usage: wgpu::BufferUsages::STORAGE
-                    | wgpu::BufferUsages::INDIRECT
-                    | wgpu::BufferUsages::COPY_DST
-                    | wgpu::BufferUsages::COPY_SRC,
+            volume: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ddgi/volume"),
+                size: size_of::<GpuDdgiVolume>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
-            blend_weights: storage_buffer(
+            directions: storage("ddgi/directions", v.rays_per_probe as u64 * 16),
+            hits: storage("ddgi/hits", size("ddgi/hits")),
+            samples: storage("ddgi/samples", size("ddgi/samples")),
+            irradiance: storage("ddgi/irradiance_atlas", size("ddgi/irradiance_atlas")),
+            distance: storage("ddgi/distance_atlas", size("ddgi/distance_atlas")),
+            offsets: storage("ddgi/probe_offsets", size("ddgi/probe_offsets")),
+            states: storage("ddgi/probe_states", size("ddgi/probe_states")),
+            wake_boxes: storage("ddgi/wake_boxes", MAX_WAKE_BOXES as u64 * 32),
+            shadow_queue: storage_buffer(
                 device,
-                "ddgi/blend_weights",
-                (settings.irradiance_texels.pow(2) + settings.distance_texels.pow(2)) as u64
-                    * (settings.rays_per_probe as u64 + 1)
-                    * size_of::<crate::gpu_types::GpuDdgiBlendWeight>() as u64,
+                "ddgi/shadow_queue",
+                size("ddgi/shadow_queue"),
+                wgpu::BufferUsages::INDIRECT,
             ),
+            blend_weights: storage("ddgi/blend_weights", size("ddgi/blend_weights")),
         })
     }
+
+    /// Every resource by the name its passes declare.
+    pub fn table(&self) -> ResourceTable<'_> {
+        ResourceTable::new()
+            .buffer("volume", &self.volume)
+            .buffer("ray_set", &self.ray_set)
+            .buffer("directions", &self.directions)
+            .buffer("hits", &self.hits)
+            .buffer("samples", &self.samples)
+            .buffer("irradiance_atlas", &self.irradiance)
+            .buffer("distance_atlas", &self.distance)
+            .buffer("probe_offsets", &self.offsets)
+            .buffer("probe_states", &self.states)
+            .buffer("wake_boxes", &self.wake_boxes)
+            .buffer("blend_weights", &self.blend_weights)
+            .buffer("shadow_queue", &self.shadow_queue)
+            .texture("irradiance_texture", &self.irradiance_view)
+            .texture("distance_texture", &self.distance_view)
+            .sampler("atlas_bilinear", &self.bilinear)
+            .sampler("atlas_gather", &self.gather)
+    }
+}
+
+fn storage_buffer(
+    device: &wgpu::Device,
+    label: &str,
+    size: u64,
+    extra: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16),
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC
+            | extra,
+        mapped_at_creation: false,
+    })
 }

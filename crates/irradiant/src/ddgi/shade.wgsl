@@ -7,9 +7,9 @@
 #import lights
 #import random
 
-@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
-@group(1) @binding(4) var<storage, read> hits: array<GpuDdgiRayHit>;
-@group(1) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
+@group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(2) @binding(4) var<storage, read> hits: array<GpuDdgiRayHit>;
+@group(2) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
 
 // SHADOW_QUEUE (0 or 1, DdgiSettings::shadow_queue): instead of tracing the punctual light's
 // shadow ray here, where only the lanes whose hit faces the light trace while the rest of the
@@ -23,7 +23,7 @@ struct DdgiShadowQueue {
     groups_z: atomic<u32>,
     rays: array<GpuDdgiShadowRay>,
 }
-@group(1) @binding(19) var<storage, read_write> shadow_queue: DdgiShadowQueue;
+@group(2) @binding(19) var<storage, read_write> shadow_queue: DdgiShadowQueue;
 
 var<workgroup> queued_in_group: atomic<u32>;
 var<workgroup> group_base: u32;

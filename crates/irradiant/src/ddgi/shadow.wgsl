@@ -5,8 +5,8 @@
 #import lights
 
 // (ddgi_rays' ray_slot reads the volume; this pass does not.)
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
 
 // ddgi/shade's DdgiShadowQueue, read only.
 struct DdgiShadowQueueRead {
@@ -16,7 +16,7 @@ struct DdgiShadowQueueRead {
     groups_z: u32,
     rays: array<GpuDdgiShadowRay>,
 }
-@group(1) @binding(19) var<storage, read> shadow_queue: DdgiShadowQueueRead;
+@group(2) @binding(19) var<storage, read> shadow_queue: DdgiShadowQueueRead;
 
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {

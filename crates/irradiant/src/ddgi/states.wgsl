@@ -9,19 +9,9 @@
 // - AWAKE: sleeping, but an animated instance's box (grown by a cell and the self-shadow bias)
 //   reaches it: traces and updates, starting from scratch, until the box leaves.
 
-const PROBE_VIGILANT: u32 = 0u;
-const PROBE_OFF: u32 = 1u;
-const PROBE_SLEEPING: u32 = 2u;
-const PROBE_AWAKE: u32 = 3u;
-const PROBE_STATE_MASK: u32 = 3u;
-const PROBE_NEAR_GEOMETRY: u32 = 4u;
-const PROBE_AGE_SHIFT: u32 = 8u;
-
-// volume.state_phase
-const STATES_OFF: u32 = 0u;
-const STATES_CLASSIFYING: u32 = 1u;
-const STATES_CLASSIFY_LAST: u32 = 2u;
-const STATES_CLASSIFIED: u32 = 3u;
+// PROBE_* (the state word's fields) and STATES_* (volume.state_phase) come from
+// ddgi::constants.
+#import ddgi_constants
 
 fn probe_state(word: u32) -> u32 {
     return word & PROBE_STATE_MASK;

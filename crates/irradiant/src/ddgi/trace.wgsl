@@ -3,9 +3,9 @@
 #import ddgi_rays
 #import bvh
 
-@group(1) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(1) @binding(3) var<storage, read> directions: array<vec4<f32>>;
-@group(1) @binding(4) var<storage, read_write> hits: array<GpuDdgiRayHit>;
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
+@group(2) @binding(4) var<storage, read_write> hits: array<GpuDdgiRayHit>;
 
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {

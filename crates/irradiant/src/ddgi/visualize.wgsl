@@ -1,23 +1,20 @@
 // ddgi/visualize: draws every probe as a small sphere showing the irradiance it stores in the
-// direction of the sphere's normal (--show-probes).
+// direction of the sphere's normal (--show-probes), over the composed radiance.
 #import ddgi_query
-#import frame_types
-#import camera
+#import gbuffer
 
-@group(1) @binding(9) var<storage, read> gbuffer: array<GpuGBufferTexel>;
-@group(1) @binding(11) var<uniform> frame: GpuFrameParams;
-@group(1) @binding(12) var<storage, read_write> radiance: array<vec4<f32>>;
+@group(2) @binding(12) var radiance: texture_storage_2d<rgba32float, write>;
+
+const INVALID_PROBE: u32 = 0xffffffffu;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= frame.width || id.y >= frame.height {
+    if !in_frame(id.xy) {
         return;
     }
-    let index = id.y * frame.width + id.x;
-    let size = vec2<f32>(f32(frame.width), f32(frame.height));
     let origin = frame.camera.position;
-    let dir = camera_ray_dir(frame.camera, vec2<f32>(id.xy) + 0.5, size);
-    let depth = gbuffer[index].depth;
+    let dir = pixel_ray_dir(id.xy);
+    let depth = gbuffer_depth_at(id.xy);
     var nearest = select(1e30, depth, depth >= 0.0);
     var found = INVALID_PROBE;
     let radius = 0.1 * volume.min_spacing;
@@ -37,8 +34,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if found != INVALID_PROBE {
         let n = normalize(origin + dir * nearest - probe_position(found));
         let encoded = sample_irradiance_encoded(found, n);
-        radiance[index] = vec4<f32>(pow(max(encoded, vec3<f32>(0.0)), vec3<f32>(volume.irradiance_gamma)), 1.0);
+        textureStore(radiance, vec2<i32>(id.xy), vec4<f32>(pow(max(encoded, vec3<f32>(0.0)), vec3<f32>(volume.irradiance_gamma)), 1.0));
     }
 }
-
-const INVALID_PROBE: u32 = 0xffffffffu;

@@ -1,11 +1,8 @@
-// ddgi: the probe volume's parameters and addressing, shared by every DDGI pass.
-#import octahedral
-
-const WEIGHT_BACKFACE: u32 = 1u;
-const WEIGHT_CHEBYSHEV: u32 = 2u;
-// Production rule (003, §4.1): rays that hit backfaces record no light and 80 % shorter depth.
-const WEIGHT_BACKFACE_HITS: u32 = 4u;
-const BACKFACE_DEPTH_SCALE: f32 = 0.2;
+// ddgi: the probe volume's parameters and addressing, shared by every DDGI pass (the
+// constants WEIGHT_*, BACKFACE_DEPTH_SCALE and the probe states come from ddgi::constants).
+#import ddgi_constants
+#import probe_grid
+#import probe_atlas
 
 struct GpuDdgiVolume {
     // position of probe (0, 0, 0)
@@ -47,52 +44,31 @@ struct GpuDdgiVolume {
     state_phase: u32,
     // boxes in the wake-box buffer
     wake_box_count: u32,
-}
-
-fn probe_grid_coord(probe: u32) -> vec3<u32> {
-    let c = volume.counts;
-    return vec3<u32>(probe % c.x, (probe / c.x) % c.y, probe / (c.x * c.y));
+    // this volume's place among the technique's volumes, finest first (ddgi/resolve blends
+    // them in that order)
+    volume_index: u32,
+    // 1 for the coarsest volume, which fills whatever weight the finer ones left
+    volume_is_last: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 fn probe_index(coord: vec3<u32>) -> u32 {
-    let c = volume.counts;
-    return coord.x + c.x * (coord.y + c.y * coord.z);
+    return grid_index(coord, volume.counts);
 }
 
 // Where a probe sits on the regular grid, before relocation.
 fn grid_position(probe: u32) -> vec3<f32> {
-    return volume.origin + vec3<f32>(probe_grid_coord(probe)) * volume.spacing;
+    return volume.origin + vec3<f32>(grid_coord(probe, volume.counts)) * volume.spacing;
 }
 
 // Top-left texel of a probe's tile (side `tile` texels, border included) in an atlas.
 fn tile_origin(probe: u32, tile: u32) -> vec2<u32> {
-    return vec2<u32>(probe % volume.probes_per_row, probe / volume.probes_per_row) * tile;
+    return atlas_tile_origin(probe, tile, volume.probes_per_row);
 }
 
 fn atlas_width(tile: u32) -> u32 {
     return volume.probes_per_row * tile;
-}
-
-// The world direction that an interior texel (i, j) of a tile of `texels` interior texels stands for.
-fn texel_direction(texel: vec2<u32>, texels: u32) -> vec3<f32> {
-    let uv = (vec2<f32>(texel) + 0.5) / f32(texels) * 2.0 - 1.0;
-    return oct_decode(uv);
-}
-
-// The tile texel (border included, so interior texels are 1…texels) whose value border
-// texel (x, y) repeats, mirrored as the octahedral map folds, so that bilinear filtering is
-// seamless across the map's edges (CPU twin: ddgi::octahedral::border_source).
-fn border_source(x: u32, y: u32, texels: u32) -> vec2<u32> {
-    let last = texels + 1u;
-    let corner_x = select(1u, texels, x == 0u);
-    let corner_y = select(1u, texels, y == 0u);
-    if (x == 0u || x == last) && (y == 0u || y == last) {
-        return vec2<u32>(corner_x, corner_y);
-    }
-    if y == 0u || y == last {
-        return vec2<u32>(last - x, select(texels, 1u, y == 0u));
-    }
-    return vec2<u32>(select(texels, 1u, x == 0u), last - y);
 }
 
 fn rotate_ray(d: vec3<f32>) -> vec3<f32> {

@@ -1,24 +1,22 @@
 // frame/compose: emission + direct + the technique's indirect light (+ sky where the camera
-// ray left the scene) → linear radiance for tonemapping.
-#import frame_types
+// ray left the scene) → linear radiance. `indirect` holds a weighted sum and its weight (a):
+// probe volumes blend into it one after another (ddgi/resolve); a weight of 0 means none.
+#import gbuffer
 
-@group(0) @binding(0) var<uniform> params: GpuFrameParams;
-@group(0) @binding(1) var<storage, read> gbuffer: array<GpuGBufferTexel>;
-@group(0) @binding(2) var<storage, read> direct: array<vec4<f32>>;
-@group(0) @binding(3) var<storage, read> indirect: array<vec4<f32>>;
-@group(0) @binding(4) var<storage, read_write> radiance: array<vec4<f32>>;
-@group(0) @binding(5) var<uniform> sky: vec4<f32>;
+@group(2) @binding(0) var direct: texture_2d<f32>;
+@group(2) @binding(1) var indirect: texture_2d<f32>;
+@group(2) @binding(2) var<uniform> sky: vec4<f32>;
+@group(2) @binding(3) var radiance: texture_storage_2d<rgba32float, write>;
 
-@compute @workgroup_size(64, 1, 1)
+@compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let index = id.x;
-    if index >= params.width * params.height {
+    if !in_frame(id.xy) {
         return;
     }
-    let g = gbuffer[index];
     var l = sky.rgb;
-    if g.depth >= 0.0 {
-        l = g.emission + direct[index].rgb + indirect[index].rgb;
+    if gbuffer_depth_at(id.xy) >= 0.0 {
+        let gi = textureLoad(indirect, id.xy, 0);
+        l = textureLoad(gbuffer_emission, id.xy, 0).rgb + textureLoad(direct, id.xy, 0).rgb + gi.rgb / max(gi.a, 1.0);
     }
-    radiance[index] = vec4<f32>(l, 1.0);
+    textureStore(radiance, vec2<i32>(id.xy), vec4<f32>(l, 1.0));
 }

@@ -1,6 +1,6 @@
-// The real-time frame's shared declarations: its parameters and the G-buffer texel, which a
-// host engine can fill instead of Irradiant's primary rays.
+// The real-time frame's parameters (Rust: frame::types::GpuFrameParams).
 #import types
+#import frame_constants
 
 struct GpuFrameParams {
     camera: GpuCamera,
@@ -13,28 +13,23 @@ struct GpuFrameParams {
     seed: u32,
     // frames already in the direct-light running mean; 0 restarts it
     accumulated_frames: u32,
+    // sub-pixel offset of this frame's primary rays, in pixels (zero without TAA)
+    jitter: vec2<f32>,
+    // the share of the current frame in the TAA blend once the history is warm; 1: no TAA
+    taa_blend: f32,
+    // frames in the TAA history; 0 when it holds nothing usable (first frame, reset)
+    history_frames: u32,
+    // neighbourhood clip box half-width, in standard deviations
+    taa_clip_sigma: f32,
+    // frame/tonemap: multiplier before the curve, and TONE_FILMIC or TONE_CLAMP
+    exposure: f32,
+    tone_curve: u32,
     _pad0: u32,
     _pad1: u32,
+    _pad2: u32,
 }
 
-struct GpuGBufferTexel {
-    position: vec3<f32>,
-    // distance along the primary ray; negative where the ray left the scene
-    depth: f32,
-    normal: vec3<f32>,
-    roughness: f32,
-    geometric_normal: vec3<f32>,
-    metallic: f32,
-    albedo: vec3<f32>,
-    specular: f32,
-    emission: vec3<f32>,
-    _pad0: f32,
-    // where this pixel was last frame, minus where it is now, in pixels
-    motion: vec2<f32>,
-    _pad1: vec2<f32>,
-}
-
-// Pixel coordinates (y down) of a world point seen by a camera.
+// Pixel coordinates (y down, continuous: pixel centres at .5) of a world point seen by a camera.
 fn project(cam: GpuCamera, p: vec3<f32>, size: vec2<f32>) -> vec2<f32> {
     let d = p - cam.position;
     let z = max(dot(d, cam.forward), 1e-6);

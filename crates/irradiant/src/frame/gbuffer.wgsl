@@ -1,40 +1,46 @@
-// frame/gbuffer: one primary ray through each pixel centre; what it hits, as a G-buffer.
+// frame/gbuffer: one primary ray through each pixel's sample point (its centre, plus this
+// frame's sub-pixel jitter when TAA is on); what it hits, as the G-buffer (gbuffer_layout).
 #import frame_types
-#import gbuffer_surface
+#import gbuffer_layout
 #import bvh
 #import camera
 
-@group(1) @binding(0) var<uniform> params: GpuFrameParams;
-@group(1) @binding(1) var<storage, read_write> gbuffer: array<GpuGBufferTexel>;
+@group(1) @binding(0) var<uniform> frame: GpuFrameParams;
+@group(1) @binding(1) var gbuffer_depth: texture_storage_2d<r32float, write>;
+@group(1) @binding(2) var gbuffer_normal: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(3) var gbuffer_albedo: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(4) var gbuffer_emission: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(5) var gbuffer_motion: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
-    if id.x >= params.width || id.y >= params.height {
+    if id.x >= frame.width || id.y >= frame.height {
         return;
     }
-    let size = vec2<f32>(f32(params.width), f32(params.height));
-    let pixel = vec2<f32>(id.xy) + 0.5;
-    let origin = params.camera.position;
-    let dir = camera_ray_dir(params.camera, pixel, size);
+    let size = vec2<f32>(f32(frame.width), f32(frame.height));
+    let sample_point = vec2<f32>(id.xy) + 0.5 + frame.jitter;
+    let origin = frame.camera.position;
+    let dir = camera_ray_dir(frame.camera, sample_point, size);
     let hit = trace_ray(origin, dir, RAY_FAR, false);
-    var g: GpuGBufferTexel;
+    var t: GBufferTexels;
     if hit.triangle == INVALID {
-        g.depth = -1.0;
-        g.position = origin + dir * RAY_FAR;
-        g.normal = -dir;
-        g.geometric_normal = -dir;
-        g.motion = vec2<f32>(0.0);
+        t.depth = -1.0;
+        t.normal = vec4<f32>(oct_encode(-dir), oct_encode(-dir));
     } else {
         let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
-        g = gbuffer_from_surface(s, hit.t);
         // Where this surface point was last frame: back through the instance's previous
-        // transform, then the previous camera.
+        // transform, then the previous camera; both projections unjittered.
         let inst = instances[hit.instance];
-        let object_point = to_object_point(inst, s.position);
-        let q = vec4<f32>(object_point, 1.0);
+        let q = vec4<f32>(to_object_point(inst, s.position), 1.0);
         let previous = vec3<f32>(dot(inst.previous_object_to_world0, q), dot(inst.previous_object_to_world1, q), dot(inst.previous_object_to_world2, q));
-        g.motion = project(params.previous_camera, previous, size) - pixel;
+        let motion = project(frame.previous_camera, previous, size) - project(frame.camera, s.position, size);
+        t = gbuffer_pack(s, hit.t, motion);
     }
-    gbuffer[id.y * params.width + id.x] = g;
+    let pixel = vec2<i32>(id.xy);
+    textureStore(gbuffer_depth, pixel, vec4<f32>(t.depth, 0.0, 0.0, 0.0));
+    textureStore(gbuffer_normal, pixel, t.normal);
+    textureStore(gbuffer_albedo, pixel, t.albedo);
+    textureStore(gbuffer_emission, pixel, t.emission);
+    textureStore(gbuffer_motion, pixel, t.motion);
 }

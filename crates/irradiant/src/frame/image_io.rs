@@ -47,13 +47,16 @@ impl Image {
             .collect()
     }
 
+    /// Writes the linear values as OpenEXR, atomically.
     pub fn write_exr(&self, path: &Path) -> Result<(), RenderError> {
         let data: Vec<f32> = self.pixels.iter().flatten().copied().collect();
         let image = image::Rgb32FImage::from_raw(self.width, self.height, data)
             .expect("pixel count matches size");
-        image
-            .save_with_format(path, image::ImageFormat::OpenExr)
-            .map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
+        write_atomically(path, |temporary| {
+            image
+                .save_with_format(temporary, image::ImageFormat::OpenExr)
+                .map_err(|e| e.to_string())
+        })
     }
 
     pub fn read_exr(path: &Path) -> Result<Self, RenderError> {
@@ -68,15 +71,44 @@ impl Image {
     }
 }
 
-/// Writes packed sRGB RGBA8 bytes as a PNG.
+/// Writes packed sRGB RGBA8 bytes as a PNG, atomically: a half-written file never appears
+/// under the name.
 pub fn write_png(path: &Path, rgba8: &[u8], width: u32, height: u32) -> Result<(), RenderError> {
-    image::save_buffer_with_format(
-        path,
-        rgba8,
-        width,
-        height,
-        image::ExtendedColorType::Rgba8,
-        image::ImageFormat::Png,
-    )
-    .map_err(|e| RenderError::Output(path.to_owned(), e.to_string()))
+    write_atomically(path, |temporary| {
+        image::save_buffer_with_format(
+            temporary,
+            rgba8,
+            width,
+            height,
+            image::ExtendedColorType::Rgba8,
+            image::ImageFormat::Png,
+        )
+        .map_err(|e| e.to_string())
+    })
+}
+
+/// Runs `write` into a temporary file beside `path`, then renames it into place.
+pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<(), RenderError> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "output".into());
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    // The temporary keeps the extension: the image crate picks the format from it.
+    let temporary = path.with_file_name(format!(
+        ".{name}.{}.partial.{extension}",
+        std::process::id()
+    ));
+    let result = write(&temporary)
+        .and_then(|()| std::fs::rename(&temporary, path).map_err(|e| e.to_string()));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    result.map_err(|e| RenderError::Output(path.to_owned(), e))
 }

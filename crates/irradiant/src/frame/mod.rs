@@ -1,138 +1,420 @@
-//! The real-time frame: G-buffer from primary rays → direct light → the technique's indirect
-//! light → compose → tonemap (ARCHITECTURE.md, "The frame").
+//! The real-time frame: G-buffer from (jittered) primary rays → direct light → (the G-buffer
+//! pyramid, where a technique asks for it) → the technique's indirect light → compose → TAA →
+//! tonemap (ARCHITECTURE.md, "The frame"). The session drives it; a technique reads its
+//! resources by name (resources.rs).
 
+mod change;
+pub mod constants;
 mod image_io;
-mod renderer;
+mod resources;
+mod settings;
+pub mod types;
 
-pub use renderer::{
-    FrameBuffers, FrameRenderer, FrameSettings, LightingChange, SceneChange, Technique, apply_pose,
-};
-
+pub use change::{LightingChange, SceneChange};
 pub use image_io::{Image, write_png};
+pub use resources::{FrameNeeds, FrameResources};
+pub use settings::{FrameSettings, TaaSettings, ToneSettings};
 
-use irradiant_gpu::{GpuContext, read_buffer_as, wgpu};
+use glam::Vec2;
+use irradiant_gpu::{
+    Allocation, BoundPass, GpuContext, PassDesc, Profiler, ResourceTable, Workgroups, read_texture,
+    wgpu,
+};
+use irradiant_scene::Camera;
 
 use crate::RenderError;
-use crate::gpu_types::GpuTonemapParams;
-use crate::pipeline::*;
+use crate::scene::GpuScene;
+use crate::scene::types::GpuCamera;
+use types::GpuFrameParams;
 
-/// How linear radiance becomes display values.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ToneSettings {
-    /// Multiplier before the curve; raise it for dim scenes.
-    pub exposure: f32,
-    /// Filmic (ACES fit) rolls highlights off; plain clamps them (for side-by-side checks
-    /// with renderers that clamp).
-    pub filmic: bool,
+/// Image passes run 8×8 pixels a workgroup.
+pub const IMAGE_TILE: (u32, u32) = (8, 8);
+
+/// Frames in the jitter sequence (Halton 2, 3): enough sub-pixel positions that a still view's
+/// blend over them is a smooth box filter.
+const JITTER_FRAMES: u32 = 16;
+
+/// One pixel of the G-buffer, read back for measurements (regions, tests).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GBufferSample {
+    /// World position of the visible surface (reconstructed from depth).
+    pub position: [f32; 3],
+    /// Distance along the primary ray; negative where it left the scene.
+    pub depth: f32,
+    pub emission: [f32; 3],
 }
 
-impl Default for ToneSettings {
-    fn default() -> Self {
-        Self {
-            exposure: 1.0,
-            filmic: true,
-        }
+struct FramePasses {
+    gbuffer: BoundPass,
+    direct: BoundPass,
+    compose: BoundPass,
+    taa: BoundPass,
+    tonemap: BoundPass,
+    /// frame/pyramid, then frame/pyramid_down for each level above 0.
+    pyramid: Vec<BoundPass>,
+}
+
+pub struct Frame {
+    pub resources: FrameResources,
+    settings: FrameSettings,
+    passes: FramePasses,
+    frame_index: u32,
+    /// Frames in the direct-light running mean (restarts when the view or the scene changes).
+    accumulated_frames: u32,
+    /// Frames in the TAA history (restarts only on invalidation: motion is reprojected).
+    history_frames: u32,
+    camera: Camera,
+    previous_camera: Option<Camera>,
+}
+
+impl Frame {
+    /// Every allocation a frame of this size makes (checked before any is made).
+    pub fn plan(width: u32, height: u32, needs: FrameNeeds) -> Vec<Allocation> {
+        FrameResources::plan(width, height, needs)
     }
-}
 
-/// frame/tonemap: radiance sums and counts → packed sRGB RGBA8.
-pub struct Tonemapper {
-    stage: ComputeStage,
-    layout: wgpu::BindGroupLayout,
-    params: wgpu::Buffer,
-}
-
-impl Tonemapper {
-    pub fn new(ctx: &GpuContext) -> Result<Self, RenderError> {
-        let layout = ctx
-            .device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("frame/tonemap"),
-                entries: &[
-                    buffer_entry(0, UNIFORM),       // params
-                    buffer_entry(1, STORAGE_READ),  // radiance
-                    buffer_entry(2, STORAGE_WRITE), // output
-                ],
-            });
-        let stage = ComputeStage::new(
-            ctx,
-            "frame/tonemap",
-            include_str!("tonemap.wgsl"),
-            &[],
-            &[&layout],
-        )?;
-        let params = uniform_buffer(
-            &ctx.device,
-            "frame/tonemap_params",
-            size_of::<GpuTonemapParams>(),
-        );
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        (width, height): (u32, u32),
+        settings: FrameSettings,
+        needs: FrameNeeds,
+    ) -> Result<Self, RenderError> {
+        settings.validate()?;
+        let resources = FrameResources::new(ctx, width, height, needs, scene.sky)?;
+        let passes = {
+            let scene_table = scene.resources();
+            let frame_table = resources.table();
+            let tables: &[&ResourceTable] = &[&scene_table, &frame_table];
+            let tracing = scene.shader_constants();
+            let pass = |label, source, tracing_pass: bool| {
+                let mut desc = PassDesc::new(label, source);
+                if tracing_pass {
+                    desc = desc.constants(tracing.clone());
+                }
+                crate::shaders::pass(ctx, &desc)?
+                    .bind(ctx, tables)
+                    .map_err(RenderError::from)
+            };
+            let mut pyramid = Vec::new();
+            if needs.pyramid_levels > 0 {
+                pyramid.push(pass("frame/pyramid", include_str!("pyramid.wgsl"), false)?);
+                let down = crate::shaders::pass(
+                    ctx,
+                    &PassDesc::new("frame/pyramid_down", include_str!("pyramid_down.wgsl")),
+                )?;
+                for level in 1..needs.pyramid_levels {
+                    let view = |name: &str, k: u32| {
+                        resources
+                            .textures
+                            .iter()
+                            .find(|t| t.name == name)
+                            .map(|t| &t.levels[k as usize].1)
+                            .expect("pyramid textures exist when levels are asked for")
+                    };
+                    let table = ResourceTable::new()
+                        .texture(
+                            "source_normal_depth",
+                            view("pyramid_normal_depth", level - 1),
+                        )
+                        .texture("source_radiance", view("pyramid_radiance", level - 1))
+                        .texture("source_albedo", view("pyramid_albedo", level - 1))
+                        .texture("target_normal_depth", view("pyramid_normal_depth", level))
+                        .texture("target_radiance", view("pyramid_radiance", level))
+                        .texture("target_albedo", view("pyramid_albedo", level));
+                    pyramid.push(down.bind(ctx, &[&table])?);
+                }
+            }
+            FramePasses {
+                gbuffer: pass("frame/gbuffer", include_str!("gbuffer.wgsl"), true)?,
+                direct: pass("frame/direct", include_str!("direct.wgsl"), true)?,
+                compose: pass("frame/compose", include_str!("compose.wgsl"), false)?,
+                taa: pass("frame/taa", include_str!("taa.wgsl"), false)?,
+                tonemap: pass("frame/tonemap", include_str!("tonemap.wgsl"), false)?,
+                pyramid,
+            }
+        };
         Ok(Self {
-            stage,
-            layout,
-            params,
+            resources,
+            settings,
+            passes,
+            frame_index: 0,
+            accumulated_frames: 0,
+            history_frames: 0,
+            camera: Camera::default(),
+            previous_camera: None,
         })
     }
 
-    /// Tonemaps `radiance` (one vec4 per pixel: rgb sum, sample count) into RGBA8 bytes.
-    pub fn run(
-        &self,
-        ctx: &GpuContext,
-        radiance: &wgpu::Buffer,
-        width: u32,
-        height: u32,
-        tone: &ToneSettings,
-    ) -> Result<Vec<u8>, RenderError> {
-        let params = GpuTonemapParams {
-            width,
-            height,
-            exposure: tone.exposure,
-            curve: if tone.filmic { 0 } else { 1 },
+    pub fn size(&self) -> (u32, u32) {
+        (self.resources.width, self.resources.height)
+    }
+
+    pub fn settings(&self) -> &FrameSettings {
+        &self.settings
+    }
+
+    /// Changes settings between frames. Every frame setting is live; turning TAA on or off
+    /// restarts the history, since the two sample different points.
+    pub fn set_settings(&mut self, settings: FrameSettings) -> Result<(), RenderError> {
+        settings.validate()?;
+        if settings.taa.enabled != self.settings.taa.enabled || settings.seed != self.settings.seed
+        {
+            self.invalidate();
+        }
+        if settings.area_light_samples != self.settings.area_light_samples {
+            self.restart_direct();
+        }
+        self.settings = settings;
+        Ok(())
+    }
+
+    /// Forgets all accumulated history: the direct-light running mean and the TAA history.
+    pub fn invalidate(&mut self) {
+        self.accumulated_frames = 0;
+        self.history_frames = 0;
+    }
+
+    /// Restarts the direct-light running mean (the scene moved); TAA keeps its history, which
+    /// its neighbourhood clip adapts.
+    pub fn restart_direct(&mut self) {
+        self.accumulated_frames = 0;
+    }
+
+    /// Frames in the current direct-light running mean.
+    pub fn accumulated_frames(&self) -> u32 {
+        self.accumulated_frames
+    }
+
+    /// This frame's sub-pixel offset of the primary rays (zero without TAA).
+    pub fn jitter(&self) -> Vec2 {
+        if !self.settings.taa.enabled {
+            return Vec2::ZERO;
+        }
+        let i = self.frame_index % JITTER_FRAMES + 1;
+        Vec2::new(halton(i, 2), halton(i, 3)) - 0.5
+    }
+
+    /// Writes this frame's parameters for `camera`; call before recording the frame.
+    pub fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {
+        let (w, h) = self.size();
+        if self.previous_camera.as_ref() != Some(camera) {
+            self.accumulated_frames = 0;
+        }
+        let previous = self
+            .previous_camera
+            .clone()
+            .unwrap_or_else(|| camera.clone());
+        let s = &self.settings;
+        let params = GpuFrameParams {
+            camera: GpuCamera::new(camera, w, h),
+            previous_camera: GpuCamera::new(&previous, w, h),
+            width: w,
+            height: h,
+            frame_index: self.frame_index,
+            area_light_samples: s.area_light_samples,
+            seed: s.seed,
+            accumulated_frames: self.accumulated_frames,
+            jitter: self.jitter().to_array(),
+            taa_blend: if s.taa.enabled { s.taa.blend } else { 1.0 },
+            history_frames: self.history_frames,
+            taa_clip_sigma: s.taa.clip_sigma,
+            exposure: s.tone.exposure,
+            tone_curve: if s.tone.filmic {
+                constants::TONE_FILMIC
+            } else {
+                constants::TONE_CLAMP
+            },
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         };
         ctx.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-        let output = storage_buffer(
-            &ctx.device,
-            "frame/tonemap_output",
-            4 * width as u64 * height as u64,
+            .write_buffer(&self.resources.params, 0, bytemuck::bytes_of(&params));
+        self.camera = camera.clone();
+    }
+
+    fn image_groups(&self) -> Workgroups {
+        let (w, h) = self.size();
+        Workgroups::for_image(w, h, IMAGE_TILE)
+    }
+
+    /// Records frame/gbuffer, frame/direct and (where asked for) the G-buffer pyramid: what a
+    /// technique reads.
+    pub fn record_inputs(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+    ) {
+        let groups = self.image_groups();
+        self.passes
+            .gbuffer
+            .dispatch(encoder, profiler.as_deref_mut(), groups);
+        self.passes
+            .direct
+            .dispatch(encoder, profiler.as_deref_mut(), groups);
+        let (w, h) = self.size();
+        for (level, pass) in self.passes.pyramid.iter().enumerate() {
+            let groups =
+                Workgroups::for_image((w >> level).max(1), (h >> level).max(1), IMAGE_TILE);
+            pass.dispatch(encoder, profiler.as_deref_mut(), groups);
+        }
+    }
+
+    /// Records frame/compose: emission + direct + indirect into `radiance`.
+    pub fn record_compose(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: Option<&mut Profiler>,
+    ) {
+        self.passes
+            .compose
+            .dispatch(encoder, profiler, self.image_groups());
+    }
+
+    /// Records frame/taa (into `resolved`), keeps the result as next frame's history, and
+    /// frame/tonemap (into `output`).
+    pub fn record_output(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+    ) {
+        let groups = self.image_groups();
+        self.passes
+            .taa
+            .dispatch(encoder, profiler.as_deref_mut(), groups);
+        let r = &self.resources;
+        encoder.copy_texture_to_texture(
+            r.texture("resolved").as_image_copy(),
+            r.texture("previous_radiance").as_image_copy(),
+            r.texture("resolved").size(),
         );
-        let group = bind_buffers(
-            &ctx.device,
-            "frame/tonemap",
-            &self.layout,
-            &[&self.params, radiance, &output],
-        );
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("frame/tonemap"),
-            });
-        self.stage.dispatch(
-            &mut encoder,
-            None,
-            &[&group],
-            [(width * height).div_ceil(64), 1, 1],
-        );
-        ctx.queue.submit([encoder.finish()]);
-        let packed: Vec<u32> = read_buffer_as(ctx, &output)?;
-        Ok(bytemuck::cast_slice(&packed[..(width * height) as usize]).to_vec())
+        self.passes.tonemap.dispatch(encoder, profiler, groups);
+    }
+
+    /// Counts the recorded frame: call after submitting it.
+    pub fn finish(&mut self) {
+        self.frame_index += 1;
+        self.accumulated_frames += 1;
+        self.history_frames += 1;
+        self.previous_camera = Some(self.camera.clone());
+    }
+
+    /// The last frame's final linear radiance (after TAA).
+    pub fn image(&self, ctx: &GpuContext) -> Result<Image, RenderError> {
+        let bytes = read_texture(ctx, self.resources.texture("resolved"), 8)?;
+        let (width, height) = self.size();
+        let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
+        Ok(Image {
+            width,
+            height,
+            pixels: halves
+                .chunks_exact(4)
+                .map(|p| [p[0].to_f32(), p[1].to_f32(), p[2].to_f32()])
+                .collect(),
+        })
+    }
+
+    /// The last frame's light before TAA: `direct` or `indirect` (rgb; indirect normalised
+    /// by its weight, as compose reads it).
+    pub fn read(&self, ctx: &GpuContext, texture: &str) -> Result<Image, RenderError> {
+        let sums: Vec<[f32; 4]> =
+            bytemuck::pod_collect_to_vec(&read_texture(ctx, self.resources.texture(texture), 16)?);
+        let (width, height) = self.size();
+        Ok(Image {
+            width,
+            height,
+            pixels: sums
+                .iter()
+                .map(|s| {
+                    let w = s[3].max(1.0);
+                    [s[0] / w, s[1] / w, s[2] / w]
+                })
+                .collect(),
+        })
+    }
+
+    /// The last frame's G-buffer: depth, reconstructed position and emission of every pixel.
+    pub fn read_gbuffer(&self, ctx: &GpuContext) -> Result<Vec<GBufferSample>, RenderError> {
+        let (width, height) = self.size();
+        let depth: Vec<f32> = bytemuck::pod_collect_to_vec(&read_texture(
+            ctx,
+            self.resources.texture("gbuffer_depth"),
+            4,
+        )?);
+        let emission: Vec<half::f16> = bytemuck::pod_collect_to_vec(&read_texture(
+            ctx,
+            self.resources.texture("gbuffer_emission"),
+            8,
+        )?);
+        let camera = GpuCamera::new(&self.camera, width, height);
+        let jitter = self.last_jitter();
+        Ok((0..(width * height) as usize)
+            .map(|i| {
+                let pixel =
+                    Vec2::new((i as u32 % width) as f32, (i as u32 / width) as f32) + 0.5 + jitter;
+                let d = depth[i];
+                let position =
+                    glam::Vec3::from(camera.position) + camera.ray_dir(pixel, width, height) * d;
+                GBufferSample {
+                    position: position.to_array(),
+                    depth: d,
+                    emission: [0, 1, 2].map(|c| emission[4 * i + c].to_f32()),
+                }
+            })
+            .collect())
+    }
+
+    /// The jitter the last recorded frame used.
+    fn last_jitter(&self) -> Vec2 {
+        if !self.settings.taa.enabled || self.frame_index == 0 {
+            return Vec2::ZERO;
+        }
+        let i = (self.frame_index - 1) % JITTER_FRAMES + 1;
+        Vec2::new(halton(i, 2), halton(i, 3)) - 0.5
+    }
+
+    /// The last frame, tonemapped: sRGB RGBA8 bytes, rows top to bottom.
+    pub fn tonemapped(&self, ctx: &GpuContext) -> Result<Vec<u8>, RenderError> {
+        Ok(read_texture(ctx, self.resources.texture("output"), 4)?)
     }
 }
 
-/// Reads a radiance accumulation buffer (rgb sum, count) as a linear image.
-pub fn read_radiance(
-    ctx: &GpuContext,
-    buffer: &wgpu::Buffer,
-    width: u32,
-    height: u32,
-) -> Result<Image, RenderError> {
-    let sums: Vec<[f32; 4]> = read_buffer_as(ctx, buffer)?;
-    let pixels = sums[..(width * height) as usize].iter().map(|s| {
-        let n = s[3].max(1.0);
-        [s[0] / n, s[1] / n, s[2] / n]
-    });
-    Ok(Image {
-        width,
-        height,
-        pixels: pixels.collect(),
-    })
+/// Element `index` of the Halton sequence in `base` (in [0, 1)).
+fn halton(mut index: u32, base: u32) -> f32 {
+    let mut result = 0.0;
+    let mut f = 1.0;
+    while index > 0 {
+        f /= base as f32;
+        result += f * (index % base) as f32;
+        index /= base;
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_jitter_sequence_covers_the_pixel_evenly() {
+        let points: Vec<Vec2> = (1..=JITTER_FRAMES)
+            .map(|i| Vec2::new(halton(i, 2), halton(i, 3)) - 0.5)
+            .collect();
+        let mean = points.iter().sum::<Vec2>() / points.len() as f32;
+        assert!(mean.length() < 0.05, "mean offset {mean}");
+        for quadrant in 0..4 {
+            let inside = points
+                .iter()
+                .filter(|p| {
+                    (p.x >= 0.0) == (quadrant & 1 == 1) && (p.y >= 0.0) == (quadrant & 2 == 2)
+                })
+                .count();
+            assert!(
+                (3..=5).contains(&inside),
+                "quadrant {quadrant} holds {inside} of 16"
+            );
+        }
+        assert!(points.iter().all(|p| p.x.abs() <= 0.5 && p.y.abs() <= 0.5));
+    }
 }

@@ -1,18 +1,10 @@
-// frame/tonemap: linear radiance → exposure → filmic curve (ACES fit, Narkowicz 2015) → sRGB
-// → packed RGBA8.
+// frame/tonemap: the frame's final linear radiance → exposure → filmic curve (ACES fit,
+// Narkowicz 2015) or clamp → sRGB → the RGBA8 output texture a window presents and images
+// are written from (CPU twin: Image::to_srgb8).
+#import gbuffer
 
-struct GpuTonemapParams {
-    width: u32,
-    height: u32,
-    exposure: f32,
-    // 0: filmic; 1: clamp only (for comparisons with other renderers' plain output)
-    curve: u32,
-}
-
-@group(0) @binding(0) var<uniform> params: GpuTonemapParams;
-// rgb sum and sample count (a), as the accumulation buffers store them
-@group(0) @binding(1) var<storage, read> radiance: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read_write> output: array<u32>;
+@group(2) @binding(0) var resolved: texture_2d<f32>;
+@group(2) @binding(1) var output: texture_storage_2d<rgba8unorm, write>;
 
 fn aces_fit(x: vec3<f32>) -> vec3<f32> {
     return saturate((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14));
@@ -24,17 +16,14 @@ fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
     return select(hi, lo, c <= vec3<f32>(0.0031308));
 }
 
-@compute @workgroup_size(64, 1, 1)
+@compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let index = id.x;
-    if index >= params.width * params.height {
+    if !in_frame(id.xy) {
         return;
     }
-    let v = radiance[index];
-    var c = v.rgb / max(v.a, 1.0) * params.exposure;
-    if params.curve == 0u {
+    var c = max(textureLoad(resolved, id.xy, 0).rgb, vec3<f32>(0.0)) * frame.exposure;
+    if frame.tone_curve == TONE_FILMIC {
         c = aces_fit(c);
     }
-    let srgb = linear_to_srgb(saturate(c));
-    output[index] = pack4x8unorm(vec4<f32>(srgb, 1.0));
+    textureStore(output, vec2<i32>(id.xy), vec4<f32>(linear_to_srgb(saturate(c)), 1.0));
 }

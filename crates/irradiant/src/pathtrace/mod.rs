@@ -2,6 +2,7 @@
 //! See docs/pathtrace.md.
 
 mod passes;
+pub mod types;
 
 pub use passes::PathTracer;
 

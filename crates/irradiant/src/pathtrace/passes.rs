@@ -1,19 +1,23 @@
-use irradiant_gpu::{GpuContext, Profiler, wgpu};
+use std::sync::Arc;
+
+use irradiant_gpu::{
+    Allocation, ComputePass, GpuContext, PassDesc, Profiler, ResourceTable, Workgroups, wgpu,
+};
 use irradiant_scene::Camera;
 
 use super::PathTraceSettings;
+use super::types::GpuPathTraceParams;
 use crate::RenderError;
-use crate::frame::{Image, read_radiance};
-use crate::gpu_scene::GpuScene;
-use crate::gpu_types::{GpuCamera, GpuPathTraceParams};
-use crate::pipeline::*;
+use crate::frame::{IMAGE_TILE, Image};
+use crate::scene::GpuScene;
+use crate::scene::types::GpuCamera;
 
 /// pathtrace/trace with its accumulation buffer.
 pub struct PathTracer {
-    stage: ComputeStage,
-    layout: wgpu::BindGroupLayout,
-    /// One vec4 a pixel: rgb sum, sample count.
-    pub accumulation: wgpu::Buffer,
+    pass: Arc<ComputePass>,
+    /// rgba32float: rgb sum, sample count.
+    pub accumulation: wgpu::Texture,
+    accumulation_view: wgpu::TextureView,
     pub width: u32,
     pub height: u32,
     /// Samples per pixel accumulated since the last reset.
@@ -21,37 +25,46 @@ pub struct PathTracer {
 }
 
 impl PathTracer {
+    /// What a path tracer of this size allocates (checked before it is made).
+    pub fn plan(width: u32, height: u32) -> Vec<Allocation> {
+        vec![Allocation::texture(
+            "pathtrace/accumulation",
+            (width, height),
+            16,
+            1,
+            "the image size (--size)",
+        )]
+    }
+
     pub fn new(
         ctx: &GpuContext,
         scene: &GpuScene,
         width: u32,
         height: u32,
     ) -> Result<Self, RenderError> {
-        let layout = ctx
-            .device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("pathtrace/trace"),
-                entries: &[
-                    buffer_entry(0, UNIFORM),       // params
-                    buffer_entry(1, STORAGE_WRITE), // accumulation
-                ],
-            });
-        let stage = ComputeStage::tracing(
+        ctx.check_allocations(&Self::plan(width, height))?;
+        let pass = crate::shaders::pass(
             ctx,
-            scene,
-            "pathtrace/trace",
-            include_str!("trace.wgsl"),
-            &[],
-            &layout,
+            &PassDesc::new("pathtrace/trace", include_str!("trace.wgsl"))
+                .constants(scene.shader_constants()),
         )?;
-        let accumulation = storage_buffer(
-            &ctx.device,
-            "pathtrace/accumulation",
-            16 * width as u64 * height as u64,
-        );
+        let accumulation = ctx.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("pathtrace/accumulation"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
         Ok(Self {
-            stage,
-            layout,
+            pass,
+            accumulation_view: accumulation.create_view(&Default::default()),
             accumulation,
             width,
             height,
@@ -61,11 +74,12 @@ impl PathTracer {
 
     /// Clears the accumulation: call whenever anything that changes the image changes.
     pub fn reset(&mut self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.clear_buffer(&self.accumulation, 0, None);
+        encoder.clear_texture(&self.accumulation, &wgpu::ImageSubresourceRange::default());
         self.samples_done = 0;
     }
 
     /// Records one dispatch of `samples` paths per pixel.
+    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
         ctx: &GpuContext,
@@ -75,7 +89,7 @@ impl PathTracer {
         settings: &PathTraceSettings,
         samples: u32,
         profiler: Option<&mut Profiler>,
-    ) {
+    ) -> Result<(), RenderError> {
         let params = GpuPathTraceParams {
             camera: GpuCamera::new(camera, self.width, self.height),
             width: self.width,
@@ -89,26 +103,25 @@ impl PathTracer {
         };
         // A fresh uniform per dispatch: write_buffer lands before the whole submission, so
         // several dispatches in one encoder must not share one.
-        let uniform = uniform_buffer(
-            &ctx.device,
-            "pathtrace/params",
-            size_of::<GpuPathTraceParams>(),
-        );
+        let uniform = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pathtrace/params"),
+            size: size_of::<GpuPathTraceParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         ctx.queue
             .write_buffer(&uniform, 0, bytemuck::bytes_of(&params));
-        let group = bind_buffers(
-            &ctx.device,
-            "pathtrace/trace",
-            &self.layout,
-            &[&uniform, &self.accumulation],
-        );
-        self.stage.dispatch(
+        let own = ResourceTable::new()
+            .buffer("params", &uniform)
+            .texture("accumulation", &self.accumulation_view);
+        let bound = self.pass.bind(ctx, &[&scene.resources(), &own])?;
+        bound.dispatch(
             encoder,
             profiler,
-            &[&scene.bind_group, &group],
-            [self.width.div_ceil(8), self.height.div_ceil(8), 1],
+            Workgroups::for_image(self.width, self.height, IMAGE_TILE),
         );
         self.samples_done += samples;
+        Ok(())
     }
 
     /// Renders `settings.samples_per_pixel` samples from scratch, reporting progress after each
@@ -136,11 +149,29 @@ impl PathTracer {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("pathtrace/trace"),
                 });
-            self.record(ctx, &mut encoder, scene, camera, settings, samples, None);
+            self.record(ctx, &mut encoder, scene, camera, settings, samples, None)?;
             ctx.queue.submit([encoder.finish()]);
             ctx.wait()?;
             progress(self.samples_done, settings.samples_per_pixel);
         }
-        read_radiance(ctx, &self.accumulation, self.width, self.height)
+        self.image(ctx)
+    }
+
+    /// The accumulated mean radiance so far.
+    pub fn image(&self, ctx: &GpuContext) -> Result<Image, RenderError> {
+        let sums: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&irradiant_gpu::read_texture(
+            ctx,
+            &self.accumulation,
+            16,
+        )?);
+        let pixels = sums.iter().map(|s| {
+            let n = s[3].max(1.0);
+            [s[0] / n, s[1] / n, s[2] / n]
+        });
+        Ok(Image {
+            width: self.width,
+            height: self.height,
+            pixels: pixels.collect(),
+        })
     }
 }

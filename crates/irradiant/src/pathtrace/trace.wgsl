@@ -1,5 +1,5 @@
 // pathtrace/trace: the reference path tracer. One thread a pixel traces `samples` paths and
-// adds them to the accumulation buffer: Lambert + GGX, next-event estimation of punctual
+// adds them to the accumulation texture: Lambert + GGX, next-event estimation of punctual
 // lights and of one emissive triangle (power-proportional choice) with multiple importance
 // sampling against BRDF sampling, Russian roulette after three bounces.
 #import bvh
@@ -23,7 +23,7 @@ struct GpuPathTraceParams {
 
 @group(1) @binding(0) var<uniform> params: GpuPathTraceParams;
 // rgb: sum of radiance samples; a: their count
-@group(1) @binding(1) var<storage, read_write> accumulation: array<vec4<f32>>;
+@group(1) @binding(1) var accumulation: texture_storage_2d<rgba32float, read_write>;
 
 fn trace_path(pixel: vec2<u32>, rng: ptr<function, u32>) -> vec3<f32> {
     let size = vec2<f32>(f32(params.width), f32(params.height));
@@ -110,5 +110,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
             sum += l;
         }
     }
-    accumulation[index] += vec4<f32>(sum, f32(params.samples));
+    textureStore(accumulation, id.xy, textureLoad(accumulation, id.xy) + vec4<f32>(sum, f32(params.samples)));
 }

@@ -84,7 +84,7 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_h
                     let tri = triangles[i];
                     let r = intersect_triangle(tri, origin, dir, (*hit).t);
                     if r.x < (*hit).t {
-                        if (tri.flags & 1u) != 0u && is_alpha_hole(i, r.yz) {
+                        if (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && is_alpha_hole(i, r.yz) {
                             continue;
                         }
                         (*hit).t = r.x;
@@ -219,7 +219,7 @@ fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, 
             let tri = triangles[i];
             let r = intersect_triangle(tri, origin, dir, (*hit).t);
             if r.x < (*hit).t {
-                if (tri.flags & 1u) != 0u && is_alpha_hole(i, r.yz) {
+                if (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && is_alpha_hole(i, r.yz) {
                     continue;
                 }
                 (*hit).t = r.x;

@@ -1,27 +1,44 @@
-//! Shared WGSL modules, importable by name with `#import`.
+//! The shader library: shared WGSL modules importable by name with `#import`, and the
+//! constants Rust and WGSL share, generated from their one Rust definition.
 
-use irradiant_gpu::ShaderLibrary;
+use std::sync::{Arc, OnceLock};
 
-pub fn library() -> ShaderLibrary {
-    ShaderLibrary::default()
-        .with("types", include_str!("types.wgsl"))
-        .with("random", include_str!("random.wgsl"))
-        .with("sampling", include_str!("sampling.wgsl"))
-        .with("scene", include_str!("scene.wgsl"))
-        .with("bvh", include_str!("bvh.wgsl"))
-        .with("brdf", include_str!("brdf.wgsl"))
-        .with("lights", include_str!("lights.wgsl"))
-        .with("camera", include_str!("camera.wgsl"))
-        .with("surface", include_str!("surface.wgsl"))
-        .with("octahedral", include_str!("octahedral.wgsl"))
-        .with("frame_types", include_str!("../frame/frame_types.wgsl"))
-        .with(
-            "gbuffer_surface",
-            include_str!("../frame/gbuffer_surface.wgsl"),
-        )
-        .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
-        .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
-        .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))
-        .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
-        .with("ddgi_states", include_str!("../ddgi/states.wgsl"))
+use irradiant_gpu::{ComputePass, GpuContext, PassDesc, PassError, ShaderLibrary};
+
+pub fn library() -> &'static ShaderLibrary {
+    static LIBRARY: OnceLock<ShaderLibrary> = OnceLock::new();
+    LIBRARY.get_or_init(|| {
+        ShaderLibrary::default()
+            .with("scene_constants", crate::scene::constants::wgsl())
+            .with("frame_constants", crate::frame::constants::wgsl())
+            .with("ddgi_constants", crate::ddgi::constants::wgsl())
+            .with("types", include_str!("types.wgsl"))
+            .with("random", include_str!("random.wgsl"))
+            .with("sampling", include_str!("sampling.wgsl"))
+            .with("scene", include_str!("scene.wgsl"))
+            .with("bvh", include_str!("bvh.wgsl"))
+            .with("brdf", include_str!("brdf.wgsl"))
+            .with("lights", include_str!("lights.wgsl"))
+            .with("camera", include_str!("camera.wgsl"))
+            .with("surface", include_str!("surface.wgsl"))
+            .with("octahedral", include_str!("../probes/octahedral.wgsl"))
+            .with("probe_grid", include_str!("../probes/grid.wgsl"))
+            .with("probe_atlas", include_str!("../probes/atlas.wgsl"))
+            .with("frame_types", include_str!("../frame/frame_types.wgsl"))
+            .with(
+                "gbuffer_layout",
+                include_str!("../frame/gbuffer_layout.wgsl"),
+            )
+            .with("gbuffer", include_str!("../frame/gbuffer_read.wgsl"))
+            .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
+            .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
+            .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))
+            .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
+            .with("ddgi_states", include_str!("../ddgi/states.wgsl"))
+    })
+}
+
+/// A compute pass from the library's modules: composed, validated, reflected, compiled.
+pub fn pass(ctx: &GpuContext, desc: &PassDesc) -> Result<Arc<ComputePass>, PassError> {
+    ComputePass::new(ctx, library(), desc)
 }

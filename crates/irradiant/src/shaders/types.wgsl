@@ -1,5 +1,6 @@
-// GPU structs shared by every pass. Each has one Rust definition (src/gpu_types.rs) and a
-// test that checks the two agree (tests/gpu_structs.rs).
+// GPU structs shared by every pass. Each has one Rust definition (src/scene/types.rs,
+// src/frame/types.rs) and a test that checks the two agree (tests/gpu_structs.rs).
+#import scene_constants
 
 // Inner BVH node holding both children's boxes. A child with count 0 is an inner node
 // (first = node index); count > 0 is a leaf of `count` primitives from `first`; first =
@@ -39,7 +40,7 @@ struct GpuTriangle {
     v0: vec3<f32>,
     material: u32,
     e1: vec3<f32>,
-    // bit 0: alpha-tested (the material has a mask and a texture)
+    // TRIANGLE_ALPHA_TESTED: the material has a mask and a texture
     flags: u32,
     e2: vec3<f32>,
     _pad: u32,
@@ -89,12 +90,9 @@ struct GpuMaterial {
     alpha_cutoff: f32,
 }
 
-const LIGHT_POINT: u32 = 0u;
-const LIGHT_SPOT: u32 = 1u;
-const LIGHT_DIRECTIONAL: u32 = 2u;
-
 struct GpuLight {
     position: vec3<f32>,
+    // LIGHT_POINT, LIGHT_SPOT or LIGHT_DIRECTIONAL
     kind: u32,
     // the direction light travels
     direction: vec3<f32>,

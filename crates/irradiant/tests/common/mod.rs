@@ -2,13 +2,15 @@
 
 #![allow(dead_code)]
 
+use std::sync::Arc;
+
 use irradiant::{AdapterChoice, GpuContext};
 
 /// The test adapter. Without one, tests skip with a message on a developer machine and fail
 /// under CI (CI=true), where a missing driver must not pass as green.
-pub fn gpu() -> Option<GpuContext> {
+pub fn gpu() -> Option<Arc<GpuContext>> {
     match GpuContext::new(&AdapterChoice::from_env()) {
-        Ok(ctx) => Some(ctx),
+        Ok(ctx) => Some(Arc::new(ctx)),
         Err(e) if std::env::var("CI").is_ok_and(|v| v == "true") => {
             panic!("CI=true and no usable GPU adapter: {e}")
         }
@@ -28,11 +30,10 @@ pub fn repo_root() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-use irradiant::GpuScene;
-use irradiant::ddgi::{Ddgi, DdgiSettings};
-use irradiant::frame::{FrameRenderer, FrameSettings, Image, Technique};
-use irradiant::gpu_types::GpuGBufferTexel;
+use irradiant::ddgi::DdgiSettings;
+use irradiant::frame::{FrameSettings, GBufferSample, Image};
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+use irradiant::{GpuScene, Session, SessionSettings, TechniqueSpec};
 use irradiant_scene::{Region, Scene};
 
 /// What a real-time render leaves behind for measuring.
@@ -40,36 +41,73 @@ pub struct FrameResult {
     pub total: Image,
     pub direct: Image,
     pub indirect: Image,
-    pub gbuffer: Vec<GpuGBufferTexel>,
+    pub gbuffer: Vec<GBufferSample>,
+}
+
+/// The technique spec of DDGI with these settings, or direct light only for `None`.
+pub fn spec(settings: Option<&DdgiSettings>) -> TechniqueSpec {
+    match settings {
+        Some(s) => TechniqueSpec::with_settings("ddgi", s),
+        None => TechniqueSpec::new("none", irradiant::Preset::Balanced),
+    }
+}
+
+/// A session of `scene` at `size` with a technique. TAA is off: these tests compare the
+/// frame's channels (direct, indirect, emission) pixel by pixel with each other and with the
+/// path tracer, which needs every channel sampled at the same point of the pixel; TAA's own
+/// tests (taa.rs) turn it on.
+pub fn session(
+    ctx: &Arc<GpuContext>,
+    scene: &Scene,
+    size: (u32, u32),
+    technique: TechniqueSpec,
+) -> Session {
+    session_with(
+        ctx,
+        scene,
+        size,
+        technique,
+        FrameSettings::default().without_taa(),
+    )
+}
+
+pub fn session_with(
+    ctx: &Arc<GpuContext>,
+    scene: &Scene,
+    size: (u32, u32),
+    technique: TechniqueSpec,
+    frame: FrameSettings,
+) -> Session {
+    Session::new(
+        ctx.clone(),
+        scene.clone(),
+        SessionSettings {
+            size,
+            frame,
+            technique,
+            ..Default::default()
+        },
+    )
+    .unwrap()
 }
 
 /// Renders `frames` frames of a static scene with DDGI (or direct light only, for `None`).
 pub fn render_frames(
-    ctx: &GpuContext,
+    ctx: &Arc<GpuContext>,
     scene: &Scene,
     size: (u32, u32),
     settings: Option<&DdgiSettings>,
     frames: u32,
 ) -> FrameResult {
-    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut frame =
-        FrameRenderer::new(ctx, &gpu_scene, size.0, size.1, FrameSettings::default()).unwrap();
-    let mut ddgi = settings.map(|s| {
-        let mut d = Ddgi::new(ctx, &gpu_scene, &scene.probe_volumes[0], s).unwrap();
-        d.bind_frame(ctx, &frame.buffers);
-        d
-    });
+    let mut session = session(ctx, scene, size, spec(settings));
     for _ in 0..frames {
-        let technique = ddgi.as_mut().map(|d| d as &mut dyn Technique);
-        frame
-            .render(ctx, &gpu_scene, &scene.camera, technique, false, None)
-            .unwrap();
+        session.render().unwrap();
     }
     FrameResult {
-        total: frame.image(ctx).unwrap(),
-        direct: frame.read(ctx, &frame.buffers.direct).unwrap(),
-        indirect: frame.read(ctx, &frame.buffers.indirect).unwrap(),
-        gbuffer: frame.read_gbuffer(ctx).unwrap(),
+        total: session.image().unwrap(),
+        direct: session.direct().unwrap(),
+        indirect: session.indirect().unwrap(),
+        gbuffer: session.gbuffer().unwrap(),
     }
 }
 
@@ -88,7 +126,7 @@ pub fn path_trace(ctx: &GpuContext, scene: &Scene, size: (u32, u32), spp: u32) -
 }
 
 /// Pixels whose visible surface lies inside the region.
-pub fn region_mask(gbuffer: &[GpuGBufferTexel], region: &Region) -> Vec<bool> {
+pub fn region_mask(gbuffer: &[GBufferSample], region: &Region) -> Vec<bool> {
     gbuffer
         .iter()
         .map(|g| {

@@ -1,20 +1,23 @@
 //! The scene on the GPU: BVH nodes, triangles, instances, materials, lights, emitters and
-//! textures, bound as group 0 of every ray-tracing pass (`shaders/scene.wgsl`).
+//! textures, offered by name to every ray-tracing pass (`shaders/scene.wgsl` declares them).
 
-use std::time::{Duration, Instant};
+mod build;
+pub mod constants;
+mod textures;
+pub mod types;
+
+use std::time::Duration;
 
 use glam::{Mat4, Vec3};
-use irradiant_bvh::{
-    BuildQuality, GpuBvhNode, GpuWideBvhNode, build_blas, build_tlas, build_wide_blas,
-    transform_bounds,
-};
-use irradiant_gpu::{GpuContext, wgpu};
+use irradiant_bvh::{BuildQuality, GpuBvhNode, build_tlas, transform_bounds};
+use irradiant_gpu::{Allocation, GpuContext, ResourceTable, wgpu};
 use irradiant_scene::{AlphaMode, LightKind, Pose, Scene};
 use wgpu::util::DeviceExt;
 
 use crate::RenderError;
-use crate::gpu_types::*;
-use crate::pipeline::{STORAGE_READ, UNIFORM, buffer_entry, sampler_entry, texture_entry};
+use build::SceneBuild;
+use constants::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
+use types::*;
 
 /// How the scene is prepared for the GPU.
 #[derive(Clone, Debug)]
@@ -83,9 +86,13 @@ impl GpuSceneSettings {
 pub type TriangleSource = (u32, u32);
 
 pub struct GpuScene {
-    pub layout: wgpu::BindGroupLayout,
-    pub bind_group: wgpu::BindGroup,
     nodes: wgpu::Buffer,
+    wide_nodes: wgpu::Buffer,
+    triangles: wgpu::Buffer,
+    triangle_shading: wgpu::Buffer,
+    materials: wgpu::Buffer,
+    textures: wgpu::TextureView,
+    sampler: wgpu::Sampler,
     instances: wgpu::Buffer,
     lights: wgpu::Buffer,
     emitters: wgpu::Buffer,
@@ -128,9 +135,6 @@ pub struct GpuSceneStats {
     pub gpu_bytes: u64,
 }
 
-/// Deepest tree traversal supports: deeper means a degenerate mesh.
-const MAX_STACK: u32 = 128;
-
 impl GpuScene {
     pub fn new(
         ctx: &GpuContext,
@@ -138,89 +142,7 @@ impl GpuScene {
         settings: &GpuSceneSettings,
     ) -> Result<Self, RenderError> {
         let device = &ctx.device;
-        let start = Instant::now();
-        let mut nodes: Vec<GpuBvhNode> = Vec::new();
-        let mut wide_nodes: Vec<GpuWideBvhNode> = Vec::new();
-        let mut triangles: Vec<GpuTriangle> = Vec::new();
-        let mut shading: Vec<GpuTriangleShading> = Vec::new();
-        let mut triangle_sources = Vec::new();
-        let mut slot_triangles = Vec::new();
-        let mut blas_roots = Vec::new();
-        let mut mesh_emitters = Vec::new();
-        let mut max_depth = 0;
-        let alpha_tested: Vec<bool> = scene
-            .materials
-            .iter()
-            .map(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. }))
-            .collect();
-        for (mesh_index, mesh) in scene.meshes.iter().enumerate() {
-            let tris: Vec<[Vec3; 3]> = (0..mesh.triangle_count())
-                .map(|t| mesh.triangle(t))
-                .collect();
-            if tris.is_empty() {
-                blas_roots.push((0, (Vec3::ZERO, Vec3::ZERO)));
-                mesh_emitters.push(Vec::new());
-                continue;
-            }
-            let slot_base = triangles.len() as u32;
-            // (root node, object-space bounds, depth, leaf triangle order) of the mesh's tree.
-            let (root, bounds, depth, triangle_order) = match settings.blas_layout {
-                BlasLayout::Binary => {
-                    let mut blas = build_blas(&tris, settings.bvh_quality);
-                    let root = nodes.len() as u32;
-                    blas.offset(root, slot_base);
-                    nodes.extend_from_slice(&blas.nodes);
-                    (root, blas.bounds, blas.depth, blas.triangle_order)
-                }
-                BlasLayout::Wide => {
-                    let mut blas = build_wide_blas(&tris, settings.bvh_quality);
-                    let root = wide_nodes.len() as u32;
-                    blas.offset(root, slot_base);
-                    wide_nodes.extend_from_slice(&blas.nodes);
-                    (root, blas.bounds, blas.depth, blas.triangle_order)
-                }
-            };
-            max_depth = max_depth.max(depth);
-            blas_roots.push((root, bounds));
-            let mut emissive = Vec::new();
-            for &t in &triangle_order {
-                let [a, b, c] = tris[t as usize];
-                let material = mesh.triangle_materials[t as usize];
-                let emission = scene.materials[material as usize].emission;
-                if emission.max_element() > 0.0 {
-                    emissive.push((triangles.len() as u32, luminance(emission)));
-                }
-                triangles.push(GpuTriangle {
-                    v0: a.into(),
-                    material,
-                    e1: (b - a).into(),
-                    flags: if alpha_tested[material as usize] {
-                        TRIANGLE_ALPHA_TESTED
-                    } else {
-                        0
-                    },
-                    e2: (c - a).into(),
-                    _pad: 0,
-                });
-                shading.push(triangle_shading(mesh, t as usize));
-                triangle_sources.push((mesh_index as u32, t));
-                slot_triangles.push([a, b, c]);
-            }
-            mesh_emitters.push(emissive);
-        }
-        if max_depth > MAX_STACK {
-            return Err(RenderError::Scene(format!(
-                "a mesh's BVH is {max_depth} levels deep, more than traversal supports ({MAX_STACK}); the mesh is degenerate (e.g. thousands of triangles on one point)"
-            )));
-        }
-        let tlas_base = nodes.len() as u32;
-        // Room for the top level: a binary tree over n leaves has fewer than n inner nodes.
-        nodes.extend(std::iter::repeat_n(
-            <GpuBvhNode as bytemuck::Zeroable>::zeroed(),
-            scene.instances.len().max(1),
-        ));
-        let bvh_build = start.elapsed();
-
+        let built = SceneBuild::new(scene, settings)?;
         let materials: Vec<GpuMaterial> = scene
             .materials
             .iter()
@@ -237,52 +159,62 @@ impl GpuScene {
                 },
             })
             .collect();
+        let emitter_capacity: usize = scene
+            .instances
+            .iter()
+            .map(|i| built.mesh_emitters[i.mesh as usize].len())
+            .sum();
+        let instance_bytes = size_of::<GpuInstance>() * scene.instances.len().max(1);
+        let light_bytes = size_of::<GpuLight>() * scene.lights.len().max(1);
+        let emitter_bytes = size_of::<GpuEmitter>() * emitter_capacity.max(1);
+        let setting = "the scene (fewer or smaller meshes)";
+        let sizes = [
+            ("scene/bvh_nodes", size_of_val(built.nodes.as_slice())),
+            (
+                "scene/wide_bvh_nodes",
+                size_of_val(built.wide_nodes.as_slice()),
+            ),
+            ("scene/triangles", size_of_val(built.triangles.as_slice())),
+            (
+                "scene/triangle_shading",
+                size_of_val(built.shading.as_slice()),
+            ),
+            ("scene/instances", instance_bytes),
+            ("scene/materials", size_of_val(materials.as_slice())),
+            ("scene/lights", light_bytes),
+            ("scene/emitters", emitter_bytes),
+        ];
+        let mut plan: Vec<Allocation> = sizes
+            .iter()
+            .map(|&(label, bytes)| Allocation::storage(label, bytes as u64, setting))
+            .collect();
+        plan.push(textures::plan(ctx, scene, settings.texture_size));
+        ctx.check_allocations(&plan).map_err(RenderError::Gpu)?;
 
         let storage = wgpu::BufferUsages::STORAGE
             | wgpu::BufferUsages::COPY_DST
             | wgpu::BufferUsages::COPY_SRC;
-        let max_binding = ctx.info.max_storage_buffer_binding_size;
-        let buffer = |label: &str, contents: &[u8]| -> Result<wgpu::Buffer, RenderError> {
-            if contents.len() as u64 > max_binding {
-                return Err(RenderError::Scene(format!(
-                    "{label} needs {} MiB, more than this adapter binds ({} MiB); use a smaller scene or another adapter",
-                    contents.len() >> 20,
-                    max_binding >> 20
-                )));
-            }
-            Ok(
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents,
-                    usage: storage,
-                }),
-            )
+        let buffer = |label: &str, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: storage,
+            })
         };
-        let nodes_buffer = buffer("scene/bvh_nodes", bytemuck::cast_slice(&nodes))?;
-        if wide_nodes.is_empty() {
-            wide_nodes.push(<GpuWideBvhNode as bytemuck::Zeroable>::zeroed());
-        }
-        let wide_nodes_buffer = buffer("scene/wide_bvh_nodes", bytemuck::cast_slice(&wide_nodes))?;
-        let triangles_buffer = buffer("scene/triangles", bytemuck::cast_slice(&triangles))?;
-        let shading_buffer = buffer("scene/triangle_shading", bytemuck::cast_slice(&shading))?;
-        let instances = buffer(
-            "scene/instances",
-            &vec![0u8; size_of::<GpuInstance>() * scene.instances.len().max(1)],
-        )?;
-        let materials_buffer = buffer("scene/materials", bytemuck::cast_slice(&materials))?;
-        let lights = buffer(
-            "scene/lights",
-            &vec![0u8; size_of::<GpuLight>() * scene.lights.len().max(1)],
-        )?;
-        let emitter_capacity: usize = scene
-            .instances
-            .iter()
-            .map(|i| mesh_emitters[i.mesh as usize].len())
-            .sum();
-        let emitters = buffer(
-            "scene/emitters",
-            &vec![0u8; size_of::<GpuEmitter>() * emitter_capacity.max(1)],
-        )?;
+        let nodes = buffer("scene/bvh_nodes", bytemuck::cast_slice(&built.nodes));
+        let wide_nodes = buffer(
+            "scene/wide_bvh_nodes",
+            bytemuck::cast_slice(&built.wide_nodes),
+        );
+        let triangles = buffer("scene/triangles", bytemuck::cast_slice(&built.triangles));
+        let triangle_shading = buffer(
+            "scene/triangle_shading",
+            bytemuck::cast_slice(&built.shading),
+        );
+        let instances = buffer("scene/instances", &vec![0u8; instance_bytes]);
+        let materials_buffer = buffer("scene/materials", bytemuck::cast_slice(&materials));
+        let lights = buffer("scene/lights", &vec![0u8; light_bytes]);
+        let emitters = buffer("scene/emitters", &vec![0u8; emitter_bytes]);
         let info = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("scene/info"),
             size: size_of::<GpuSceneInfo>() as u64,
@@ -290,7 +222,7 @@ impl GpuScene {
             mapped_at_creation: false,
         });
         let (texture_view, texture_layers, texture_bytes) =
-            upload_textures(ctx, scene, settings.texture_size)?;
+            textures::upload_textures(ctx, scene, settings.texture_size)?;
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("scene/sampler"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -300,57 +232,23 @@ impl GpuScene {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-
-        let layout = scene_bind_group_layout(device);
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("scene/bind_group"),
-            layout: &layout,
-            entries: &[
-                entry(0, &nodes_buffer),
-                entry(1, &triangles_buffer),
-                entry(2, &shading_buffer),
-                entry(3, &instances),
-                entry(4, &materials_buffer),
-                entry(5, &lights),
-                entry(6, &emitters),
-                entry(7, &info),
-                wgpu::BindGroupEntry {
-                    binding: 8,
-                    resource: wgpu::BindingResource::TextureView(&texture_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 9,
-                    resource: wgpu::BindingResource::Sampler(&sampler),
-                },
-                entry(10, &wide_nodes_buffer),
-            ],
-        });
-        let gpu_bytes = [
-            &nodes_buffer,
-            &wide_nodes_buffer,
-            &triangles_buffer,
-            &shading_buffer,
-            &instances,
-            &materials_buffer,
-            &lights,
-            &emitters,
-        ]
-        .iter()
-        .map(|b| b.size())
-        .sum::<u64>()
-            + texture_bytes;
+        let gpu_bytes = sizes.iter().map(|s| s.1 as u64).sum::<u64>() + texture_bytes;
         let mut gpu_scene = Self {
-            layout,
-            bind_group,
-            nodes: nodes_buffer,
+            nodes,
+            wide_nodes,
+            triangles,
+            triangle_shading,
+            materials: materials_buffer,
+            textures: texture_view,
+            sampler,
             instances,
             lights,
             emitters,
             info,
-            blas_roots,
-            tlas_base,
-            mesh_emitters,
-            slot_triangles,
+            blas_roots: built.blas_roots,
+            tlas_base: built.tlas_base,
+            mesh_emitters: built.mesh_emitters,
+            slot_triangles: built.slot_triangles,
             instance_meshes: scene.instances.iter().map(|i| i.mesh).collect(),
             sky: scene.sky,
             instance_order: Vec::new(),
@@ -370,18 +268,34 @@ impl GpuScene {
             tlas_stack: (2 * (scene.instances.len().max(2) as f32).log2().ceil() as u32 + 4)
                 .min(scene.instances.len() as u32 + 2),
             stats: GpuSceneStats {
-                triangles: triangles.len(),
-                bvh_nodes: nodes.len() + wide_nodes.len(),
-                bvh_build,
-                max_blas_depth: max_depth,
+                triangles: built.triangles.len(),
+                bvh_nodes: built.nodes.len() + built.wide_nodes.len(),
+                bvh_build: built.duration,
+                max_blas_depth: built.max_depth,
                 texture_layers,
                 gpu_bytes,
             },
-            triangle_sources,
+            triangle_sources: built.triangle_sources,
         };
         gpu_scene.update(ctx, &scene.pose_at(0.0));
         ctx.check("uploading the scene")?;
         Ok(gpu_scene)
+    }
+
+    /// The scene's resources by the names `shaders/scene.wgsl` declares.
+    pub fn resources(&self) -> ResourceTable<'_> {
+        ResourceTable::new()
+            .buffer("bvh_nodes", &self.nodes)
+            .buffer("wide_nodes", &self.wide_nodes)
+            .buffer("triangles", &self.triangles)
+            .buffer("triangle_shading", &self.triangle_shading)
+            .buffer("instances", &self.instances)
+            .buffer("materials", &self.materials)
+            .buffer("lights", &self.lights)
+            .buffer("emitters", &self.emitters)
+            .buffer("scene_info", &self.info)
+            .texture("scene_textures", &self.textures)
+            .sampler("scene_sampler", &self.sampler)
     }
 
     /// Constants every shader that traces rays needs: traversal stacks as deep as the trees.
@@ -509,47 +423,6 @@ impl GpuScene {
     }
 }
 
-fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
-}
-
-fn entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry {
-        binding,
-        resource: buffer.as_entire_binding(),
-    }
-}
-
-fn triangle_shading(mesh: &irradiant_scene::Mesh, t: usize) -> GpuTriangleShading {
-    let idx = &mesh.indices[3 * t..3 * t + 3];
-    let n = |k: usize| {
-        mesh.normals
-            .get(idx[k] as usize)
-            .copied()
-            .unwrap_or(Vec3::ZERO)
-            .to_array()
-    };
-    let uv = |k: usize| {
-        mesh.uvs
-            .get(idx[k] as usize)
-            .copied()
-            .unwrap_or_default()
-            .to_array()
-    };
-    GpuTriangleShading {
-        n0: n(0),
-        _pad0: 0,
-        n1: n(1),
-        _pad1: 0,
-        n2: n(2),
-        _pad2: 0,
-        uv0: uv(0),
-        uv1: uv(1),
-        uv2: uv(2),
-        _pad3: [0.0; 2],
-    }
-}
-
 fn gpu_instance(transform: &Mat4, previous: &Mat4, blas_root: u32) -> GpuInstance {
     let inverse = transform.inverse();
     let rows = |m: &Mat4| {
@@ -596,118 +469,4 @@ fn gpu_light(light: &irradiant_scene::Light) -> GpuLight {
         power: light.power().into(),
         cos_outer,
     }
-}
-
-/// Group 0 of every ray-tracing pass, by name: what `shaders/scene.wgsl` declares.
-pub fn scene_bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let storage = |binding| buffer_entry(binding, STORAGE_READ);
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("scene/layout"),
-        entries: &[
-            storage(0),                                                  // bvh_nodes
-            storage(1),                                                  // triangles
-            storage(2),                                                  // triangle_shading
-            storage(3),                                                  // instances
-            storage(4),                                                  // materials
-            storage(5),                                                  // lights
-            storage(6),                                                  // emitters
-            buffer_entry(7, UNIFORM),                                    // scene_info
-            texture_entry(8, wgpu::TextureViewDimension::D2Array, true), // scene_textures
-            sampler_entry(9, wgpu::SamplerBindingType::Filtering),       // scene_sampler
-            storage(10),                                                 // wide_nodes
-        ],
-    })
-}
-
-/// Resamples every texture to one square size with a full mip chain, into one array.
-fn upload_textures(
-    ctx: &GpuContext,
-    scene: &Scene,
-    size: u32,
-) -> Result<(wgpu::TextureView, u32, u64), RenderError> {
-    let limits = ctx.device.limits();
-    let size = if scene.textures.is_empty() {
-        1
-    } else {
-        size.clamp(1, limits.max_texture_dimension_2d)
-    };
-    let layers = scene.textures.len().max(1) as u32;
-    if layers > limits.max_texture_array_layers {
-        return Err(RenderError::Scene(format!(
-            "the scene has {layers} textures; this adapter's texture arrays hold {}",
-            limits.max_texture_array_layers
-        )));
-    }
-    let mip_levels = 32 - size.leading_zeros();
-    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("scene/textures"),
-        size: wgpu::Extent3d {
-            width: size,
-            height: size,
-            depth_or_array_layers: layers,
-        },
-        mip_level_count: mip_levels,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8UnormSrgb,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    let mut bytes = 0u64;
-    for layer in 0..layers {
-        let mut level_image = match scene.textures.get(layer as usize) {
-            Some(t) => {
-                let img = image::RgbaImage::from_raw(t.width, t.height, t.rgba8.clone())
-                    .ok_or_else(|| {
-                        RenderError::Scene(format!(
-                            "texture '{}' has the wrong number of bytes",
-                            t.name
-                        ))
-                    })?;
-                image::imageops::resize(&img, size, size, image::imageops::FilterType::Triangle)
-            }
-            None => image::RgbaImage::from_pixel(1, 1, image::Rgba([255; 4])),
-        };
-        for level in 0..mip_levels {
-            let s = (size >> level).max(1);
-            if level > 0 {
-                level_image = image::imageops::resize(
-                    &level_image,
-                    s,
-                    s,
-                    image::imageops::FilterType::Triangle,
-                );
-            }
-            ctx.queue.write_texture(
-                wgpu::TexelCopyTextureInfo {
-                    texture: &texture,
-                    mip_level: level,
-                    origin: wgpu::Origin3d {
-                        x: 0,
-                        y: 0,
-                        z: layer,
-                    },
-                    aspect: wgpu::TextureAspect::All,
-                },
-                level_image.as_raw(),
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(4 * s),
-                    rows_per_image: Some(s),
-                },
-                wgpu::Extent3d {
-                    width: s,
-                    height: s,
-                    depth_or_array_layers: 1,
-                },
-            );
-            bytes += 4 * s as u64 * s as u64;
-        }
-    }
-    let view = texture.create_view(&wgpu::TextureViewDescriptor {
-        label: Some("scene/textures_view"),
-        dimension: Some(wgpu::TextureViewDimension::D2Array),
-        ..Default::default()
-    });
-    Ok((view, layers, bytes))
 }

@@ -1,5 +1,5 @@
 // Octahedral mapping of the unit sphere onto [-1, 1]² (Cigolle et al. 2014), as the DDGI and
-// light-field probe atlases store directions. The CPU twin is ddgi::octahedral (tests).
+// light-field probe atlases store directions. The CPU twin is probes::octahedral.
 
 fn sign_not_zero2(v: vec2<f32>) -> vec2<f32> {
     return select(vec2<f32>(-1.0), vec2<f32>(1.0), v >= vec2<f32>(0.0));

@@ -1,51 +1,8 @@
-//! CPU twins of `shaders/octahedral.wgsl` and of the atlas border mapping of
-//! `ddgi/volume.wgsl` (border_source), used by tests as oracles.
+//! Probe ray sets: spherical Fibonacci directions (optionally ordered into compact patches for
+//! GPU coherence) and the per-frame random rotation that makes probes see every direction over
+//! time.
 
-use glam::{UVec2, Vec2, Vec3};
-
-fn sign_not_zero(v: Vec2) -> Vec2 {
-    Vec2::new(
-        if v.x >= 0.0 { 1.0 } else { -1.0 },
-        if v.y >= 0.0 { 1.0 } else { -1.0 },
-    )
-}
-
-pub fn oct_encode(n: Vec3) -> Vec2 {
-    let p = Vec2::new(n.x, n.y) / (n.x.abs() + n.y.abs() + n.z.abs());
-    if n.z < 0.0 {
-        (Vec2::ONE - Vec2::new(p.y, p.x).abs()) * sign_not_zero(p)
-    } else {
-        p
-    }
-}
-
-pub fn oct_decode(p: Vec2) -> Vec3 {
-    let mut n = Vec3::new(p.x, p.y, 1.0 - p.x.abs() - p.y.abs());
-    if n.z < 0.0 {
-        let xy = (Vec2::ONE - Vec2::new(n.y, n.x).abs()) * sign_not_zero(Vec2::new(n.x, n.y));
-        n = Vec3::new(xy.x, xy.y, n.z);
-    }
-    n.normalize()
-}
-
-/// The direction an interior texel (i, j) of a `texels`-wide tile stands for.
-pub fn texel_direction(texel: UVec2, texels: u32) -> Vec3 {
-    oct_decode((texel.as_vec2() + 0.5) / texels as f32 * 2.0 - 1.0)
-}
-
-/// The tile texel (border included, so interior texels are 1…texels) that border texel (x, y)
-/// copies.
-pub fn border_source(x: u32, y: u32, texels: u32) -> UVec2 {
-    let last = texels + 1;
-    let corner = |c: u32| if c == 0 { texels } else { 1 };
-    if (x == 0 || x == last) && (y == 0 || y == last) {
-        return UVec2::new(corner(x), corner(y));
-    }
-    if y == 0 || y == last {
-        return UVec2::new(last - x, if y == 0 { 1 } else { texels });
-    }
-    UVec2::new(if x == 0 { 1 } else { texels }, last - y)
-}
+use glam::{Quat, Vec3};
 
 /// Spherical Fibonacci point i of n.
 pub fn spherical_fibonacci(i: u32, n: u32) -> Vec3 {
@@ -93,53 +50,27 @@ fn median_split(rays: &mut [Vec3]) {
     median_split(right);
 }
 
+/// A uniformly random rotation for frame `frame` (Shoemake's method from three hashed numbers).
+pub fn random_rotation(seed: u32, frame: u32) -> Quat {
+    let hash = |mut x: u32| {
+        x ^= x >> 16;
+        x = x.wrapping_mul(0x7feb352d);
+        x ^= x >> 15;
+        x = x.wrapping_mul(0x846ca68b);
+        x ^= x >> 16;
+        x
+    };
+    let base = hash(seed.wrapping_mul(0x9e3779b9) ^ hash(frame));
+    let u = [hash(base), hash(base ^ 0x68e31da4), hash(base ^ 0xb5297a4d)]
+        .map(|v| (v >> 8) as f32 / 16_777_216.0);
+    let (a, b) = ((1.0 - u[0]).sqrt(), u[0].sqrt());
+    let (t1, t2) = (std::f32::consts::TAU * u[1], std::f32::consts::TAU * u[2]);
+    Quat::from_xyzw(a * t1.sin(), a * t1.cos(), b * t2.sin(), b * t2.cos()).normalize()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn encode_decode_round_trips_over_the_sphere() {
-        for i in 0..2000 {
-            let d = spherical_fibonacci(i, 2000);
-            let back = oct_decode(oct_encode(d));
-            assert!((back - d).length() < 1e-5, "{d} → {back}");
-            let p = oct_encode(d);
-            assert!(p.x.abs() <= 1.0 && p.y.abs() <= 1.0);
-        }
-    }
-
-    /// A border texel stands for the point just beyond the map's edge, which the octahedral
-    /// fold maps back inside: its source texel must stand for (almost) the same direction.
-    #[test]
-    fn border_texels_continue_the_sphere_across_the_edges() {
-        for texels in [6u32, 14] {
-            let t = texels as f32;
-            for y in 0..texels + 2 {
-                for x in 0..texels + 2 {
-                    if x != 0 && y != 0 && x != texels + 1 && y != texels + 1 {
-                        continue;
-                    }
-                    let source = border_source(x, y, texels);
-                    assert!((1..=texels).contains(&source.x) && (1..=texels).contains(&source.y));
-                    // The border texel's own (out-of-range) position, folded back onto the map.
-                    let p = (Vec2::new(x as f32, y as f32) - 1.0 + 0.5) / t * 2.0 - 1.0;
-                    let mut q = p;
-                    if q.x.abs() > 1.0 {
-                        q = Vec2::new(q.x.signum() * 2.0 - q.x, -q.y);
-                    }
-                    if q.y.abs() > 1.0 {
-                        q = Vec2::new(-q.x, q.y.signum() * 2.0 - q.y);
-                    }
-                    let expected = oct_decode(q);
-                    let got = texel_direction(source - 1, texels);
-                    assert!(
-                        (expected - got).length() < 1e-4,
-                        "texels {texels}, border ({x}, {y}) → {source}: {expected} vs {got}"
-                    );
-                }
-            }
-        }
-    }
 
     #[test]
     fn coherent_ray_set_is_the_same_set_in_compact_runs() {

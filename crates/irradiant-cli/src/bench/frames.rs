@@ -1,0 +1,149 @@
+//! Whole real-time frames timed pass by pass through the session: the frame's passes and the
+//! technique's, grouped by the labels the technique reports (update, resolve).
+
+use std::sync::Arc;
+
+use irradiant::technique::Counter;
+use irradiant::{GpuContext, GpuSceneSettings, Session, SessionSettings, TechniqueSpec};
+use serde::Serialize;
+
+use crate::CliError;
+
+#[derive(Serialize)]
+pub struct FrameRecord {
+    pub scene: String,
+    pub technique: String,
+    /// Probes per axis of the first volume (probe techniques; zeros otherwise).
+    pub probes: [u32; 3],
+    pub rays_per_probe: u32,
+    /// How the technique was set up (DDGI: ray order, probes per workgroup, switches).
+    pub variant: String,
+    /// Every probe's rays a frame (probes × rays per probe): the paper's Table 2 count.
+    pub rays: u64,
+    /// Probes that traced rays in the timed frames.
+    pub updating_probes: u32,
+    /// Rays actually traced a frame: updating probes × rays per probe.
+    pub traced_rays: u64,
+    /// Shadow rays queued for a dense pass in the last frame (DDGI's shadow queue).
+    pub queued_shadow_rays: u32,
+    /// Median milliseconds of each pass of the frame, in the order they ran.
+    pub passes: Vec<(String, f64)>,
+    /// Rays ÷ the technique's trace pass alone.
+    pub trace_mrays_per_s: f64,
+    /// The technique's update passes (as it reports them).
+    pub update_ms: f64,
+    /// Rays ÷ update time: the paper's Table 2 figure.
+    pub update_mrays_per_s: f64,
+    /// Rays actually traced ÷ update time (lower than the above when probes sleep).
+    pub update_traced_mrays_per_s: f64,
+    /// Update + resolve: all of the frame's GI work.
+    pub gi_ms: f64,
+    /// Every pass of the frame.
+    pub frame_ms: f64,
+    /// What the technique reports about its last frame.
+    pub counters: Vec<(String, f64)>,
+}
+
+/// What every timed frame shares.
+pub struct FrameBench<'a> {
+    pub ctx: Arc<GpuContext>,
+    pub scene: &'a irradiant_scene::Scene,
+    pub scene_settings: &'a GpuSceneSettings,
+    pub size: (u32, u32),
+    pub taa: bool,
+    pub iterations: u32,
+}
+
+impl FrameBench<'_> {
+    /// Times `warmup + iterations` frames of a technique and keeps the median of each pass.
+    pub fn time(&self, spec: &TechniqueSpec, warmup: u32) -> Result<FrameRecord, CliError> {
+        let mut frame = irradiant::frame::FrameSettings::balanced();
+        frame.taa.enabled = self.taa;
+        let mut session = Session::new(
+            self.ctx.clone(),
+            self.scene.clone(),
+            SessionSettings {
+                size: self.size,
+                frame,
+                technique: spec.clone(),
+                scene: self.scene_settings.clone(),
+                time: 0.0,
+            },
+        )?;
+        let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
+        for i in 0..warmup + self.iterations {
+            let timings = session.render_profiled()?;
+            if i < warmup {
+                continue;
+            }
+            for t in timings {
+                match per_pass.iter_mut().find(|(l, _)| *l == t.label) {
+                    Some((_, v)) => v.push(t.milliseconds),
+                    None => per_pass.push((t.label, vec![t.milliseconds])),
+                }
+            }
+        }
+        let passes: Vec<(String, f64)> = per_pass
+            .into_iter()
+            .map(|(label, mut v)| {
+                v.sort_by(f64::total_cmp);
+                (label, v.get(v.len() / 2).copied().unwrap_or(0.0))
+            })
+            .collect();
+        let ms = |label: &str| passes.iter().find(|(l, _)| l == label).map_or(0.0, |p| p.1);
+        let labels = session.technique().passes();
+        let update: f64 = labels.update.iter().map(|l| ms(l)).sum();
+        let resolve: f64 = labels.resolve.iter().map(|l| ms(l)).sum();
+        let counters = session.technique().counters(session.ctx())?;
+        let counter = |name: &str| {
+            counters
+                .iter()
+                .find(|c: &&Counter| c.name == name)
+                .map_or(0.0, |c| c.value)
+        };
+        let rays = counter("probe_rays");
+        let traced = counter("traced_rays");
+        let trace_ms: f64 = labels
+            .update
+            .iter()
+            .filter(|l| l.ends_with("/trace"))
+            .map(|l| ms(l))
+            .sum();
+        let rate = |rays: f64, ms: f64| {
+            if ms > 0.0 {
+                rays / (ms * 1e-3) / 1e6
+            } else {
+                0.0
+            }
+        };
+        let (probes, rays_per_probe) = match session.technique_as::<irradiant::ddgi::Ddgi>() {
+            Some(d) => (
+                d.volume().grid.counts.to_array(),
+                d.settings().volume.rays_per_probe,
+            ),
+            None => ([0; 3], 0),
+        };
+        Ok(FrameRecord {
+            scene: self.scene.name.clone(),
+            technique: spec.name.clone(),
+            probes,
+            rays_per_probe,
+            variant: spec.name.clone(),
+            rays: rays as u64,
+            updating_probes: counter("updating_probes") as u32,
+            traced_rays: traced as u64,
+            queued_shadow_rays: counter("queued_shadow_rays") as u32,
+            trace_mrays_per_s: rate(rays, trace_ms),
+            update_ms: update,
+            update_mrays_per_s: rate(rays, update),
+            update_traced_mrays_per_s: rate(traced, update),
+            gi_ms: update + resolve,
+            frame_ms: passes.iter().map(|p| p.1).sum(),
+            counters: counters
+                .iter()
+                .map(|c| (c.name.to_owned(), c.value))
+                .collect(),
+            passes,
+        })
+    }
+}

@@ -1,0 +1,93 @@
+//! `bench`'s printed table.
+
+use super::{BenchRecord, FrameRecord};
+
+pub fn print_table(r: &BenchRecord) {
+    println!(
+        "adapter: {} ({}, driver {}); timing: {}; commit {}",
+        r.adapter, r.backend, r.driver, r.timing, r.commit
+    );
+    println!(
+        "{:<22} {:>10} {:>10} {:>12} {:>10}",
+        "scene", "triangles", "BVH nodes", "BVH build ms", "load ms"
+    );
+    for s in &r.scenes {
+        println!(
+            "{:<22} {:>10} {:>10} {:>12.1} {:>10.1}",
+            s.scene, s.triangles, s.bvh_nodes, s.bvh_build_ms, s.scene_load_ms
+        );
+    }
+    println!(
+        "\n{:<22} {:<34} {:>10} {:>10} {:>12} {:>10}",
+        "scene", "pass", "median ms", "min ms", "rays", "Mrays/s"
+    );
+    for p in &r.passes {
+        let rays = p.rays.map_or("-".into(), |n| n.to_string());
+        let rate = p.mrays_per_s.map_or("-".into(), |m| format!("{m:.1}"));
+        println!(
+            "{:<22} {:<34} {:>10.3} {:>10.3} {:>12} {:>10}",
+            p.scene, p.label, p.median_ms, p.min_ms, rays, rate
+        );
+    }
+    frame_table(&r.ddgi);
+    frame_table(&r.techniques);
+}
+
+/// One row a timed frame configuration, one column a pass (any record's, in the order first
+/// seen: variants lack some passes).
+fn frame_table(records: &[FrameRecord]) {
+    if records.is_empty() {
+        return;
+    }
+    let mut full_labels: Vec<&str> = Vec::new();
+    for d in records {
+        for (l, _) in &d.passes {
+            if !full_labels.contains(&l.as_str()) {
+                full_labels.push(l);
+            }
+        }
+    }
+    let labels: Vec<&str> = full_labels
+        .iter()
+        .map(|l| l.split_once('/').map_or(*l, |(_, stage)| stage))
+        .collect();
+    print!(
+        "\n{:<10} {:<14} {:<10} {:>5} {:<28} {:>9}",
+        "scene", "technique", "probes", "rays", "variant", "Mrays"
+    );
+    for l in &labels {
+        print!(" {:>12}", l);
+    }
+    println!(
+        " {:>10} {:>12} {:>10} {:>12} {:>9} {:>9}",
+        "update ms", "update Mr/s", "trace Mr/s", "GI ms", "frame ms", "updating"
+    );
+    for d in records {
+        print!(
+            "{:<10} {:<14} {:<10} {:>5} {:<28} {:>9.2}",
+            d.scene,
+            d.technique,
+            format!("{}x{}x{}", d.probes[0], d.probes[1], d.probes[2]),
+            d.rays_per_probe,
+            d.variant,
+            d.rays as f64 / 1e6
+        );
+        for label in &full_labels {
+            let ms = d
+                .passes
+                .iter()
+                .find(|(l, _)| l == label)
+                .map_or(0.0, |p| p.1);
+            print!(" {:>12.3}", ms);
+        }
+        println!(
+            " {:>10.3} {:>12.0} {:>10.0} {:>12.3} {:>9.3} {:>9}",
+            d.update_ms,
+            d.update_mrays_per_s,
+            d.trace_mrays_per_s,
+            d.gi_ms,
+            d.frame_ms,
+            d.updating_probes
+        );
+    }
+}

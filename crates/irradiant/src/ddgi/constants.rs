@@ -1,0 +1,40 @@
+//! Constants DDGI's Rust and WGSL share, defined once (the shader library serves them as the
+//! module `ddgi_constants`).
+
+irradiant_gpu::wgsl_constants! {
+    /// `GpuDdgiVolume::weights` bit: the smooth backface (wrap) weight.
+    WEIGHT_BACKFACE: u32 = 1;
+    /// `GpuDdgiVolume::weights` bit: Chebyshev visibility from the distance moments.
+    WEIGHT_CHEBYSHEV: u32 = 2;
+    /// `GpuDdgiVolume::weights` bit: the production rule (003 §4.1): rays that hit backfaces
+    /// record no light and a shortened depth.
+    WEIGHT_BACKFACE_HITS: u32 = 4;
+    /// How much of a backface hit's distance is kept (003 §4.1: 80 % shorter).
+    BACKFACE_DEPTH_SCALE: f32 = 0.2;
+
+    /// Probe state (the low bits of a probe's state word, 003 §6): near static geometry;
+    /// traces and updates every frame. Every probe starts so.
+    PROBE_VIGILANT: u32 = 0;
+    /// Stuck inside static geometry even after relocation: never traces, never shades.
+    PROBE_OFF: u32 = 1;
+    /// No static geometry within one grid cell, so no surface reads it: never traces.
+    PROBE_SLEEPING: u32 = 2;
+    /// Sleeping, but an animated instance's box reaches it: traces and updates from scratch.
+    PROBE_AWAKE: u32 = 3;
+    /// The state's bits in the state word.
+    PROBE_STATE_MASK: u32 = 3;
+    /// State word bit: a classification frame saw static geometry near the probe.
+    PROBE_NEAR_GEOMETRY: u32 = 4;
+    /// The state word's bits from here up count the frames blended since the probe last
+    /// started updating.
+    PROBE_AGE_SHIFT: u32 = 8;
+
+    /// `GpuDdgiVolume::state_phase`: probe states are off (every probe updates).
+    STATES_OFF: u32 = 0;
+    /// Probes are being classified (the relocation frames).
+    STATES_CLASSIFYING: u32 = 1;
+    /// The last classification frame: states are set.
+    STATES_CLASSIFY_LAST: u32 = 2;
+    /// Classified: sleeping probes wake and sleep with the wake boxes.
+    STATES_CLASSIFIED: u32 = 3;
+}

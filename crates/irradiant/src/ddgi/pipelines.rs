@@ -1,0 +1,156 @@
+//! DDGI's compute pipelines, compiled once for a scene and a set of build settings and shared
+//! by every volume (each volume binds them to its own buffers by name).
+
+use std::sync::Arc;
+
+use irradiant_gpu::{ComputePass, GpuContext, PassDesc};
+
+use super::settings::DdgiSettings;
+use crate::RenderError;
+use crate::scene::GpuScene;
+
+/// The distance atlas is rg32float, which not every adapter filters: the query gathers it.
+const UNFILTERABLE: &[&str] = &["distance_texture"];
+
+pub struct DdgiPipelines {
+    pub ray_directions: Arc<ComputePass>,
+    /// ddgi/trace; absent when shade traces its own rays (`fuse_trace_and_shade`).
+    pub trace: Option<Arc<ComputePass>>,
+    /// ddgi/shade, or ddgi/trace_shade when fused.
+    pub shade: Arc<ComputePass>,
+    /// Present when shadow rays are queued (`DdgiSettings::queues_shadow_rays`).
+    pub shadow: Option<Arc<ComputePass>>,
+    pub relocate: Arc<ComputePass>,
+    pub probe_states: Arc<ComputePass>,
+    pub blend_weights: Arc<ComputePass>,
+    pub blend_irradiance: Arc<ComputePass>,
+    pub blend_distance: Arc<ComputePass>,
+    pub resolve: Arc<ComputePass>,
+    pub visualize: Arc<ComputePass>,
+}
+
+impl DdgiPipelines {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        settings: &DdgiSettings,
+    ) -> Result<Self, RenderError> {
+        let mut common = scene.shader_constants();
+        common.extend(shader_constants(settings));
+        let compile = |label: &'static str, source: &str, extra: Vec<(&'static str, String)>| {
+            let desc = PassDesc::new(label, source)
+                .constants(common.clone())
+                .constants(extra)
+                .unfilterable(UNFILTERABLE);
+            crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
+        };
+        let fused = settings.speed.fuse_trace_and_shade;
+        let queue = settings.queues_shadow_rays();
+        let v = &settings.volume;
+        // ddgi_query's atlas textures are named unfilterable in every pass; passes that do not
+        // import it do not declare them, and naming them is then an error — so only those.
+        let compile_plain =
+            |label: &'static str, source: &str, extra: Vec<(&'static str, String)>| {
+                let desc = PassDesc::new(label, source)
+                    .constants(common.clone())
+                    .constants(extra);
+                crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
+            };
+        Ok(Self {
+            ray_directions: compile_plain(
+                "ddgi/ray_directions",
+                include_str!("ray_directions.wgsl"),
+                vec![],
+            )?,
+            trace: if fused {
+                None
+            } else {
+                Some(compile_plain(
+                    "ddgi/trace",
+                    include_str!("trace.wgsl"),
+                    vec![],
+                )?)
+            },
+            shade: compile(
+                if fused {
+                    "ddgi/trace_shade"
+                } else {
+                    "ddgi/shade"
+                },
+                include_str!("shade.wgsl"),
+                vec![
+                    ("FUSED_TRACE", format!("{}u", fused as u32)),
+                    ("SHADOW_QUEUE", format!("{}u", queue as u32)),
+                ],
+            )?,
+            shadow: if queue {
+                Some(compile_plain(
+                    "ddgi/shadow",
+                    include_str!("shadow.wgsl"),
+                    vec![],
+                )?)
+            } else {
+                None
+            },
+            relocate: compile_plain("ddgi/relocate", include_str!("relocate.wgsl"), vec![])?,
+            probe_states: compile_plain(
+                "ddgi/probe_states",
+                include_str!("probe_states.wgsl"),
+                vec![],
+            )?,
+            blend_weights: compile_plain(
+                "ddgi/blend_weights",
+                include_str!("blend_weights.wgsl"),
+                vec![],
+            )?,
+            blend_irradiance: compile_plain(
+                "ddgi/blend_irradiance",
+                include_str!("blend_irradiance.wgsl"),
+                blend_constants(v.irradiance_texels),
+            )?,
+            blend_distance: compile_plain(
+                "ddgi/blend_distance",
+                include_str!("blend_distance.wgsl"),
+                blend_constants(v.distance_texels),
+            )?,
+            resolve: compile("ddgi/resolve", include_str!("resolve.wgsl"), vec![])?,
+            visualize: compile("ddgi/visualize", include_str!("visualize.wgsl"), vec![])?,
+        })
+    }
+}
+
+/// Constants of a blend pass over tiles of `texels` interior texels: TILE_TEXELS (the tile's
+/// texels, border included), BLEND_SPLIT (threads sharing one texel: enough to fill 256
+/// threads), BLEND_THREADS (a workgroup's threads: BLEND_SPLIT for each tile texel, up to
+/// 256) and BLEND_CHUNK (rays held in workgroup memory at once).
+fn blend_constants(texels: u32) -> Vec<(&'static str, String)> {
+    let tile_texels = (texels + 2) * (texels + 2);
+    let split = (256 / tile_texels).max(1);
+    vec![
+        (
+            "BLEND_THREADS",
+            format!("{}u", (split * tile_texels).min(256)),
+        ),
+        ("BLEND_SPLIT", format!("{split}u")),
+        ("TILE_TEXELS", format!("{tile_texels}u")),
+        ("BLEND_CHUNK", format!("{BLEND_CHUNK}u")),
+    ]
+}
+
+/// Rays the blend passes hold in workgroup memory at once: 4 KiB of radiance.
+const BLEND_CHUNK: u32 = 256;
+
+/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl) and
+/// LIGHT_PER_WARP (ddgi/shade).
+fn shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
+    vec![
+        (
+            "PROBES_PER_GROUP",
+            format!("{}u", settings.speed.probes_per_group),
+        ),
+        (
+            "LIGHT_PER_WARP",
+            format!("{}u", settings.speed.light_per_warp as u32),
+        ),
+    ]
+}

@@ -1,0 +1,331 @@
+//! DDGI's settings, in three groups by what changing them costs: `volume` (sizes and layouts:
+//! a rebuild, and the probes start over), `update` (applied between frames) and `speed`
+//! (switches that change only how fast the same image is made: for measuring; a rebuild).
+//! Every setting states its trade-off; `fast`, `balanced` and `quality` are the presets.
+
+use serde::{Deserialize, Serialize};
+
+use crate::settings::{Preset, SettingsError, check_range, overlay};
+use crate::technique::TechniqueSpec;
+
+/// Which of the query's weights are on: the paper's Figure 7 ladder, each step adding one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProbeWeights {
+    /// Trilinear only: classic irradiance probes, which leak light through walls.
+    Classic,
+    /// + smooth backface (wrap) weight: probes behind the surface count less.
+    Backface,
+    /// + Chebyshev visibility from the distance moments: occluded probes are culled.
+    Chebyshev,
+    /// + self-shadow bias and the backface-hit rule: the full method.
+    Full,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DdgiSettings {
+    /// Sizes and layouts: changing any rebuilds the volumes, which start over.
+    pub volume: DdgiVolumeSettings,
+    /// The probe update and the query: changes apply from the next frame.
+    pub update: DdgiUpdateSettings,
+    /// Switches that change only the speed of the same image: off exists to measure what each
+    /// buys. Changing any rebuilds the volumes.
+    pub speed: DdgiSpeedSettings,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DdgiVolumeSettings {
+    /// Rays per probe per frame. More rays: less noise and lower usable hysteresis, at a
+    /// linear cost in trace and shade time (the paper's m; 256 by default).
+    pub rays_per_probe: u32,
+    /// Interior texels per side of a probe's irradiance tile (a 1-texel border is added: 6 →
+    /// 8×8). Irradiance is smooth; more texels cost blend time and memory for little gain.
+    pub irradiance_texels: u32,
+    /// Interior texels per side of a distance tile (14 → 16×16). Sharper visibility, at the
+    /// cost of blend time; too few blur occluder edges into light leaks.
+    pub distance_texels: u32,
+    /// Perceptual encoding exponent (003 §4.2; 5 converges fastest); 1 stores linear values.
+    /// The atlases hold encoded values, so a change starts the probes over.
+    pub irradiance_gamma: f32,
+    /// Probe rays shade every punctual light (one shadow ray each) instead of one light chosen
+    /// at random (weighted by the light count). One light keeps the shading cost at one shadow
+    /// ray per probe ray however many lights there are; the extra noise grows with the light
+    /// count and the hysteresis averages it away.
+    pub shade_all_lights: bool,
+    /// Probes per axis in every volume, overriding the scene's; [0, 0, 0] keeps each volume's
+    /// own. More probes: finer light and visibility, at a linear cost in the update.
+    pub probe_counts: [u32; 3],
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DdgiUpdateSettings {
+    /// Share of last frame's irradiance kept each frame. Higher: stable, slow to react (about
+    /// 1/(1−h) frames of lag); lower: fast but flickering.
+    pub hysteresis: f32,
+    /// The same for the distance moments; kept high, since visibility noise reads as flicker.
+    pub distance_hysteresis: f32,
+    /// Longest probe ray, in scene units; 0: 1.5 × the volume's diagonal. Shorter rays are
+    /// cheaper but miss distant light.
+    pub max_ray_distance: f32,
+    /// TunableShadowBias of 003 (eq. 2): moves the visibility test off the surface. Too low:
+    /// self-shadowing blotches; too high: light leaks at thin walls.
+    pub self_shadow_bias: f32,
+    /// Cosine power of the distance blend (RTXGI uses 50). Higher: sharper visibility, noisier.
+    pub distance_exponent: f32,
+    /// The Figure 7 ladder.
+    pub weights: ProbeWeights,
+    /// 003 §4.3's convergence heuristics: per-texel hysteresis drops where the light changed
+    /// by more than 25 % / 80 %, and scene-level drops for some frames after a light or an
+    /// object changes. Faster response to changes, slightly more flicker.
+    pub convergence_heuristics: bool,
+    /// Probe relocation (003 §5): during the volume's first frames, probes inside geometry
+    /// move out through the nearest backface, and probes hugging a surface step away from it
+    /// (never more than 45 % of the spacing). Without it, probes swallowed by geometry darken
+    /// everything around them. A change restarts the probes.
+    pub relocation: bool,
+    /// Seed of the per-frame random rotation of the ray set.
+    pub seed: u32,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DdgiSpeedSettings {
+    /// With one light per probe ray: pick the light once for 32 neighbouring rays (a GPU warp)
+    /// rather than for each ray. The warp's shadow rays then all go to one light instead of
+    /// taking turns for each light, at the price of noise shared by those 32 rays in a frame
+    /// (still unbiased; the hysteresis averages it).
+    pub light_per_warp: bool,
+    /// Trace each probe ray and shade its hit in one pass (ddgi/trace_shade) instead of two
+    /// (ddgi/trace, ddgi/shade): no hit buffer written and read back and one dispatch fewer,
+    /// against the tracing running at the shading's (lower) occupancy. Same results.
+    pub fuse_trace_and_shade: bool,
+    /// Shadow rays of the probe rays' hits go to a queue that a second pass (ddgi/shadow)
+    /// traces densely, instead of being traced in ddgi/shade, where only the lanes whose hit
+    /// faces the chosen light trace and the rest of each warp waits for them (the wavefront
+    /// idea of Laine, Karras and Aila 2013). Costs a 32-byte queue entry per probe ray of
+    /// memory and an extra pass; the same image. Applies with one light per ray
+    /// (`shade_all_lights` off); emitter samples still trace in ddgi/shade.
+    pub shadow_queue: bool,
+    /// Probe states (003 §6): after the first frames, probes stuck in walls switch off and
+    /// probes with no static geometry within a grid cell sleep; neither traces, blends nor
+    /// shades. Sleeping probes near animated instances wake. Saves the work of every probe no
+    /// surface reads, for the same image.
+    pub probe_states: bool,
+    /// Trace the ray set in an order where neighbouring rays point in neighbouring directions
+    /// (probes::rays::probe_ray_set), so that a GPU warp's rays walk the same BVH nodes. The
+    /// set and the result are the same either way.
+    pub coherent_rays: bool,
+    /// Probes that share one 64-thread workgroup of ddgi/trace and ddgi/shade (1, 2, 4, … 64):
+    /// 1 gives each warp a cone of 32 rays from one probe; more give it near-parallel rays from
+    /// neighbouring probes. Only speed differs: on an H200 (Sibenik, 32×8×32, 256 rays) 1 is
+    /// 5 % faster with probe states on, 4 is 5 % faster with every probe tracing, and 4 is
+    /// 30 % faster at 32 rays a probe (BENCHMARKS.md).
+    pub probes_per_group: u32,
+}
+
+/// Frames of probe relocation at the start (003 §5 uses five: enough for almost every probe,
+/// and no more, so that probes never oscillate through tangent backfaces).
+pub const RELOCATION_FRAMES: u32 = 5;
+
+impl Default for DdgiSettings {
+    fn default() -> Self {
+        Self::balanced()
+    }
+}
+
+impl DdgiSettings {
+    pub fn preset(preset: Preset) -> Self {
+        match preset {
+            Preset::Fast => Self::fast(),
+            Preset::Balanced => Self::balanced(),
+            Preset::Quality => Self::quality(),
+        }
+    }
+
+    pub fn fast() -> Self {
+        let mut s = Self::balanced();
+        s.volume.rays_per_probe = 64;
+        s.update.hysteresis = 0.95;
+        s
+    }
+
+    pub fn balanced() -> Self {
+        Self {
+            volume: DdgiVolumeSettings {
+                rays_per_probe: 256,
+                irradiance_texels: 6,
+                distance_texels: 14,
+                irradiance_gamma: 5.0,
+                shade_all_lights: false,
+                probe_counts: [0; 3],
+            },
+            update: DdgiUpdateSettings {
+                hysteresis: 0.97,
+                distance_hysteresis: 0.97,
+                max_ray_distance: 0.0,
+                self_shadow_bias: 0.3,
+                distance_exponent: 50.0,
+                weights: ProbeWeights::Full,
+                convergence_heuristics: true,
+                relocation: true,
+                seed: 0,
+            },
+            speed: DdgiSpeedSettings {
+                light_per_warp: true,
+                fuse_trace_and_shade: false,
+                shadow_queue: true,
+                probe_states: true,
+                coherent_rays: true,
+                probes_per_group: 1,
+            },
+        }
+    }
+
+    pub fn quality() -> Self {
+        let mut s = Self::balanced();
+        s.volume.rays_per_probe = 512;
+        s.volume.shade_all_lights = true;
+        s.update.hysteresis = 0.98;
+        s.update.distance_hysteresis = 0.98;
+        s
+    }
+
+    /// The settings a spec describes: its preset with its keys over it, validated. Unknown
+    /// keys go to `warnings`.
+    pub fn from_spec(
+        spec: &TechniqueSpec,
+        warnings: &mut Vec<String>,
+    ) -> Result<Self, SettingsError> {
+        let settings = overlay(
+            &Self::preset(spec.preset),
+            &spec.settings,
+            "technique",
+            warnings,
+        )?;
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    /// Whether ddgi/shade queues shadow rays for ddgi/shadow: `shadow_queue`, with one light
+    /// per probe ray.
+    pub fn queues_shadow_rays(&self) -> bool {
+        self.speed.shadow_queue && !self.volume.shade_all_lights
+    }
+
+    /// Whether every setting that sizes or compiles the volumes is the same (so that the rest
+    /// can change live).
+    pub fn same_build(&self, other: &Self) -> bool {
+        self.volume == other.volume && self.speed == other.speed
+    }
+
+    /// Refuses settings that cannot work, naming the field, the value and what is allowed.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let (v, u, s) = (&self.volume, &self.update, &self.speed);
+        check_range("technique.volume.rays_per_probe", v.rays_per_probe, 1, 4096)?;
+        check_range(
+            "technique.volume.irradiance_texels",
+            v.irradiance_texels,
+            2,
+            16,
+        )?;
+        check_range("technique.volume.distance_texels", v.distance_texels, 2, 30)?;
+        check_range(
+            "technique.volume.irradiance_gamma",
+            v.irradiance_gamma,
+            1.0,
+            16.0,
+        )?;
+        let counts = v.probe_counts;
+        let limit = irradiant_scene::MAX_PROBES_PER_AXIS;
+        if counts != [0; 3] && counts.iter().any(|&c| !(1..=limit).contains(&c)) {
+            return Err(SettingsError::invalid(
+                "technique.volume.probe_counts",
+                format!("{counts:?}"),
+                format!("1 to {limit} probes on each axis, or [0, 0, 0] for each volume's own"),
+            ));
+        }
+        check_range("technique.update.hysteresis", u.hysteresis, 0.0, 0.999)?;
+        check_range(
+            "technique.update.distance_hysteresis",
+            u.distance_hysteresis,
+            0.0,
+            0.999,
+        )?;
+        check_range(
+            "technique.update.max_ray_distance",
+            u.max_ray_distance,
+            0.0,
+            1e9,
+        )?;
+        check_range(
+            "technique.update.self_shadow_bias",
+            u.self_shadow_bias,
+            0.0,
+            10.0,
+        )?;
+        check_range(
+            "technique.update.distance_exponent",
+            u.distance_exponent,
+            1.0,
+            1000.0,
+        )?;
+        if !(s.probes_per_group.is_power_of_two() && s.probes_per_group <= 64) {
+            return Err(SettingsError::invalid(
+                "technique.speed.probes_per_group",
+                s.probes_per_group,
+                "a power of two from 1 to 64",
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_round_trips_through_a_spec() {
+        for preset in Preset::ALL {
+            let settings = DdgiSettings::preset(preset);
+            let spec = TechniqueSpec::with_settings("ddgi", &settings);
+            let text = toml::to_string(&spec).unwrap();
+            let back: TechniqueSpec = toml::from_str(&text).unwrap();
+            let mut warnings = Vec::new();
+            assert_eq!(
+                DdgiSettings::from_spec(&back, &mut warnings).unwrap(),
+                settings
+            );
+            assert!(warnings.is_empty(), "{warnings:?}");
+        }
+    }
+
+    #[test]
+    fn settings_errors_name_the_field_the_value_and_the_range() {
+        let spec: TechniqueSpec =
+            toml::from_str("name = \"ddgi\"\n[volume]\nrays_per_probe = 0\n").unwrap();
+        let e = DdgiSettings::from_spec(&spec, &mut Vec::new())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("technique.volume.rays_per_probe = 0") && e.contains("1 to 4096"),
+            "{e}"
+        );
+        let spec: TechniqueSpec =
+            toml::from_str("name = \"ddgi\"\n[update]\nhysteresis = 1.5\nwobble = 2\n").unwrap();
+        let mut warnings = Vec::new();
+        let e = DdgiSettings::from_spec(&spec, &mut warnings)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("hysteresis = 1.5"), "{e}");
+        assert!(
+            warnings[0].contains("technique.update.wobble"),
+            "{warnings:?}"
+        );
+        let spec: TechniqueSpec =
+            toml::from_str("name = \"ddgi\"\n[update]\nweights = \"magic\"\n").unwrap();
+        let e = DdgiSettings::from_spec(&spec, &mut Vec::new())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("magic") && e.contains("technique"), "{e}");
+    }
+}

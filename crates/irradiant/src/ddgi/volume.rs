@@ -1,0 +1,554 @@
+//! One DDGI probe volume: its grid, its buffers and atlases, the shared pipelines bound to them,
+//! and its per-frame state (frames blended, relocation, probe states, hysteresis boosts).
+
+use glam::{Mat3, Vec3};
+use irradiant_gpu::{
+    BoundPass, GpuContext, Profiler, ResourceTable, Workgroups, read_buffer_as, wgpu,
+};
+use irradiant_scene::ProbeVolumeDesc;
+
+use super::constants::*;
+use super::pipelines::DdgiPipelines;
+use super::resources::{
+    ATLAS_TEXEL_BYTES, DdgiResources, MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER, tile_sides,
+};
+use super::settings::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
+use super::types::GpuDdgiVolume;
+use crate::RenderError;
+use crate::frame::{IMAGE_TILE, LightingChange, SceneChange};
+use crate::probes::{AtlasLayout, ProbeGrid, atlas::copy_atlas_to_texture, rays::random_rotation};
+
+/// Probes in each state (003 §6; see ddgi::constants).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ProbeStateCounts {
+    /// Near static geometry: trace and update every frame.
+    pub vigilant: u32,
+    /// Inside static geometry: never trace or shade.
+    pub off: u32,
+    /// No geometry within a cell: never trace or shade.
+    pub sleeping: u32,
+    /// Sleeping probes that an animated instance woke.
+    pub awake: u32,
+}
+
+impl ProbeStateCounts {
+    /// Probes that trace rays this frame.
+    pub fn updating(&self) -> u32 {
+        self.vigilant + self.awake
+    }
+}
+
+/// A hysteresis reduction after a scene change (003 §4.3): the factors hold for `hold` frames,
+/// then fade back to 1 over as many frames again. 003's reductions end abruptly; the fade keeps
+/// draining light that a change removed (a lamp switched off in a closed room, where the
+/// probes feed on their own last values) instead of letting it linger at full hysteresis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Boost {
+    age: u32,
+    hold: u32,
+    irradiance: f32,
+    distance: f32,
+}
+
+impl Boost {
+    fn new(hold: u32, irradiance: f32, distance: f32) -> Self {
+        Self {
+            age: 0,
+            hold,
+            irradiance,
+            distance,
+        }
+    }
+
+    /// This frame's (irradiance, distance) multipliers.
+    fn factors(&self) -> (f32, f32) {
+        let fade = self.age.saturating_sub(self.hold) as f32 / self.hold as f32;
+        let f = |x: f32| x + (1.0 - x) * fade.min(1.0);
+        (f(self.irradiance), f(self.distance))
+    }
+
+    fn expired(&self) -> bool {
+        self.age >= 2 * self.hold
+    }
+}
+
+/// The workgroups of each of a volume's dispatches: one function, used to record them and by
+/// the test that every dispatch fits the adapter at the largest sizes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DdgiDispatches {
+    pub ray_directions: Workgroups,
+    /// ddgi/trace and ddgi/shade (one thread a probe ray).
+    pub rays: Workgroups,
+    /// ddgi/relocate and ddgi/probe_states (one thread a probe).
+    pub probes: Workgroups,
+    pub blend_weights: Workgroups,
+    /// The blends: one workgroup a probe.
+    pub blends: Workgroups,
+    /// ddgi/resolve and ddgi/visualize over the image.
+    pub image: Workgroups,
+}
+
+impl DdgiDispatches {
+    pub fn new(grid: &ProbeGrid, settings: &DdgiSettings, (width, height): (u32, u32)) -> Self {
+        let v = &settings.volume;
+        let per_group = settings.speed.probes_per_group;
+        let ray_groups = grid.probe_count.div_ceil(per_group) as u64
+            * v.rays_per_probe.div_ceil(64 / per_group) as u64;
+        Self {
+            ray_directions: Workgroups::for_threads(v.rays_per_probe as u64, 64),
+            rays: Workgroups::linear(ray_groups),
+            probes: Workgroups::for_threads(grid.probe_count as u64, 64),
+            blend_weights: Workgroups::linear(
+                (v.irradiance_texels.pow(2) + v.distance_texels.pow(2)) as u64,
+            ),
+            blends: Workgroups::linear(grid.probe_count as u64),
+            image: Workgroups::for_image(width, height, IMAGE_TILE),
+        }
+    }
+
+    /// Every dispatch with its pass label.
+    pub fn all(&self) -> Vec<(&'static str, Workgroups)> {
+        vec![
+            ("ddgi/ray_directions", self.ray_directions),
+            ("ddgi/trace", self.rays),
+            ("ddgi/shade", self.rays),
+            ("ddgi/relocate", self.probes),
+            ("ddgi/probe_states", self.probes),
+            ("ddgi/blend_weights", self.blend_weights),
+            ("ddgi/blend_irradiance", self.blends),
+            ("ddgi/blend_distance", self.blends),
+            ("ddgi/resolve", self.image),
+            ("ddgi/visualize", self.image),
+        ]
+    }
+}
+
+/// The pipelines bound to one volume's buffers.
+struct VolumePasses {
+    ray_directions: BoundPass,
+    trace: Option<BoundPass>,
+    shade: BoundPass,
+    shadow: Option<BoundPass>,
+    relocate: BoundPass,
+    probe_states: BoundPass,
+    blend_weights: BoundPass,
+    blend_irradiance: BoundPass,
+    blend_distance: BoundPass,
+    resolve: BoundPass,
+    visualize: BoundPass,
+}
+
+pub struct DdgiVolume {
+    settings: DdgiSettings,
+    pub grid: ProbeGrid,
+    pub atlas: AtlasLayout,
+    pub resources: DdgiResources,
+    passes: VolumePasses,
+    dispatches: DdgiDispatches,
+    max_ray_distance: f32,
+    /// The volume's extent, for the default ray length.
+    diagonal: f32,
+    /// This volume's place among the technique's, finest first; whether it is the coarsest.
+    index: u32,
+    is_last: bool,
+    /// Frames blended so far; 0 means the next update starts the probes from scratch.
+    pub frame: u32,
+    /// Active hysteresis reductions.
+    boosts: Vec<Boost>,
+    /// Offsets are cleared before the first relocation frame.
+    relocation_pending: bool,
+    /// States are cleared (every probe vigilant, nothing blended) before the first frame.
+    states_pending: bool,
+    /// Wake boxes to upload at the next prepare, after animation moved something.
+    wake_boxes: Option<Vec<(Vec3, Vec3)>>,
+    wake_box_count: u32,
+}
+
+/// Where a volume sits among its technique's volumes.
+pub struct VolumePlace {
+    pub index: u32,
+    pub is_last: bool,
+}
+
+impl DdgiVolume {
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        ctx: &GpuContext,
+        pipelines: &DdgiPipelines,
+        tables: &[&ResourceTable],
+        desc: &ProbeVolumeDesc,
+        settings: &DdgiSettings,
+        place: VolumePlace,
+        frame_size: (u32, u32),
+        dynamic_bounds: Vec<(Vec3, Vec3)>,
+    ) -> Result<Self, RenderError> {
+        let grid = ProbeGrid::new(desc);
+        let atlas = AtlasLayout::new(grid.probe_count, &tile_sides(settings));
+        let resources = DdgiResources::new(ctx, &grid, &atlas, settings)?;
+        let passes = {
+            let own = resources.table();
+            let mut all: Vec<&ResourceTable> = tables.to_vec();
+            all.push(&own);
+            let bind = |pass: &std::sync::Arc<irradiant_gpu::ComputePass>| pass.bind(ctx, &all);
+            VolumePasses {
+                ray_directions: bind(&pipelines.ray_directions)?,
+                trace: pipelines.trace.as_ref().map(bind).transpose()?,
+                shade: bind(&pipelines.shade)?,
+                shadow: pipelines.shadow.as_ref().map(bind).transpose()?,
+                relocate: bind(&pipelines.relocate)?,
+                probe_states: bind(&pipelines.probe_states)?,
+                blend_weights: bind(&pipelines.blend_weights)?,
+                blend_irradiance: bind(&pipelines.blend_irradiance)?,
+                blend_distance: bind(&pipelines.blend_distance)?,
+                resolve: bind(&pipelines.resolve)?,
+                visualize: bind(&pipelines.visualize)?,
+            }
+        };
+        let diagonal = (desc.max - desc.min).length().max(1e-3);
+        let mut volume = Self {
+            dispatches: DdgiDispatches::new(&grid, settings, frame_size),
+            settings: settings.clone(),
+            grid,
+            atlas,
+            resources,
+            passes,
+            max_ray_distance: 0.0,
+            diagonal,
+            index: place.index,
+            is_last: place.is_last,
+            frame: 0,
+            boosts: Vec::new(),
+            relocation_pending: true,
+            states_pending: true,
+            wake_boxes: Some(dynamic_bounds),
+            wake_box_count: 0,
+        };
+        volume.set_settings(settings);
+        Ok(volume)
+    }
+
+    /// The settings the volume runs with.
+    pub fn settings(&self) -> &DdgiSettings {
+        &self.settings
+    }
+
+    /// Takes settings that differ from the current ones only in `update` (the caller checks
+    /// [`DdgiSettings::same_build`]); switching relocation restarts the probes.
+    pub fn set_settings(&mut self, settings: &DdgiSettings) {
+        if settings.update.relocation != self.settings.update.relocation {
+            self.reset();
+        }
+        self.settings = settings.clone();
+        let u = &settings.update;
+        self.max_ray_distance = if u.max_ray_distance > 0.0 {
+            u.max_ray_distance
+        } else {
+            self.diagonal * 1.5
+        };
+    }
+
+    /// Starts the probes over (the next update blends with hysteresis 0, relocation reruns).
+    pub fn reset(&mut self) {
+        self.frame = 0;
+        self.relocation_pending = true;
+        self.states_pending = true;
+    }
+
+    pub fn max_ray_distance(&self) -> f32 {
+        self.max_ray_distance
+    }
+
+    pub fn dispatches(&self) -> &DdgiDispatches {
+        &self.dispatches
+    }
+
+    /// STATES_* of ddgi::constants for this frame: probes are classified on the relocation
+    /// frames (the optimiser has moved them by the last one) and sleep or wake after.
+    fn state_phase(&self) -> u32 {
+        if !self.settings.speed.probe_states {
+            STATES_OFF
+        } else if self.frame + 1 < RELOCATION_FRAMES {
+            STATES_CLASSIFYING
+        } else if self.frame + 1 == RELOCATION_FRAMES {
+            STATES_CLASSIFY_LAST
+        } else {
+            STATES_CLASSIFIED
+        }
+    }
+
+    fn relocating(&self) -> bool {
+        self.settings.update.relocation && self.frame < RELOCATION_FRAMES
+    }
+
+    /// 003 §4.3's scene-level heuristics: a small lighting change lowers the irradiance
+    /// hysteresis by 15 % for 4 frames, a large one by 50 % for 10 frames; an object that moves
+    /// lowers irradiance hysteresis by 50 % for 10 frames and visibility's by 50 % for 7 — each
+    /// then fading back over as many frames (see [`Boost`]).
+    pub fn scene_changed(&mut self, change: &SceneChange) {
+        self.wake_boxes = Some(change.dynamic_bounds.clone());
+        if !self.settings.update.convergence_heuristics {
+            return;
+        }
+        match change.lighting {
+            LightingChange::Small => self.boosts.push(Boost::new(4, 0.85, 1.0)),
+            LightingChange::Large => self.boosts.push(Boost::new(10, 0.5, 1.0)),
+            LightingChange::None => {}
+        }
+        if change.geometry {
+            self.boosts.push(Boost::new(10, 0.5, 1.0));
+            self.boosts.push(Boost::new(7, 1.0, 0.5));
+        }
+    }
+
+    /// This frame's hysteresis multipliers (irradiance, distance) from the active boosts.
+    fn boost_factors(&self) -> (f32, f32) {
+        self.boosts
+            .iter()
+            .map(Boost::factors)
+            .fold((1.0f32, 1.0f32), |(i, d), (bi, bd)| (i.min(bi), d.min(bd)))
+    }
+
+    fn volume_uniform(&self) -> GpuDdgiVolume {
+        let (v, u) = (&self.settings.volume, &self.settings.update);
+        let g = &self.grid;
+        let weights = match u.weights {
+            ProbeWeights::Classic => 0,
+            ProbeWeights::Backface => WEIGHT_BACKFACE,
+            ProbeWeights::Chebyshev => WEIGHT_BACKFACE | WEIGHT_CHEBYSHEV,
+            ProbeWeights::Full => WEIGHT_BACKFACE | WEIGHT_CHEBYSHEV | WEIGHT_BACKFACE_HITS,
+        };
+        let rotation = Mat3::from_quat(random_rotation(u.seed, self.frame));
+        let row = |i: usize| rotation.row(i).extend(0.0).to_array();
+        let (irradiance_boost, distance_boost) = self.boost_factors();
+        GpuDdgiVolume {
+            origin: g.origin.into(),
+            probe_count: g.probe_count,
+            spacing: g.spacing.into(),
+            rays_per_probe: v.rays_per_probe,
+            counts: g.counts.into(),
+            probes_per_row: self.atlas.probes_per_row,
+            ray_rotation0: row(0),
+            ray_rotation1: row(1),
+            ray_rotation2: row(2),
+            irradiance_texels: v.irradiance_texels,
+            distance_texels: v.distance_texels,
+            irradiance_hysteresis: u.hysteresis * irradiance_boost,
+            distance_hysteresis: u.distance_hysteresis * distance_boost,
+            max_ray_distance: self.max_ray_distance,
+            self_shadow_bias: if u.weights == ProbeWeights::Full {
+                u.self_shadow_bias
+            } else {
+                0.0
+            },
+            distance_exponent: u.distance_exponent,
+            irradiance_gamma: v.irradiance_gamma,
+            weights,
+            frame: self.frame,
+            min_spacing: g.min_spacing(),
+            convergence_heuristics: u.convergence_heuristics as u32,
+            relocating: self.relocating() as u32,
+            all_lights: v.shade_all_lights as u32,
+            state_phase: self.state_phase(),
+            wake_box_count: self.wake_box_count,
+            volume_index: self.index,
+            volume_is_last: self.is_last as u32,
+            _pad0: 0,
+            _pad1: 0,
+        }
+    }
+
+    /// Writes this frame's volume parameters; call before recording the frame's passes, once a
+    /// submission (the queue applies the write before the submission runs).
+    pub fn prepare(&mut self, ctx: &GpuContext) {
+        if let Some(boxes) = self.wake_boxes.take() {
+            self.upload_wake_boxes(ctx, &boxes);
+        }
+        ctx.queue.write_buffer(
+            &self.resources.volume,
+            0,
+            bytemuck::bytes_of(&self.volume_uniform()),
+        );
+    }
+
+    /// Boxes where geometry may come and go (animated instances), grown by a grid cell and the
+    /// self-shadow bias (003 §6.3): sleeping probes inside wake up.
+    fn upload_wake_boxes(&mut self, ctx: &GpuContext, bounds: &[(Vec3, Vec3)]) {
+        let grow = self.grid.spacing
+            + Vec3::splat(0.75 * self.grid.min_spacing() * self.settings.update.self_shadow_bias);
+        let mut boxes: Vec<(Vec3, Vec3)> = Vec::new();
+        for &(lo, hi) in bounds {
+            let grown = (lo - grow, hi + grow);
+            if boxes.len() < MAX_WAKE_BOXES {
+                boxes.push(grown);
+            } else if let Some(last) = boxes.last_mut() {
+                *last = (last.0.min(grown.0), last.1.max(grown.1));
+            }
+        }
+        let data: Vec<[f32; 4]> = boxes
+            .iter()
+            .flat_map(|(lo, hi)| [lo.extend(0.0).to_array(), hi.extend(0.0).to_array()])
+            .collect();
+        if !data.is_empty() {
+            ctx.queue
+                .write_buffer(&self.resources.wake_boxes, 0, bytemuck::cast_slice(&data));
+        }
+        self.wake_box_count = boxes.len() as u32;
+    }
+
+    /// Records the probe update: ray directions, trace, shade, (shadow), (relocate), blend
+    /// weights, blends (borders included), probe states.
+    pub fn record_update(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+    ) {
+        if self.states_pending {
+            encoder.clear_buffer(&self.resources.states, 0, None);
+            self.states_pending = false;
+        }
+        let (p, d) = (&self.passes, &self.dispatches);
+        p.ray_directions
+            .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
+        if let Some(trace) = &p.trace {
+            trace.dispatch(encoder, profiler.as_deref_mut(), d.rays);
+        }
+        if p.shadow.is_some() {
+            encoder.clear_buffer(&self.resources.shadow_queue, 0, Some(SHADOW_QUEUE_HEADER));
+        }
+        p.shade.dispatch(encoder, profiler.as_deref_mut(), d.rays);
+        if let Some(shadow) = &p.shadow {
+            shadow.dispatch_indirect(
+                encoder,
+                profiler.as_deref_mut(),
+                &self.resources.shadow_queue,
+                4,
+            );
+        }
+        if self.relocating() {
+            if self.relocation_pending {
+                encoder.clear_buffer(&self.resources.offsets, 0, None);
+                self.relocation_pending = false;
+            }
+            p.relocate
+                .dispatch(encoder, profiler.as_deref_mut(), d.probes);
+        }
+        self.record_blend(encoder, profiler.as_deref_mut());
+        let p = &self.passes;
+        p.probe_states
+            .dispatch(encoder, profiler, self.dispatches.probes);
+        self.frame += 1;
+        for boost in &mut self.boosts {
+            boost.age += 1;
+        }
+        self.boosts.retain(|b| !b.expired());
+    }
+
+    /// Records only the blend passes, borders included, and the atlases' copies into the
+    /// textures the query samples (tests feed the rays themselves).
+    pub fn record_blend(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+    ) {
+        let (p, d) = (&self.passes, &self.dispatches);
+        p.blend_weights
+            .dispatch(encoder, profiler.as_deref_mut(), d.blend_weights);
+        p.blend_irradiance
+            .dispatch(encoder, profiler.as_deref_mut(), d.blends);
+        p.blend_distance.dispatch(encoder, profiler, d.blends);
+        let r = &self.resources;
+        copy_atlas_to_texture(
+            encoder,
+            &r.irradiance,
+            &r.irradiance_texture,
+            ATLAS_TEXEL_BYTES,
+        );
+        copy_atlas_to_texture(encoder, &r.distance, &r.distance_texture, ATLAS_TEXEL_BYTES);
+    }
+
+    /// Records ddgi/resolve: this volume's share of the G-buffer's indirect diffuse light.
+    pub fn record_resolve(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: Option<&mut Profiler>,
+    ) {
+        self.passes
+            .resolve
+            .dispatch(encoder, profiler, self.dispatches.image);
+    }
+
+    /// Records ddgi/visualize: probes drawn as spheres into the composed radiance.
+    pub fn record_visualize(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.passes
+            .visualize
+            .dispatch(encoder, None, self.dispatches.image);
+    }
+
+    /// Shadow rays ddgi/shade queued in the last update (0 without the shadow queue).
+    pub fn read_queued_shadow_rays(&self, ctx: &GpuContext) -> Result<u32, RenderError> {
+        if self.passes.shadow.is_none() {
+            return Ok(0);
+        }
+        let count = irradiant_gpu::read_buffer(ctx, &self.resources.shadow_queue, 0, 4)?;
+        Ok(u32::from_le_bytes([count[0], count[1], count[2], count[3]]))
+    }
+
+    /// How many probes are in each state (003 §6), read back from the GPU.
+    pub fn read_state_counts(&self, ctx: &GpuContext) -> Result<ProbeStateCounts, RenderError> {
+        let words: Vec<u32> = read_buffer_as(ctx, &self.resources.states)?;
+        let mut counts = ProbeStateCounts::default();
+        for word in &words[..self.grid.probe_count as usize] {
+            match word & PROBE_STATE_MASK {
+                PROBE_VIGILANT => counts.vigilant += 1,
+                PROBE_OFF => counts.off += 1,
+                PROBE_SLEEPING => counts.sleeping += 1,
+                _ => counts.awake += 1,
+            }
+        }
+        Ok(counts)
+    }
+
+    /// The atlases, decoded: irradiance as cosine-weighted mean radiance (rgb), distance as
+    /// (mean, mean²); each with its width and height in texels.
+    pub fn read_atlases(&self, ctx: &GpuContext) -> Result<Atlases, RenderError> {
+        let packed: Vec<[half::f16; 4]> = read_buffer_as(ctx, &self.resources.irradiance)?;
+        let distance: Vec<[f32; 2]> = read_buffer_as(ctx, &self.resources.distance)?;
+        let gamma = self.settings.volume.irradiance_gamma;
+        let irradiance = packed
+            .iter()
+            .map(|p| [p[0], p[1], p[2]].map(|c| c.to_f32().max(0.0).powf(gamma)))
+            .collect();
+        Ok(Atlases {
+            irradiance,
+            irradiance_size: self.atlas.size(self.settings.volume.irradiance_texels),
+            distance,
+            distance_size: self.atlas.size(self.settings.volume.distance_texels),
+        })
+    }
+}
+
+/// Decoded probe atlases (see [`DdgiVolume::read_atlases`]).
+pub struct Atlases {
+    pub irradiance: Vec<[f32; 3]>,
+    pub irradiance_size: (u32, u32),
+    pub distance: Vec<[f32; 2]>,
+    pub distance_size: (u32, u32),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Boost;
+
+    #[test]
+    fn boosts_hold_then_fade_back() {
+        let mut b = Boost::new(10, 0.5, 1.0);
+        let mut seen = Vec::new();
+        while !b.expired() {
+            seen.push(b.factors().0);
+            b.age += 1;
+        }
+        assert_eq!(seen.len(), 20);
+        assert!(seen[..=10].iter().all(|&f| f == 0.5), "{seen:?}");
+        assert!(seen.windows(2).all(|w| w[1] >= w[0]) && seen[19] < 1.0 && seen[19] > 0.9);
+    }
+}

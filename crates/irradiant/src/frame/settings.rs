@@ -1,0 +1,117 @@
+//! How the frame renders what is not the technique's job. Every setting here can change between
+//! frames (the frame's history restarts where the image would otherwise mix two settings).
+
+use serde::{Deserialize, Serialize};
+
+use crate::settings::{Preset, SettingsError, check_range};
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FrameSettings {
+    /// Emitter samples per pixel per frame for direct light from emissive surfaces. More:
+    /// less noise on the first frames after a change; the running mean removes it over time.
+    pub area_light_samples: u32,
+    /// Random seed of the frame's sampling (area lights); change it for independent noise.
+    pub seed: u32,
+    pub taa: TaaSettings,
+    pub tone: ToneSettings,
+}
+
+/// Temporal anti-aliasing: primary rays jittered inside the pixel, blended over frames.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TaaSettings {
+    /// Off: one ray through each pixel centre, as the frame traced before TAA (aliased edges,
+    /// and each frame exactly repeatable pixel by pixel).
+    pub enabled: bool,
+    /// Share of the new frame once the history is warm (1/blend frames of memory). Lower: smoother
+    /// edges and less noise on a still view, more blur and lag in motion; 0.1 is the common
+    /// choice, 0.05 suits stills.
+    pub blend: f32,
+    /// Half-width of the neighbourhood box the history is clipped to, in standard deviations.
+    /// Lower: less ghosting after motion or a light change, more flicker; 1 to 1.5 is usual.
+    pub clip_sigma: f32,
+}
+
+/// How linear radiance becomes display values.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ToneSettings {
+    /// Multiplier before the curve; raise it for dim scenes.
+    pub exposure: f32,
+    /// Filmic (ACES fit) rolls highlights off; plain clamps them (for side-by-side checks
+    /// with renderers that clamp).
+    pub filmic: bool,
+}
+
+impl Default for ToneSettings {
+    fn default() -> Self {
+        Self {
+            exposure: 1.0,
+            filmic: true,
+        }
+    }
+}
+
+impl Default for FrameSettings {
+    fn default() -> Self {
+        Self::balanced()
+    }
+}
+
+impl FrameSettings {
+    pub fn preset(preset: Preset) -> Self {
+        match preset {
+            Preset::Fast => Self::fast(),
+            Preset::Balanced => Self::balanced(),
+            Preset::Quality => Self::quality(),
+        }
+    }
+
+    pub fn fast() -> Self {
+        Self {
+            area_light_samples: 1,
+            taa: TaaSettings {
+                blend: 0.2,
+                ..Self::balanced().taa
+            },
+            ..Self::balanced()
+        }
+    }
+
+    pub fn balanced() -> Self {
+        Self {
+            area_light_samples: 4,
+            seed: 0,
+            taa: TaaSettings {
+                enabled: true,
+                blend: 0.1,
+                clip_sigma: 1.25,
+            },
+            tone: ToneSettings::default(),
+        }
+    }
+
+    pub fn quality() -> Self {
+        Self {
+            area_light_samples: 8,
+            taa: TaaSettings {
+                blend: 0.05,
+                ..Self::balanced().taa
+            },
+            ..Self::balanced()
+        }
+    }
+
+    /// These settings without TAA: pixel-centre rays, as every frame was traced before TAA.
+    pub fn without_taa(mut self) -> Self {
+        self.taa.enabled = false;
+        self
+    }
+
+    /// Refuses settings that cannot work, naming the field, the value and what is allowed.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        check_range("frame.area_light_samples", self.area_light_samples, 0, 256)?;
+        check_range("frame.taa.blend", self.taa.blend, 0.001, 1.0)?;
+        check_range("frame.taa.clip_sigma", self.taa.clip_sigma, 0.1, 16.0)?;
+        check_range("frame.tone.exposure", self.tone.exposure, 1e-6, 1e6)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,37 @@
+//! The frame's GPU structs (`frame/frame_types.wgsl`): one Rust definition each, checked against
+//! the WGSL by `tests/gpu_structs.rs`.
+
+use bytemuck::{Pod, Zeroable};
+
+use crate::scene::types::GpuCamera;
+
+/// The real-time frame's parameters, written once a frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuFrameParams {
+    pub camera: GpuCamera,
+    pub previous_camera: GpuCamera,
+    pub width: u32,
+    pub height: u32,
+    pub frame_index: u32,
+    /// Emitter samples per pixel per frame for direct light from emissive surfaces.
+    pub area_light_samples: u32,
+    pub seed: u32,
+    /// Frames already in the direct-light running mean; 0 restarts it.
+    pub accumulated_frames: u32,
+    /// Sub-pixel offset of this frame's primary rays, in pixels (zero without TAA).
+    pub jitter: [f32; 2],
+    /// The share of the current frame in the TAA blend once the history is warm; 1: no TAA.
+    pub taa_blend: f32,
+    /// Frames in the TAA history; 0 when it holds nothing usable.
+    pub history_frames: u32,
+    /// Neighbourhood clip box half-width, in standard deviations.
+    pub taa_clip_sigma: f32,
+    pub exposure: f32,
+    /// [`super::constants::TONE_FILMIC`] or [`super::constants::TONE_CLAMP`].
+    pub tone_curve: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
+}
+const _: () = assert!(size_of::<GpuFrameParams>() == 192);

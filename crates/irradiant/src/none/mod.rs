@@ -1,0 +1,69 @@
+//! `none`: no indirect light at all — direct light only, the baseline every technique improves
+//! on.
+
+use std::any::Any;
+
+use irradiant_gpu::{Allocation, Profiler, wgpu};
+use irradiant_scene::Scene;
+
+use crate::RenderError;
+use crate::technique::{
+    Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec,
+};
+
+pub struct NoneKind;
+
+/// The registry entry.
+pub static NONE: NoneKind = NoneKind;
+
+impl TechniqueKind for NoneKind {
+    fn name(&self) -> &'static str {
+        "none"
+    }
+    fn description(&self) -> &'static str {
+        "direct light only"
+    }
+    fn check(&self, spec: &TechniqueSpec) -> Result<Vec<String>, RenderError> {
+        Ok(spec
+            .settings
+            .keys()
+            .map(|k| format!("unknown setting technique.{k} is ignored: 'none' has no settings"))
+            .collect())
+    }
+    fn plan(&self, _spec: &TechniqueSpec, _scene: &Scene) -> Result<Vec<Allocation>, RenderError> {
+        Ok(Vec::new())
+    }
+    fn build(
+        &self,
+        cx: &TechniqueContext,
+        _spec: &TechniqueSpec,
+    ) -> Result<Box<dyn Technique>, RenderError> {
+        Ok(Box::new(NoIndirect {
+            indirect: cx.frame.resources.texture("indirect").clone(),
+        }))
+    }
+}
+
+/// Clears the frame's indirect light each frame.
+pub struct NoIndirect {
+    indirect: wgpu::Texture,
+}
+
+impl Technique for NoIndirect {
+    fn name(&self) -> &'static str {
+        "none"
+    }
+    fn passes(&self) -> TechniquePasses {
+        TechniquePasses::default()
+    }
+    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, _profiler: Option<&mut Profiler>) {
+        encoder.clear_texture(&self.indirect, &wgpu::ImageSubresourceRange::default());
+    }
+    fn invalidate(&mut self) {}
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+}

@@ -1,0 +1,21 @@
+//! The path tracer's GPU struct (`pathtrace/trace.wgsl`), checked against the WGSL by
+//! `tests/gpu_structs.rs`.
+
+use bytemuck::{Pod, Zeroable};
+
+use crate::scene::types::GpuCamera;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuPathTraceParams {
+    pub camera: GpuCamera,
+    pub width: u32,
+    pub height: u32,
+    pub sample_offset: u32,
+    pub samples: u32,
+    pub max_bounces: u32,
+    pub seed: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+}
+const _: () = assert!(size_of::<GpuPathTraceParams>() == 96);

@@ -1,0 +1,37 @@
+// probe_atlas: octahedral probe tiles in an atlas (CPU twins: probes::atlas, probes::octahedral).
+// A tile has `texels` interior texels a side and a 1-texel border, which repeats the texels
+// across the octahedral map's fold so that bilinear lookups are seamless.
+#import octahedral
+
+// Top-left texel of a probe's tile (side `tile` texels, border included) in an atlas.
+fn atlas_tile_origin(probe: u32, tile: u32, probes_per_row: u32) -> vec2<u32> {
+    return vec2<u32>(probe % probes_per_row, probe / probes_per_row) * tile;
+}
+
+// The world direction that interior texel (i, j) of a tile of `texels` interior texels stands for.
+fn texel_direction(texel: vec2<u32>, texels: u32) -> vec3<f32> {
+    let uv = (vec2<f32>(texel) + 0.5) / f32(texels) * 2.0 - 1.0;
+    return oct_decode(uv);
+}
+
+// The tile texel (border included, so interior texels are 1…texels) whose value border
+// texel (x, y) repeats, mirrored as the octahedral map folds.
+fn border_source(x: u32, y: u32, texels: u32) -> vec2<u32> {
+    let last = texels + 1u;
+    let corner_x = select(1u, texels, x == 0u);
+    let corner_y = select(1u, texels, y == 0u);
+    if (x == 0u || x == last) && (y == 0u || y == last) {
+        return vec2<u32>(corner_x, corner_y);
+    }
+    if y == 0u || y == last {
+        return vec2<u32>(last - x, select(texels, 1u, y == 0u));
+    }
+    return vec2<u32>(select(texels, 1u, x == 0u), last - y);
+}
+
+// Position in a probe's tile for direction d, in atlas texels: texel centres at whole numbers,
+// so floor() is the top-left texel of the bilinear footprint.
+fn atlas_tile_coord(probe: u32, texels: u32, probes_per_row: u32, d: vec3<f32>) -> vec2<f32> {
+    let origin = vec2<f32>(atlas_tile_origin(probe, texels + 2u, probes_per_row)) + 1.0;
+    return origin + (oct_encode(d) * 0.5 + 0.5) * f32(texels) - 0.5;
+}

@@ -1,0 +1,14 @@
+//! Constants the scene's Rust and WGSL share, defined once (the shader library serves them as
+//! the module `scene_constants`).
+
+irradiant_gpu::wgsl_constants! {
+    /// `GpuTriangle::flags` bit: the material is alpha-masked and textured, so hits test the
+    /// texture.
+    TRIANGLE_ALPHA_TESTED: u32 = 1;
+    /// `GpuLight::kind` of a point light.
+    LIGHT_POINT: u32 = 0;
+    /// `GpuLight::kind` of a spot light.
+    LIGHT_SPOT: u32 = 1;
+    /// `GpuLight::kind` of a directional light.
+    LIGHT_DIRECTIONAL: u32 = 2;
+}

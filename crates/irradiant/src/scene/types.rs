@@ -1,0 +1,158 @@
+//! The scene's GPU structs (`shaders/types.wgsl`): one Rust definition each, checked against the
+//! WGSL by `tests/gpu_structs.rs`.
+
+use bytemuck::{Pod, Zeroable};
+
+pub use irradiant_bvh::{GpuBvhNode, GpuWideBvhNode};
+
+/// Intersection data in object space: v0 and the two edges (Möller–Trumbore needs no more).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuTriangle {
+    pub v0: [f32; 3],
+    pub material: u32,
+    pub e1: [f32; 3],
+    /// bit 0: [`TRIANGLE_ALPHA_TESTED`]
+    pub flags: u32,
+    pub e2: [f32; 3],
+    pub _pad: u32,
+}
+const _: () = assert!(size_of::<GpuTriangle>() == 48);
+
+/// Shading data: vertex normals (zero length: flat shading) and texture coordinates.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuTriangleShading {
+    pub n0: [f32; 3],
+    pub _pad0: u32,
+    pub n1: [f32; 3],
+    pub _pad1: u32,
+    pub n2: [f32; 3],
+    pub _pad2: u32,
+    pub uv0: [f32; 2],
+    pub uv1: [f32; 2],
+    pub uv2: [f32; 2],
+    pub _pad3: [f32; 2],
+}
+const _: () = assert!(size_of::<GpuTriangleShading>() == 80);
+
+/// Rows of the 3×4 world-to-object, object-to-world and last frame's object-to-world
+/// matrices, and the root of the mesh's BVH.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuInstance {
+    pub world_to_object0: [f32; 4],
+    pub world_to_object1: [f32; 4],
+    pub world_to_object2: [f32; 4],
+    pub object_to_world0: [f32; 4],
+    pub object_to_world1: [f32; 4],
+    pub object_to_world2: [f32; 4],
+    pub previous_object_to_world0: [f32; 4],
+    pub previous_object_to_world1: [f32; 4],
+    pub previous_object_to_world2: [f32; 4],
+    pub blas_root: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
+}
+const _: () = assert!(size_of::<GpuInstance>() == 160);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub base_color: [f32; 4],
+    pub emission: [f32; 3],
+    /// Texture array layer, or -1.
+    pub texture: i32,
+    pub metallic: f32,
+    pub roughness: f32,
+    pub specular: f32,
+    /// Alpha below this is a hole; -1 for opaque materials.
+    pub alpha_cutoff: f32,
+}
+const _: () = assert!(size_of::<GpuMaterial>() == 48);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuLight {
+    pub position: [f32; 3],
+    /// [`LIGHT_POINT`], [`LIGHT_SPOT`] or [`LIGHT_DIRECTIONAL`]
+    pub kind: u32,
+    /// The direction light travels.
+    pub direction: [f32; 3],
+    pub cos_inner: f32,
+    /// Colour × intensity, zero when off.
+    pub power: [f32; 3],
+    pub cos_outer: f32,
+}
+const _: () = assert!(size_of::<GpuLight>() == 48);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuEmitter {
+    pub triangle: u32,
+    pub instance: u32,
+    /// Cumulative selection probability up to and including this emitter.
+    pub cdf: f32,
+    pub _pad: u32,
+}
+const _: () = assert!(size_of::<GpuEmitter>() == 16);
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuSceneInfo {
+    pub sky: [f32; 3],
+    pub light_count: u32,
+    pub emitter_count: u32,
+    /// Σ luminance(emission) × world area over the emitters.
+    pub emissive_power: f32,
+    pub tlas_root: u32,
+    pub instance_count: u32,
+}
+const _: () = assert!(size_of::<GpuSceneInfo>() == 32);
+
+/// A pinhole camera as an orthonormal frame; image y goes down.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuCamera {
+    pub position: [f32; 3],
+    pub tan_half_fov_y: f32,
+    pub right: [f32; 3],
+    pub aspect: f32,
+    pub up: [f32; 3],
+    pub _pad0: f32,
+    pub forward: [f32; 3],
+    pub _pad1: f32,
+}
+const _: () = assert!(size_of::<GpuCamera>() == 64);
+
+impl GpuCamera {
+    pub fn new(camera: &irradiant_scene::Camera, width: u32, height: u32) -> Self {
+        let forward = (camera.target - camera.position).normalize();
+        let right = forward.cross(camera.up).normalize_or(glam::Vec3::X);
+        let up = right.cross(forward);
+        Self {
+            position: camera.position.into(),
+            tan_half_fov_y: (camera.fov_y_degrees.to_radians() * 0.5).tan(),
+            right: right.into(),
+            aspect: width as f32 / height as f32,
+            up: up.into(),
+            _pad0: 0.0,
+            forward: forward.into(),
+            _pad1: 0.0,
+        }
+    }
+
+    /// The primary ray's direction through a point of a `width`×`height` image (in pixels,
+    /// y down): the CPU twin of `camera_ray_dir` in shaders/camera.wgsl.
+    pub fn ray_dir(&self, pixel: glam::Vec2, width: u32, height: u32) -> glam::Vec3 {
+        let ndc = glam::Vec2::new(
+            pixel.x / width as f32 * 2.0 - 1.0,
+            1.0 - pixel.y / height as f32 * 2.0,
+        );
+        (glam::Vec3::from(self.forward)
+            + glam::Vec3::from(self.right) * (ndc.x * self.tan_half_fov_y * self.aspect)
+            + glam::Vec3::from(self.up) * (ndc.y * self.tan_half_fov_y))
+            .normalize()
+    }
+}

@@ -1,0 +1,325 @@
+//! The session: the one frame loop. It owns the GPU scene, the frame, the technique, the camera
+//! and the clock; `render`, `compare`, `bench`, the tests and the viewer all drive frames
+//! through it. Every size is checked before anything is allocated, and one call,
+//! [`Session::invalidate`], resets every kind of history (house rule 7).
+
+use std::sync::Arc;
+
+use irradiant_gpu::{Allocation, GpuContext, PassTiming, Profiler, wgpu};
+use irradiant_scene::{Camera, Pose, Scene};
+
+use crate::RenderError;
+use crate::frame::{Frame, FrameNeeds, FrameSettings, GBufferSample, Image, SceneChange};
+use crate::scene::{GpuScene, GpuSceneSettings};
+use crate::technique::{Technique, TechniqueContext, TechniqueSpec};
+
+/// How a session starts.
+#[derive(Clone, Debug)]
+pub struct SessionSettings {
+    /// Image width and height in pixels.
+    pub size: (u32, u32),
+    pub frame: FrameSettings,
+    pub technique: TechniqueSpec,
+    pub scene: GpuSceneSettings,
+    /// Animation time, in seconds, of the first frame.
+    pub time: f32,
+}
+
+impl Default for SessionSettings {
+    fn default() -> Self {
+        Self {
+            size: (640, 480),
+            frame: FrameSettings::default(),
+            technique: TechniqueSpec::default(),
+            scene: GpuSceneSettings::default(),
+            time: 0.0,
+        }
+    }
+}
+
+/// Pass timings a frame can hold (the frame's and the technique's passes).
+const PROFILED_PASSES: u32 = 64;
+
+pub struct Session {
+    ctx: Arc<GpuContext>,
+    scene: Scene,
+    gpu_scene: GpuScene,
+    frame: Frame,
+    technique: Box<dyn Technique>,
+    spec: TechniqueSpec,
+    camera: Camera,
+    time: f32,
+    pose: Pose,
+    show_probes: bool,
+    profiler: Profiler,
+    warnings: Vec<String>,
+}
+
+impl Session {
+    /// Every GPU allocation the frame and the technique would make, before any is made.
+    pub fn plan(scene: &Scene, settings: &SessionSettings) -> Result<Vec<Allocation>, RenderError> {
+        let kind = settings.technique.kind()?;
+        let (w, h) = settings.size;
+        let mut plan = Frame::plan(w, h, kind.frame_needs(&settings.technique));
+        plan.extend(kind.plan(&settings.technique, scene)?);
+        Ok(plan)
+    }
+
+    /// Checks the settings and every size, then builds the scene, the frame and the technique.
+    pub fn new(
+        ctx: Arc<GpuContext>,
+        scene: Scene,
+        settings: SessionSettings,
+    ) -> Result<Self, RenderError> {
+        let kind = settings.technique.kind()?;
+        let mut warnings = kind.check(&settings.technique)?;
+        settings.frame.validate()?;
+        ctx.check_allocations(&Self::plan(&scene, &settings)?)?;
+        let pose = scene.pose_at(settings.time);
+        let mut gpu_scene = GpuScene::new(&ctx, &scene, &settings.scene)?;
+        gpu_scene.update(&ctx, &pose);
+        let needs = kind.frame_needs(&settings.technique);
+        let frame = Frame::new(
+            &ctx,
+            &gpu_scene,
+            settings.size,
+            settings.frame.clone(),
+            needs,
+        )?;
+        let technique = kind.build(
+            &TechniqueContext {
+                ctx: &ctx,
+                scene: &scene,
+                gpu_scene: &gpu_scene,
+                frame: &frame,
+            },
+            &settings.technique,
+        )?;
+        warnings.dedup();
+        let profiler = Profiler::new(&ctx, PROFILED_PASSES);
+        Ok(Self {
+            camera: scene.camera.clone(),
+            ctx,
+            scene,
+            gpu_scene,
+            frame,
+            technique,
+            spec: settings.technique,
+            time: settings.time,
+            pose,
+            show_probes: false,
+            profiler,
+            warnings,
+        })
+    }
+
+    pub fn ctx(&self) -> &GpuContext {
+        &self.ctx
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    pub fn gpu_scene(&self) -> &GpuScene {
+        &self.gpu_scene
+    }
+
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    pub fn technique(&self) -> &dyn Technique {
+        self.technique.as_ref()
+    }
+
+    pub fn technique_mut(&mut self) -> &mut dyn Technique {
+        self.technique.as_mut()
+    }
+
+    /// The technique as its concrete type (tests and tools that read its state).
+    pub fn technique_as<T: Technique>(&self) -> Option<&T> {
+        self.technique.as_any().downcast_ref()
+    }
+
+    pub fn technique_as_mut<T: Technique>(&mut self) -> Option<&mut T> {
+        self.technique.as_any_mut().downcast_mut()
+    }
+
+    pub fn spec(&self) -> &TechniqueSpec {
+        &self.spec
+    }
+
+    /// Warnings from the settings (unknown keys), for the user to see.
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// Moves the view; the frame notices the move (its running means restart, TAA reprojects).
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.camera = camera;
+    }
+
+    /// Animation time, in seconds.
+    pub fn time(&self) -> f32 {
+        self.time
+    }
+
+    /// Moves the scene to its pose at `time`: uploads it, restarts the frame's direct-light mean
+    /// and tells the technique what changed — the one path by which a change reaches everything
+    /// it affects.
+    pub fn seek(&mut self, time: f32) {
+        self.time = time;
+        let next = self.scene.pose_at(time);
+        if next == self.pose {
+            return;
+        }
+        let change = SceneChange::between(&self.pose, &next);
+        self.gpu_scene.update(&self.ctx, &next);
+        self.frame.restart_direct();
+        self.technique.scene_changed(&SceneChange {
+            dynamic_bounds: self.gpu_scene.dynamic_bounds(),
+            ..change
+        });
+        self.pose = next;
+    }
+
+    /// [`Self::seek`] `dt` seconds on.
+    pub fn advance(&mut self, dt: f32) {
+        self.seek(self.time + dt);
+    }
+
+    /// Draws the technique's debug overlay (DDGI: the probes) over the image.
+    pub fn set_show_probes(&mut self, show: bool) {
+        self.show_probes = show;
+    }
+
+    /// Forgets every kind of history — the frame's running means, TAA's history, the
+    /// technique's probes — so that the next frame starts from scratch.
+    pub fn invalidate(&mut self) {
+        self.frame.invalidate();
+        self.technique.invalidate();
+    }
+
+    /// Changes the frame's settings between frames (all of them can change live).
+    pub fn set_frame_settings(&mut self, settings: FrameSettings) -> Result<(), RenderError> {
+        self.frame.set_settings(settings)
+    }
+
+    /// Changes the technique: live where only live settings differ, otherwise rebuilt (same
+    /// technique with new sizes, or another technique).
+    pub fn set_technique(&mut self, spec: TechniqueSpec) -> Result<(), RenderError> {
+        let kind = spec.kind()?;
+        self.warnings = kind.check(&spec)?;
+        if spec.name == self.spec.name && self.technique.reconfigure(&self.ctx, &spec)? {
+            self.spec = spec;
+            return Ok(());
+        }
+        let needs = kind.frame_needs(&spec);
+        let mut plan = kind.plan(&spec, &self.scene)?;
+        if needs != self.frame.resources.needs {
+            let (w, h) = self.frame.size();
+            plan.extend(Frame::plan(w, h, needs));
+        }
+        self.ctx.check_allocations(&plan)?;
+        if needs != self.frame.resources.needs {
+            self.frame = Frame::new(
+                &self.ctx,
+                &self.gpu_scene,
+                self.frame.size(),
+                self.frame.settings().clone(),
+                needs,
+            )?;
+        }
+        self.technique = kind.build(
+            &TechniqueContext {
+                ctx: &self.ctx,
+                scene: &self.scene,
+                gpu_scene: &self.gpu_scene,
+                frame: &self.frame,
+            },
+            &spec,
+        )?;
+        self.spec = spec;
+        self.frame.invalidate();
+        Ok(())
+    }
+
+    /// Renders one frame.
+    pub fn render(&mut self) -> Result<(), RenderError> {
+        self.record_and_submit(false)?;
+        self.ctx.check("rendering a frame")?;
+        Ok(())
+    }
+
+    /// Renders one frame with every pass timed (GPU timestamps; empty where the adapter has
+    /// none), in the order the passes ran.
+    pub fn render_profiled(&mut self) -> Result<Vec<PassTiming>, RenderError> {
+        self.record_and_submit(true)?;
+        self.ctx.wait()?;
+        Ok(self.profiler.read(&self.ctx)?)
+    }
+
+    fn record_and_submit(&mut self, profiled: bool) -> Result<(), RenderError> {
+        self.frame.prepare(&self.ctx, &self.camera);
+        self.technique.prepare(&self.ctx);
+        let mut encoder = self
+            .ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("frame"),
+            });
+        let mut profiler = (profiled && self.profiler.enabled()).then_some(&mut self.profiler);
+        self.frame
+            .record_inputs(&mut encoder, profiler.as_deref_mut());
+        self.technique.update(&mut encoder, profiler.as_deref_mut());
+        self.technique
+            .resolve(&mut encoder, profiler.as_deref_mut());
+        self.frame
+            .record_compose(&mut encoder, profiler.as_deref_mut());
+        if self.show_probes {
+            self.technique.visualize(&mut encoder);
+        }
+        self.frame
+            .record_output(&mut encoder, profiler.as_deref_mut());
+        if let Some(p) = profiler {
+            p.resolve(&mut encoder);
+        }
+        self.ctx.queue.submit([encoder.finish()]);
+        self.frame.finish();
+        Ok(())
+    }
+
+    /// The last frame's final linear radiance.
+    pub fn image(&self) -> Result<Image, RenderError> {
+        self.frame.image(&self.ctx)
+    }
+
+    /// The last frame's direct light (running mean).
+    pub fn direct(&self) -> Result<Image, RenderError> {
+        self.frame.read(&self.ctx, "direct")
+    }
+
+    /// The last frame's indirect light, as the technique resolved it.
+    pub fn indirect(&self) -> Result<Image, RenderError> {
+        self.frame.read(&self.ctx, "indirect")
+    }
+
+    pub fn gbuffer(&self) -> Result<Vec<GBufferSample>, RenderError> {
+        self.frame.read_gbuffer(&self.ctx)
+    }
+
+    /// The last frame tonemapped: sRGB RGBA8, rows top to bottom.
+    pub fn tonemapped(&self) -> Result<Vec<u8>, RenderError> {
+        self.frame.tonemapped(&self.ctx)
+    }
+
+    /// The frame's needs (what the technique asked of it).
+    pub fn frame_needs(&self) -> FrameNeeds {
+        self.frame.resources.needs
+    }
+}

@@ -1,0 +1,271 @@
+//! Settings as files: presets, the overlay of a user's table on a preset (unknown keys are
+//! warnings, not silence), lossless round trips, and errors that name the field, the value and
+//! what is allowed.
+//!
+//! A settings file (and a scene manifest) may carry these tables:
+//!
+//! ```toml
+//! [frame]                 # FrameSettings, over the preset
+//! area_light_samples = 4
+//! [frame.taa]
+//! blend = 0.1
+//!
+//! [technique]             # TechniqueSpec: a registered technique, a preset, its own keys
+//! name = "ddgi"
+//! preset = "balanced"
+//! [technique.update]
+//! hysteresis = 0.97
+//! ```
+
+use std::fmt::Display;
+use std::path::Path;
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use crate::frame::FrameSettings;
+use crate::technique::TechniqueSpec;
+
+/// The three named points of every settings type's trade-offs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    /// Cheapest settings that still look right: previews, large scenes, slow adapters.
+    Fast,
+    #[default]
+    Balanced,
+    /// Less noise and lag for more time: stills, comparisons, fast adapters.
+    Quality,
+}
+
+impl Preset {
+    pub const ALL: [Preset; 3] = [Preset::Fast, Preset::Balanced, Preset::Quality];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Fast => "fast",
+            Preset::Balanced => "balanced",
+            Preset::Quality => "quality",
+        }
+    }
+
+    pub fn parse(text: &str) -> Result<Self, SettingsError> {
+        Self::ALL
+            .into_iter()
+            .find(|p| p.name() == text)
+            .ok_or_else(|| SettingsError::Invalid {
+                field: "preset".into(),
+                value: text.into(),
+                allowed: "fast, balanced or quality".into(),
+            })
+    }
+}
+
+/// A setting that cannot be used. Every message names the field, the value and the fix.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum SettingsError {
+    #[error("setting {field} = {value} is not allowed: use {allowed}")]
+    Invalid {
+        field: String,
+        value: String,
+        allowed: String,
+    },
+    #[error("{source_name}: {message}")]
+    Malformed {
+        source_name: String,
+        message: String,
+    },
+}
+
+impl SettingsError {
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        Self::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+}
+
+/// Refuses `value` outside `lo..=hi` (and NaN), naming `field`.
+pub fn check_range<T: PartialOrd + Display + Copy>(
+    field: &str,
+    value: T,
+    lo: T,
+    hi: T,
+) -> Result<(), SettingsError> {
+    if value >= lo && value <= hi {
+        Ok(())
+    } else {
+        Err(SettingsError::invalid(
+            field,
+            value,
+            format!("a value from {lo} to {hi}"),
+        ))
+    }
+}
+
+/// `base` with the keys of `table` laid over it, field by field (nested tables merge). A key
+/// the settings type does not have is a warning naming it and the known keys at that level;
+/// a value of the wrong type is an error naming the field.
+pub fn overlay<T: Serialize + DeserializeOwned>(
+    base: &T,
+    table: &toml::Table,
+    prefix: &str,
+    warnings: &mut Vec<String>,
+) -> Result<T, SettingsError> {
+    let mut merged = toml::Table::try_from(base).map_err(|e| SettingsError::Malformed {
+        source_name: prefix.into(),
+        message: e.to_string(),
+    })?;
+    merge(&mut merged, table, prefix, warnings);
+    T::deserialize(toml::Value::Table(merged)).map_err(|e| SettingsError::Malformed {
+        source_name: prefix.into(),
+        message: format!("{e} (check the types of the [{prefix}] settings)"),
+    })
+}
+
+fn merge(into: &mut toml::Table, from: &toml::Table, prefix: &str, warnings: &mut Vec<String>) {
+    for (key, value) in from {
+        let path = format!("{prefix}.{key}");
+        match (into.get_mut(key), value) {
+            (None, _) => {
+                let known: Vec<&str> = into.keys().map(String::as_str).collect();
+                warnings.push(format!(
+                    "unknown setting {path} is ignored (known at this level: {})",
+                    known.join(", ")
+                ));
+            }
+            (Some(toml::Value::Table(inner)), toml::Value::Table(value)) => {
+                merge(inner, value, &path, warnings)
+            }
+            (Some(slot), value) => *slot = value.clone(),
+        }
+    }
+}
+
+/// What a settings file (or a manifest) sets: the frame and the technique, each optional.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SettingsFile {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frame: Option<toml::Table>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub technique: Option<TechniqueSpec>,
+}
+
+impl SettingsFile {
+    /// Reads a settings file; unknown top-level tables are warnings.
+    pub fn read(path: &Path, warnings: &mut Vec<String>) -> Result<Self, SettingsError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SettingsError::Malformed {
+            source_name: path.display().to_string(),
+            message: format!("cannot read it: {e}"),
+        })?;
+        Self::parse(&text, &path.display().to_string(), warnings)
+    }
+
+    pub fn parse(
+        text: &str,
+        source_name: &str,
+        warnings: &mut Vec<String>,
+    ) -> Result<Self, SettingsError> {
+        let deserializer =
+            toml::Deserializer::parse(text).map_err(|e| SettingsError::Malformed {
+                source_name: source_name.into(),
+                message: e.to_string(),
+            })?;
+        serde_ignored::deserialize(deserializer, |path| {
+            warnings.push(format!("{source_name}: unknown setting {path} is ignored"))
+        })
+        .map_err(|e: toml::de::Error| SettingsError::Malformed {
+            source_name: source_name.into(),
+            message: e.to_string(),
+        })
+    }
+
+    /// The frame settings: the preset's, with this file's [frame] table over them.
+    pub fn frame_settings(
+        &self,
+        preset: Preset,
+        warnings: &mut Vec<String>,
+    ) -> Result<FrameSettings, SettingsError> {
+        let base = FrameSettings::preset(preset);
+        let settings = match &self.frame {
+            Some(table) => overlay(&base, table, "frame", warnings)?,
+            None => base,
+        };
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).expect("settings serialise")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overlay_sets_known_fields_and_warns_about_unknown_ones() {
+        let table: toml::Table =
+            toml::from_str("area_light_samples = 2\nbogus = 1\n[taa]\nblend = 0.5\ncolour = 3\n")
+                .unwrap();
+        let mut warnings = Vec::new();
+        let s = overlay(&FrameSettings::balanced(), &table, "frame", &mut warnings).unwrap();
+        assert_eq!(s.area_light_samples, 2);
+        assert_eq!(s.taa.blend, 0.5);
+        assert_eq!(s.taa.clip_sigma, FrameSettings::balanced().taa.clip_sigma);
+        assert_eq!(warnings.len(), 2, "{warnings:?}");
+        assert!(warnings[0].contains("frame.bogus") && warnings[0].contains("area_light_samples"));
+        assert!(warnings[1].contains("frame.taa.colour"));
+    }
+
+    #[test]
+    fn wrong_types_and_ranges_name_the_field() {
+        let table: toml::Table = toml::from_str("area_light_samples = \"many\"").unwrap();
+        let e = overlay(&FrameSettings::balanced(), &table, "frame", &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("frame"), "{e}");
+        let mut s = FrameSettings::balanced();
+        s.taa.blend = 0.0;
+        let e = s.validate().unwrap_err().to_string();
+        assert!(
+            e.contains("frame.taa.blend = 0") && e.contains("0.001 to 1"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn settings_files_round_trip_without_loss() {
+        let text = "[frame]\narea_light_samples = 2\n\n[frame.taa]\nenabled = false\n\n[technique]\nname = \"ddgi\"\npreset = \"fast\"\n\n[technique.update]\nhysteresis = 0.9\n";
+        let mut warnings = Vec::new();
+        let file = SettingsFile::parse(text, "test.toml", &mut warnings).unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let again = SettingsFile::parse(&file.to_toml(), "again", &mut warnings).unwrap();
+        assert_eq!(file, again);
+        let frame = file
+            .frame_settings(Preset::Balanced, &mut warnings)
+            .unwrap();
+        assert!(!frame.taa.enabled);
+        // The full settings of every preset round-trip through TOML too.
+        for preset in Preset::ALL {
+            let s = FrameSettings::preset(preset);
+            let table = toml::Table::try_from(&s).unwrap();
+            assert_eq!(
+                overlay(&FrameSettings::fast(), &table, "frame", &mut warnings).unwrap(),
+                s
+            );
+        }
+        assert!(warnings.is_empty());
+        let mut warnings = Vec::new();
+        SettingsFile::parse("[frames]\nx = 1\n", "typo.toml", &mut warnings).unwrap();
+        assert!(
+            warnings[0].contains("typo.toml") && warnings[0].contains("frames"),
+            "{warnings:?}"
+        );
+    }
+}

@@ -1,0 +1,197 @@
+//! Techniques and their registry.
+//!
+//! A technique turns the frame's G-buffer into indirect light: the session calls
+//! [`Technique::update`] (its per-frame work) and [`Technique::resolve`] (indirect light into
+//! the frame's `indirect`) between the frame's inputs and its compose pass. It is built from a
+//! [`TechniqueSpec`] — a registered name, a preset and its own settings, as a settings file or
+//! a manifest writes them — already bound to the frame: there is no separate call to forget.
+//!
+//! Adding a technique touches its own folder and one line of [`REGISTRY`]; `render
+//! --technique`, `compare --techniques`, `bench` and the tests find it there (the checklist is
+//! in docs/architecture.md).
+
+use std::any::Any;
+
+use irradiant_gpu::{Allocation, GpuContext, Profiler, wgpu};
+use irradiant_scene::Scene;
+use serde::{Deserialize, Serialize};
+
+use crate::RenderError;
+use crate::frame::{Frame, FrameNeeds, SceneChange};
+use crate::scene::GpuScene;
+use crate::settings::Preset;
+
+/// Every real-time technique, in the order tools list them. One line each.
+pub static REGISTRY: &[&dyn TechniqueKind] = &[
+    &crate::none::NONE,
+    &crate::ddgi::CLASSIC_PROBES,
+    &crate::ddgi::DDGI,
+];
+
+/// A registered technique by name.
+pub fn find(name: &str) -> Result<&'static dyn TechniqueKind, RenderError> {
+    REGISTRY
+        .iter()
+        .copied()
+        .find(|k| k.name() == name)
+        .ok_or_else(|| {
+            let known: Vec<String> = REGISTRY
+                .iter()
+                .map(|k| format!("{} ({})", k.name(), k.description()))
+                .collect();
+            RenderError::Settings(format!(
+                "unknown technique '{name}': use {}",
+                known.join(", ")
+            ))
+        })
+}
+
+/// Every registered name, for command-line value lists.
+pub fn names() -> Vec<&'static str> {
+    REGISTRY.iter().map(|k| k.name()).collect()
+}
+
+/// A technique as settings describe it: a registered name, a preset, and the technique's own
+/// keys over the preset (tables such as `[technique.update]`; each technique documents its
+/// keys on its settings type). Round-trips through TOML without loss.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TechniqueSpec {
+    pub name: String,
+    #[serde(default)]
+    pub preset: Preset,
+    /// The technique's own settings over the preset; unknown keys are warned about when the
+    /// technique reads them.
+    #[serde(flatten)]
+    pub settings: toml::Table,
+}
+
+impl TechniqueSpec {
+    /// A technique at a preset, with no settings of its own.
+    pub fn new(name: &str, preset: Preset) -> Self {
+        Self {
+            name: name.into(),
+            preset,
+            settings: toml::Table::new(),
+        }
+    }
+
+    /// A technique with every setting spelled out (what a typed settings struct serialises to).
+    pub fn with_settings<T: Serialize>(name: &str, settings: &T) -> Self {
+        Self {
+            name: name.into(),
+            preset: Preset::Balanced,
+            settings: toml::Table::try_from(settings).expect("settings serialise to a table"),
+        }
+    }
+
+    pub fn kind(&self) -> Result<&'static dyn TechniqueKind, RenderError> {
+        find(&self.name)
+    }
+}
+
+impl Default for TechniqueSpec {
+    fn default() -> Self {
+        Self::new("ddgi", Preset::Balanced)
+    }
+}
+
+/// What a technique is built from.
+pub struct TechniqueContext<'a> {
+    pub ctx: &'a GpuContext,
+    pub scene: &'a Scene,
+    pub gpu_scene: &'a GpuScene,
+    pub frame: &'a Frame,
+}
+
+/// A registered technique: its name, what it needs and how to build it.
+pub trait TechniqueKind: Sync {
+    /// The registry name (`ddgi`), also the label prefix of its passes.
+    fn name(&self) -> &'static str;
+    /// One line for tool listings.
+    fn description(&self) -> &'static str;
+    /// Parses and validates the spec's settings, returning the warnings (unknown keys): what
+    /// tools call before any GPU work, so that a settings error comes first.
+    fn check(&self, spec: &TechniqueSpec) -> Result<Vec<String>, RenderError>;
+    /// What it needs of the frame beyond the G-buffer and the light buffers.
+    fn frame_needs(&self, _spec: &TechniqueSpec) -> FrameNeeds {
+        FrameNeeds::default()
+    }
+    /// Every GPU allocation it would make for this scene, before making any.
+    fn plan(&self, spec: &TechniqueSpec, scene: &Scene) -> Result<Vec<Allocation>, RenderError>;
+    /// Builds it, bound to the frame.
+    fn build(
+        &self,
+        cx: &TechniqueContext,
+        spec: &TechniqueSpec,
+    ) -> Result<Box<dyn Technique>, RenderError>;
+}
+
+/// The pass labels a technique records, in order: its update's and its resolve's.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TechniquePasses {
+    pub update: Vec<&'static str>,
+    pub resolve: Vec<&'static str>,
+}
+
+/// A figure a technique reports about its last frame (probes updating, rays traced, …).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counter {
+    pub name: &'static str,
+    pub value: f64,
+}
+
+/// A built technique, bound to the frame it was built for.
+pub trait Technique: Any {
+    /// The registry name it was built from.
+    fn name(&self) -> &'static str;
+    /// The labels of the passes it records (bench groups timings by them).
+    fn passes(&self) -> TechniquePasses;
+    /// Uploads this frame's parameters (before the frame's commands are submitted).
+    fn prepare(&mut self, _ctx: &GpuContext) {}
+    /// Records the per-frame update (DDGI: trace, shade, blend; nothing for a baked technique).
+    fn update(&mut self, _encoder: &mut wgpu::CommandEncoder, _profiler: Option<&mut Profiler>) {}
+    /// Records the resolve: indirect light into the frame's `indirect`.
+    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>);
+    /// Records a debug overlay into the frame's `radiance` (after compose).
+    fn visualize(&self, _encoder: &mut wgpu::CommandEncoder) {}
+    /// Forgets all history (the next frame starts from scratch).
+    fn invalidate(&mut self);
+    /// Told when the scene changes between frames, so that it can adapt.
+    fn scene_changed(&mut self, _change: &SceneChange) {}
+    /// Applies new settings between frames if only settings that can change live differ;
+    /// returns false when they need a rebuild (the session then builds it anew).
+    fn reconfigure(
+        &mut self,
+        _ctx: &GpuContext,
+        _spec: &TechniqueSpec,
+    ) -> Result<bool, RenderError> {
+        Ok(false)
+    }
+    /// Figures about the last frame, read back from the GPU where needed.
+    fn counters(&self, _ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
+        Ok(Vec::new())
+    }
+    fn as_any(&self) -> &dyn Any;
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn registry_names_are_unique_and_specs_round_trip() {
+        let names = names();
+        for (i, a) in names.iter().enumerate() {
+            assert!(!names[i + 1..].contains(a), "{a} registered twice");
+        }
+        let spec: TechniqueSpec =
+            toml::from_str("name = \"ddgi\"\npreset = \"fast\"\n[update]\nhysteresis = 0.9\n")
+                .unwrap();
+        assert_eq!(spec.preset, Preset::Fast);
+        let again: TechniqueSpec = toml::from_str(&toml::to_string(&spec).unwrap()).unwrap();
+        assert_eq!(spec, again);
+        let e = find("magic").err().unwrap().to_string();
+        assert!(e.contains("'magic'") && e.contains("ddgi"), "{e}");
+    }
+}
