@@ -8,6 +8,8 @@ rm -rf .dev && mkdir -p .dev/repo .dev/shared/scenes
 cp target/release/irradiant .dev/
 cp -r scenes .dev/repo/
 cp -r ../shared/scenes/sponza-dabrovic ../shared/scenes/sibenik ../shared/scenes/cornell-box .dev/shared/scenes/
-cp tools/device/setup.sh tools/device/bench.sh tools/device/reports.sh tools/device/ddgi_speed.sh .dev/
+cp tools/device/*.sh .dev/
+# The binary before a change, for like-for-like measurements (tools/device/platform.sh).
+[ -x .dev-before/irradiant ] && cp .dev-before/irradiant .dev/before
 mkdir -p .dev/repo/tools && cp tools/reports.sh .dev/repo/tools/
 du -sh .dev

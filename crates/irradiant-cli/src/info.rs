@@ -42,6 +42,14 @@ pub fn run(choice: &AdapterChoice) -> Result<(), CliError> {
         "  workgroup size x        {}",
         i.max_compute_workgroup_size_x
     );
+    println!(
+        "  workgroups/dimension    {}",
+        i.max_compute_workgroups_per_dimension
+    );
+    println!(
+        "  device memory           {}",
+        i.memory.map_or("not reported".into(), irradiant_gpu::bytes)
+    );
     println!("  hardware ray tracing    not used (Irradiant traces rays in compute shaders)");
     Ok(())
 }

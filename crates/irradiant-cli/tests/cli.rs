@@ -399,3 +399,88 @@ fn compare_follows_an_animation_and_plots_it() {
         "an error plot and a flicker plot"
     );
 }
+
+/// Mean of each of `bands`×`bands` blocks of an RGB image (rows of blocks top to bottom).
+fn block_means(image: &image::RgbImage, bands: u32) -> Vec<f64> {
+    let (w, h) = image.dimensions();
+    let mut means = Vec::new();
+    for by in 0..bands {
+        for bx in 0..bands {
+            let (x0, x1) = (bx * w / bands, (bx + 1) * w / bands);
+            let (y0, y1) = (by * h / bands, (by + 1) * h / bands);
+            let mut sum = 0u64;
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    sum += image
+                        .get_pixel(x, y)
+                        .0
+                        .iter()
+                        .map(|&c| c as u64)
+                        .sum::<u64>();
+                }
+            }
+            means.push(sum as f64 / ((x1 - x0) * (y1 - y0) * 3) as f64);
+        }
+    }
+    means
+}
+
+/// Issue 14: images past 4.2 megapixels (65 535 workgroups × 64 pixels, where one-dimensional
+/// dispatches used to stop) render completely with the path tracer and real-time techniques:
+/// each block of the large image looks like the same block of a small render of the view.
+#[test]
+fn four_k_and_eight_k_images_render_completely() {
+    let dir = scratch("large");
+    for technique in ["path", "none", "ddgi"] {
+        let mut images = Vec::new();
+        for (w, h) in [(192u32, 108u32), (3840, 2160), (7680, 4320)] {
+            let out = dir.join(format!("{technique}-{w}.png"));
+            let size = format!("{w}x{h}");
+            // Cheap settings: one sample of one bounce, one frame (lavapipe takes about 40 s a
+            // frame at 8K on two cores).
+            let args = [
+                "render",
+                "--technique",
+                technique,
+                "--size",
+                &size,
+                "--spp",
+                "1",
+                "--max-bounces",
+                "1",
+                "--frames",
+                "1",
+                "--preset",
+                "fast",
+                "--out",
+                out.to_str().unwrap(),
+            ];
+            let (ok, _, stderr) = irradiant(&args);
+            if !ok
+                && stderr.contains("no GPU adapter")
+                && std::env::var("CI").as_deref() != Ok("true")
+            {
+                eprintln!("SKIPPED: no GPU adapter");
+                return;
+            }
+            assert!(ok, "irradiant {args:?}: {stderr}");
+            let image = image::open(&out).unwrap().to_rgb8();
+            assert_eq!(image.dimensions(), (w, h), "{technique} at {size}");
+            std::fs::remove_file(&out).unwrap();
+            images.push((size, block_means(&image, 8)));
+        }
+        let (_, small) = &images[0];
+        for (size, large) in &images[1..] {
+            for (i, (a, b)) in small.iter().zip(large).enumerate() {
+                // Bound: the small render's one noisy sample a pixel against the large one's
+                // average; an unwritten block (black) or a shifted one is off by far more.
+                assert!(
+                    (a - b).abs() <= 0.25 * a.max(*b) + 4.0,
+                    "{technique} at {size}: block {i} (row {}, column {}) has mean {b:.1}, the small render {a:.1}",
+                    i / 8,
+                    i % 8
+                );
+            }
+        }
+    }
+}

@@ -247,7 +247,13 @@ impl GpuContext {
             max_compute_workgroup_size_x: limits.max_compute_workgroup_size_x,
             max_storage_buffers_per_shader_stage: limits.max_storage_buffers_per_shader_stage,
             max_compute_workgroups_per_dimension: limits.max_compute_workgroups_per_dimension,
-            memory: device_local_memory(&adapter),
+            memory: if adapter_info.device_type == wgpu::DeviceType::Cpu {
+                // A software adapter's memory is the machine's; the heap it reports is nominal
+                // (lavapipe reports 2 GiB and allocates far more).
+                system_memory()
+            } else {
+                device_local_memory(&adapter)
+            },
         };
         Ok(Self {
             instance,
@@ -320,4 +326,12 @@ fn device_local_memory(adapter: &Adapter) -> Option<u64> {
             .map(|h| h.size)
             .max()
     }
+}
+
+/// The machine's physical memory (Linux: MemTotal of /proc/meminfo).
+fn system_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }

@@ -12,7 +12,7 @@
 
 use std::any::Any;
 
-use irradiant_gpu::{Allocation, GpuContext, Profiler, wgpu};
+use irradiant_gpu::{Allocation, GpuContext, Profiler, Workgroups, wgpu};
 use irradiant_scene::Scene;
 use serde::{Deserialize, Serialize};
 
@@ -118,6 +118,14 @@ pub trait TechniqueKind: Sync {
     }
     /// Every GPU allocation it would make for this scene, before making any.
     fn plan(&self, spec: &TechniqueSpec, scene: &Scene) -> Result<Vec<Allocation>, RenderError>;
+    /// Every dispatch it would record for this scene at this image size, with its label
+    /// (the test that every pass fits the adapter at the largest sizes reads these).
+    fn dispatches(
+        &self,
+        spec: &TechniqueSpec,
+        scene: &Scene,
+        size: (u32, u32),
+    ) -> Result<Vec<(&'static str, Workgroups)>, RenderError>;
     /// Builds it, bound to the frame.
     fn build(
         &self,

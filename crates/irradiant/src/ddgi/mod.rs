@@ -25,7 +25,7 @@ pub use volume::{Atlases, DdgiDispatches, DdgiVolume, ProbeStateCounts, VolumePl
 
 use std::any::Any;
 
-use irradiant_gpu::{Allocation, GpuContext, Profiler, wgpu};
+use irradiant_gpu::{Allocation, GpuContext, Profiler, Workgroups, wgpu};
 use irradiant_scene::{ProbeVolumeDesc, Scene};
 
 use crate::RenderError;
@@ -98,6 +98,20 @@ impl TechniqueKind for DdgiKind {
         Ok(volume_descs(scene, &settings)
             .iter()
             .flat_map(|desc| resources::plan(&crate::probes::ProbeGrid::new(desc), &settings))
+            .collect())
+    }
+    fn dispatches(
+        &self,
+        spec: &TechniqueSpec,
+        scene: &Scene,
+        size: (u32, u32),
+    ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
+        let settings = self.settings(spec, &mut Vec::new())?;
+        Ok(volume_descs(scene, &settings)
+            .iter()
+            .flat_map(|desc| {
+                DdgiDispatches::new(&crate::probes::ProbeGrid::new(desc), &settings, size).all()
+            })
             .collect())
     }
     fn build(

@@ -234,6 +234,30 @@ impl Frame {
         self.camera = camera.clone();
     }
 
+    /// Every dispatch a frame of this size records, with its label, in order: one function
+    /// for the recording and for the test that every dispatch fits the adapter.
+    pub fn dispatches((w, h): (u32, u32), needs: FrameNeeds) -> Vec<(&'static str, Workgroups)> {
+        let image = Workgroups::for_image(w, h, IMAGE_TILE);
+        let mut all = vec![("frame/gbuffer", image), ("frame/direct", image)];
+        for level in 0..needs.pyramid_levels {
+            let label = if level == 0 {
+                "frame/pyramid"
+            } else {
+                "frame/pyramid_down"
+            };
+            all.push((
+                label,
+                Workgroups::for_image((w >> level).max(1), (h >> level).max(1), IMAGE_TILE),
+            ));
+        }
+        all.extend([
+            ("frame/compose", image),
+            ("frame/taa", image),
+            ("frame/tonemap", image),
+        ]);
+        all
+    }
+
     fn image_groups(&self) -> Workgroups {
         let (w, h) = self.size();
         Workgroups::for_image(w, h, IMAGE_TILE)
@@ -253,10 +277,10 @@ impl Frame {
         self.passes
             .direct
             .dispatch(encoder, profiler.as_deref_mut(), groups);
-        let (w, h) = self.size();
-        for (level, pass) in self.passes.pyramid.iter().enumerate() {
-            let groups =
-                Workgroups::for_image((w >> level).max(1), (h >> level).max(1), IMAGE_TILE);
+        let pyramid = Self::dispatches(self.size(), self.resources.needs)
+            .into_iter()
+            .filter(|(label, _)| label.starts_with("frame/pyramid"));
+        for (pass, (_, groups)) in self.passes.pyramid.iter().zip(pyramid) {
             pass.dispatch(encoder, profiler.as_deref_mut(), groups);
         }
     }

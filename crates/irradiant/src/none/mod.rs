@@ -3,7 +3,7 @@
 
 use std::any::Any;
 
-use irradiant_gpu::{Allocation, Profiler, wgpu};
+use irradiant_gpu::{Allocation, Profiler, Workgroups, wgpu};
 use irradiant_scene::Scene;
 
 use crate::RenderError;
@@ -31,6 +31,14 @@ impl TechniqueKind for NoneKind {
             .collect())
     }
     fn plan(&self, _spec: &TechniqueSpec, _scene: &Scene) -> Result<Vec<Allocation>, RenderError> {
+        Ok(Vec::new())
+    }
+    fn dispatches(
+        &self,
+        _: &TechniqueSpec,
+        _: &Scene,
+        _: (u32, u32),
+    ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
         Ok(Vec::new())
     }
     fn build(

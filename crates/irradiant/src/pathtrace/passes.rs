@@ -72,6 +72,11 @@ impl PathTracer {
         })
     }
 
+    /// The workgroups of one dispatch over a `width`×`height` image.
+    pub fn workgroups(width: u32, height: u32) -> Workgroups {
+        Workgroups::for_image(width, height, IMAGE_TILE)
+    }
+
     /// Clears the accumulation: call whenever anything that changes the image changes.
     pub fn reset(&mut self, encoder: &mut wgpu::CommandEncoder) {
         encoder.clear_texture(&self.accumulation, &wgpu::ImageSubresourceRange::default());

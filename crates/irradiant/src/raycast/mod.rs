@@ -81,6 +81,11 @@ impl RayCaster {
         })
     }
 
+    /// The workgroups of a trace of `rays` rays (64 a workgroup, folded).
+    pub fn workgroups(rays: u64) -> Workgroups {
+        Workgroups::for_threads(rays, 64)
+    }
+
     /// Records one trace of the batch.
     pub fn record(
         &self,
@@ -88,11 +93,9 @@ impl RayCaster {
         batch: &RayBatch,
         profiler: Option<&mut Profiler>,
     ) {
-        batch.bound.dispatch(
-            encoder,
-            profiler,
-            Workgroups::for_threads(batch.count as u64, 64),
-        );
+        batch
+            .bound
+            .dispatch(encoder, profiler, Self::workgroups(batch.count as u64));
     }
 
     /// Traces `rays` and returns their hits.
