@@ -209,6 +209,11 @@ impl RunSettings {
         })
     }
 
+    /// The technique the settings file or the manifest names, if any.
+    pub fn named_technique(&self) -> Option<String> {
+        self.file.technique.as_ref().map(|t| t.name.clone())
+    }
+
     /// The spec of technique `name`: the settings file's or manifest's own table where it names
     /// the same technique, with the command's flags over it.
     pub fn technique(

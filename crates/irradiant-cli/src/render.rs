@@ -31,9 +31,10 @@ pub struct RenderArgs {
     /// mesh (.obj, .gltf, .glb).
     #[arg(long, default_value = "cornell")]
     pub scene: String,
-    /// `path` (the reference path tracer) or a registered real-time technique.
-    #[arg(long, default_value = "ddgi", value_parser = clap::builder::PossibleValuesParser::new(technique_values()))]
-    pub technique: String,
+    /// `path` (the reference path tracer) or a registered real-time technique (default: the
+    /// one the --settings file or the scene's manifest names, else ddgi).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(technique_values()))]
+    pub technique: Option<String>,
     /// Samples per pixel (path tracer).
     #[arg(long)]
     pub spp: Option<u32>,
@@ -85,7 +86,7 @@ fn check_args(args: &RenderArgs) -> Result<(), CliError> {
             args.exposure
         )));
     }
-    if args.technique != PATH && (args.frames == 0 || args.frames > 100_000) {
+    if args.technique.as_deref() != Some(PATH) && (args.frames == 0 || args.frames > 100_000) {
         return Err(CliError::Usage(format!(
             "--frames {} is out of range: use 1…100000",
             args.frames
@@ -125,8 +126,13 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let mut run_settings = RunSettings::new(&args.settings, &scene, args.seed)?;
     run_settings.frame.tone.exposure = args.exposure;
     run_settings.frame.tone.filmic = !args.no_filmic;
-    let spec = run_settings.technique(&args.technique, &args.settings, args.seed)?;
-    if args.technique != PATH {
+    let technique = args
+        .technique
+        .clone()
+        .or_else(|| run_settings.named_technique())
+        .unwrap_or_else(|| "ddgi".into());
+    let spec = run_settings.technique(&technique, &args.settings, args.seed)?;
+    if technique != PATH {
         // Settings errors come before any GPU work.
         let kind = spec.kind()?;
         run_settings.warnings.extend(kind.check(&spec)?);
@@ -136,7 +142,7 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     }
     let ctx = Arc::new(GpuContext::new(adapter)?);
     let (width, height) = args.size;
-    let (image, what) = if args.technique == PATH {
+    let (image, what) = if technique == PATH {
         ctx.check_allocations(&PathTracer::plan(width, height))?;
         let mut gpu_scene = GpuScene::new(&ctx, &scene, &GpuSceneSettings::default())?;
         gpu_scene.update(&ctx, &scene.pose_at(args.time));
@@ -166,10 +172,7 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             run_settings.frame.clone(),
             spec,
         )?;
-        (
-            image,
-            format!("{} after {} frames", args.technique, args.frames),
-        )
+        (image, format!("{} after {} frames", technique, args.frames))
     };
     if !is_png(&args.out) && !args.sequence {
         image.write_exr(&args.out)?;
@@ -225,7 +228,7 @@ fn render_frames(
             Some(ddgi) => crate::atlas::dump(&ctx, ddgi.volume(), dir)?,
             None => eprintln!(
                 "warning: --dump-atlas: technique '{}' has no probe atlases",
-                args.technique
+                session.technique().name()
             ),
         }
     }

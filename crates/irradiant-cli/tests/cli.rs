@@ -484,3 +484,82 @@ fn four_k_and_eight_k_images_render_completely() {
         }
     }
 }
+
+/// Settings files and manifest tables: a manifest names a technique and its settings, a
+/// --settings file overrides them, unknown keys are warnings and bad values errors that name
+/// the field, the value and what is allowed.
+#[test]
+fn settings_files_and_manifests_set_the_frame_and_the_technique() {
+    let dir = scratch("settings");
+    let manifest = dir.join("scene.toml");
+    std::fs::write(
+        &manifest,
+        "[mesh]\npath = \"cornell\"\n[technique]\nname = \"none\"\nflavour = 1\n[frame]\narea_light_samples = 2\n",
+    )
+    .unwrap();
+    let out = dir.join("a.png");
+    let render = |extra: &[&str]| {
+        let mut args = vec![
+            "render",
+            "--scene",
+            manifest.to_str().unwrap(),
+            "--size",
+            "16x16",
+            "--frames",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        irradiant(&args)
+    };
+    let (ok, stdout, stderr) = render(&[]);
+    if !ok && stderr.contains("no GPU adapter") && std::env::var("CI").as_deref() != Ok("true") {
+        eprintln!("SKIPPED: no GPU adapter");
+        return;
+    }
+    assert!(ok, "{stderr}");
+    assert!(
+        stdout.contains("none after 1 frames"),
+        "the manifest's technique is used: {stdout}"
+    );
+    assert!(
+        stderr.contains("technique.flavour"),
+        "an unknown key is a warning: {stderr}"
+    );
+    let settings = dir.join("settings.toml");
+    std::fs::write(
+        &settings,
+        "[technique]\nname = \"ddgi\"\n[technique.volume]\nrays_per_probe = 16\n",
+    )
+    .unwrap();
+    let (ok, stdout, stderr) = render(&["--settings", settings.to_str().unwrap()]);
+    assert!(ok, "{stderr}");
+    assert!(
+        stdout.contains("ddgi after 1 frames"),
+        "the file overrides the manifest: {stdout}"
+    );
+    std::fs::write(
+        &settings,
+        "[technique]\nname = \"ddgi\"\n[technique.update]\nhysteresis = 1.5\n",
+    )
+    .unwrap();
+    let (ok, _, stderr) = render(&["--settings", settings.to_str().unwrap()]);
+    assert!(
+        !ok && stderr.contains("technique.update.hysteresis = 1.5")
+            && stderr.contains("0 to 0.999"),
+        "{stderr}"
+    );
+    std::fs::write(&settings, "[frame.taa]\nblend = 0\n").unwrap();
+    let (ok, _, stderr) = render(&["--settings", settings.to_str().unwrap()]);
+    assert!(!ok && stderr.contains("frame.taa.blend = 0"), "{stderr}");
+    std::fs::write(&settings, "[frame\n").unwrap();
+    fails_with(
+        &["render", "--settings", settings.to_str().unwrap()],
+        "settings.toml",
+    );
+    fails_with(
+        &["render", "--settings", "/nonexistent/s.toml"],
+        "/nonexistent/s.toml",
+    );
+}

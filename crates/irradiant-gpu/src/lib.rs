@@ -19,7 +19,7 @@ pub use pass::{
     Resource, ResourceTable, Workgroups,
 };
 pub use profiler::{PassTiming, Profiler};
-pub use readback::{read_buffer, read_buffer_as, read_texture};
+pub use readback::{read_buffer, read_buffer_as, read_texture, read_texture_level};
 pub use shader::{
     Composed, ShaderError, ShaderLibrary, WgslValue, compose, compose_module, wgsl_const,
 };

@@ -56,7 +56,22 @@ pub fn read_texture(
     texture: &wgpu::Texture,
     texel_bytes: u32,
 ) -> Result<Vec<u8>, GpuError> {
-    let size = texture.size();
+    read_texture_level(ctx, texture, 0, texel_bytes)
+}
+
+/// [`read_texture`] of mip level `level`.
+pub fn read_texture_level(
+    ctx: &GpuContext,
+    texture: &wgpu::Texture,
+    level: u32,
+    texel_bytes: u32,
+) -> Result<Vec<u8>, GpuError> {
+    if level >= texture.mip_level_count() {
+        return Err(GpuError::Poll(format!(
+            "the texture has no mip level {level}"
+        )));
+    }
+    let size = texture.size().mip_level_size(level, texture.dimension());
     let row = size.width * texel_bytes;
     let padded = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -71,7 +86,12 @@ pub fn read_texture(
             label: Some("readback/texture_copy"),
         });
     encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: level,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &staging,
             layout: wgpu::TexelCopyBufferLayout {

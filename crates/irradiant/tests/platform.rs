@@ -1,0 +1,230 @@
+//! The platform: the frame's G-buffer pyramid against a CPU oracle, settings that change live
+//! against those that rebuild, and DDGI over several probe volumes.
+
+mod common;
+
+use common::*;
+use irradiant::ddgi::{Ddgi, DdgiSettings};
+use irradiant::frame::{Frame, FrameNeeds, FrameSettings};
+use irradiant::{GpuScene, TechniqueSpec};
+use irradiant_gpu::{read_texture_level, wgpu};
+
+fn read_level(ctx: &irradiant::GpuContext, frame: &Frame, name: &str, level: u32) -> Vec<[f32; 4]> {
+    let texture = frame.resources.texture(name);
+    match texture.format() {
+        wgpu::TextureFormat::Rgba32Float => {
+            bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 16).unwrap())
+        }
+        _ => {
+            let halves: Vec<half::f16> =
+                bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 8).unwrap());
+            halves
+                .chunks_exact(4)
+                .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
+                .collect()
+        }
+    }
+}
+
+/// Each level of the pyramid is the mean of the 2×2 texels under it that see a surface.
+#[test]
+fn pyramid_levels_average_the_level_below() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
+    let levels = 4;
+    let mut frame = Frame::new(
+        &ctx,
+        &gpu_scene,
+        (48, 40),
+        FrameSettings::default(),
+        FrameNeeds {
+            pyramid_levels: levels,
+        },
+    )
+    .unwrap();
+    frame.prepare(&ctx, &scene.camera);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    frame.record_inputs(&mut encoder, None);
+    ctx.queue.submit([encoder.finish()]);
+    frame.finish();
+    let (mut w, mut h) = frame.size();
+    let mut below: Vec<Vec<[f32; 4]>> =
+        ["pyramid_normal_depth", "pyramid_radiance", "pyramid_albedo"]
+            .iter()
+            .map(|n| read_level(&ctx, &frame, n, 0))
+            .collect();
+    // Level 0 is the G-buffer: sky where its depth is negative, surfaces elsewhere.
+    let depth: Vec<f32> = bytemuck::pod_collect_to_vec(
+        &irradiant_gpu::read_texture(&ctx, frame.resources.texture("gbuffer_depth"), 4).unwrap(),
+    );
+    for (i, d) in depth.iter().enumerate() {
+        assert_eq!(
+            *d < 0.0,
+            below[0][i][3] < 0.0,
+            "texel {i}: G-buffer depth {d}, pyramid {:?}",
+            below[0][i]
+        );
+    }
+    let mut checked = 0;
+    for level in 1..levels {
+        let (lw, lh) = ((w / 2).max(1), (h / 2).max(1));
+        let this: Vec<Vec<[f32; 4]>> =
+            ["pyramid_normal_depth", "pyramid_radiance", "pyramid_albedo"]
+                .iter()
+                .map(|n| read_level(&ctx, &frame, n, level))
+                .collect();
+        for y in 0..lh {
+            for x in 0..lw {
+                let mut sums = [[0f32; 4]; 3];
+                let mut count = 0.0;
+                for k in 0..4 {
+                    let (sx, sy) = ((2 * x + (k & 1)).min(w - 1), (2 * y + (k >> 1)).min(h - 1));
+                    let i = (sy * w + sx) as usize;
+                    if below[0][i][3] >= 0.0 {
+                        for c in 0..3 {
+                            for j in 0..4 {
+                                sums[c][j] += below[c][i][j];
+                            }
+                        }
+                        count += 1.0;
+                    }
+                }
+                let got = |c: usize| this[c][(y * lw + x) as usize];
+                if count == 0.0 {
+                    assert!(got(0)[3] < 0.0, "level {level} ({x}, {y}) should be sky");
+                    continue;
+                }
+                let depth = sums[0][3] / count;
+                assert!(
+                    (got(0)[3] - depth).abs() <= 1e-4 * depth.max(1.0),
+                    "level {level} ({x}, {y}) depth"
+                );
+                let n = glam::Vec3::new(sums[0][0], sums[0][1], sums[0][2]);
+                if n.length() > 1e-3 {
+                    let n = n.normalize();
+                    let g = glam::Vec3::new(got(0)[0], got(0)[1], got(0)[2]);
+                    assert!(
+                        g.dot(n) > 0.999,
+                        "level {level} ({x}, {y}) normal {g} against {n}"
+                    );
+                }
+                for c in 1..3 {
+                    for j in 0..3 {
+                        let want = sums[c][j] / count;
+                        // f16 storage: 1e-3 relative.
+                        assert!(
+                            (got(c)[j] - want).abs() <= 2e-3 * want.max(0.05),
+                            "level {level} ({x}, {y}) channel {c}: {} against {want}",
+                            got(c)[j]
+                        );
+                    }
+                }
+                checked += 1;
+            }
+        }
+        below = this;
+        (w, h) = (lw, lh);
+    }
+    assert!(checked > 500, "{checked} texels checked");
+}
+
+/// Settings that only change the update apply between frames (the probes keep their light);
+/// settings that size the volumes rebuild them (the probes start over).
+#[test]
+fn live_settings_apply_between_frames_and_sizes_rebuild() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let mut settings = DdgiSettings::fast();
+    settings.volume.rays_per_probe = 32;
+    let mut session = session(&ctx, &scene, (24, 24), spec(Some(&settings)));
+    for _ in 0..4 {
+        session.render().unwrap();
+    }
+    let frames = |s: &irradiant::Session| s.technique_as::<Ddgi>().unwrap().volume().frame;
+    assert_eq!(frames(&session), 4);
+    settings.update.hysteresis = 0.5;
+    settings.update.self_shadow_bias = 0.1;
+    session
+        .set_technique(TechniqueSpec::with_settings("ddgi", &settings))
+        .unwrap();
+    assert_eq!(frames(&session), 4, "a live change keeps the probes");
+    assert_eq!(
+        session
+            .technique_as::<Ddgi>()
+            .unwrap()
+            .settings()
+            .update
+            .hysteresis,
+        0.5
+    );
+    session.render().unwrap();
+    assert_eq!(frames(&session), 5);
+    settings.volume.rays_per_probe = 64;
+    session
+        .set_technique(TechniqueSpec::with_settings("ddgi", &settings))
+        .unwrap();
+    assert_eq!(frames(&session), 0, "a new ray count rebuilds the volume");
+    session.render().unwrap();
+    // Another technique entirely, and an unknown one: refused with the registry's names.
+    session.set_technique(spec(None)).unwrap();
+    assert_eq!(session.technique().name(), "none");
+    let e = session
+        .set_technique(TechniqueSpec::new("magic", irradiant::Preset::Fast))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("'magic'") && e.contains("ddgi"), "{e}");
+}
+
+/// Two probe volumes: both update, and the resolve's weights sum to one at every surface
+/// pixel, so the light is the blend of the two volumes' and no pixel is lit twice or not at all.
+#[test]
+fn ddgi_blends_every_volume_of_the_scene() {
+    let Some(ctx) = gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    let coarse = scene.probe_volumes[0].clone();
+    let mut fine = coarse.clone();
+    fine.name = "fine".into();
+    fine.counts = [6, 6, 6];
+    fine.max = (coarse.min + coarse.max) * 0.5 + (coarse.max - coarse.min) * 0.25;
+    let single = {
+        let mut s = session(&ctx, &scene, (32, 32), spec(Some(&DdgiSettings::fast())));
+        for _ in 0..30 {
+            s.render().unwrap();
+        }
+        masked_mean(&s.indirect().unwrap(), &vec![true; 32 * 32])
+    };
+    scene.probe_volumes.push(fine);
+    let mut s = session(&ctx, &scene, (32, 32), spec(Some(&DdgiSettings::fast())));
+    for _ in 0..30 {
+        s.render().unwrap();
+    }
+    let ddgi = s.technique_as::<Ddgi>().unwrap();
+    assert_eq!(ddgi.volumes.len(), 2);
+    // Finest first.
+    assert_eq!(ddgi.volumes[0].grid.probe_count, 216);
+    assert!(
+        ddgi.volumes.iter().all(|v| v.frame == 30),
+        "every volume updates"
+    );
+    let weights: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(
+        &irradiant_gpu::read_texture(&ctx, s.frame().resources.texture("indirect"), 16).unwrap(),
+    );
+    let gbuffer = s.gbuffer().unwrap();
+    for (w, g) in weights.iter().zip(&gbuffer) {
+        if g.depth >= 0.0 {
+            assert!(
+                (w[3] - 1.0).abs() < 1e-5,
+                "a surface pixel's volume weights sum to {}",
+                w[3]
+            );
+        }
+    }
+    let blended = masked_mean(&s.indirect().unwrap(), &vec![true; 32 * 32]);
+    eprintln!("mean indirect: one volume {single:.5}, two volumes {blended:.5}");
+    // Bound: the same light seen through two grids; they differ by interpolation and noise.
+    assert!(
+        (blended / single - 1.0).abs() < 0.15,
+        "{blended} against {single}"
+    );
+}
