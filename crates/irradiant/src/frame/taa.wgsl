@@ -3,9 +3,9 @@
 // resampling), after clipping the history to the current frame's 3×3 neighbourhood (mean ±
 // taa_clip_sigma standard deviations in YCoCg: Salvi 2016) so that disoccluded or relit
 // pixels do not ghost. While neither the view nor the scene changes (the frame's running
-// means keep accumulating) the history is not clipped: clipping jittered samples to a
-// neighbourhood that happens to miss a bright edge darkens edges frame after frame, and a still
-// view needs no protection from ghosts. Until the history holds 1/taa_blend frames it is a
+// means keep accumulating) the history is not clipped: a still view needs no protection from
+// ghosts, and its average over the pixel should not depend on which jittered samples happened
+// to fall on a bright edge. Until the history holds 1/taa_blend frames it is a
 // running mean, so a still view converges to the pixel's box-filtered value, as the path
 // tracer's is.
 #import gbuffer
