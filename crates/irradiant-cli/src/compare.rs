@@ -100,17 +100,7 @@ impl Setup<'_> {
 }
 
 pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
-    let techniques: Vec<String> = if args.techniques.iter().any(|t| t == "all") {
-        irradiant::technique::names()
-            .into_iter()
-            .map(String::from)
-            .collect()
-    } else {
-        args.techniques.clone()
-    };
-    for t in &techniques {
-        irradiant::technique::find(t).map_err(|e| CliError::Usage(e.to_string()))?;
-    }
+    let techniques = crate::options::technique_list(&args.techniques)?;
     if args.reference_spp == 0 || args.frames == 0 {
         return Err(CliError::Usage(
             "--reference-spp and --frames must be at least 1".into(),

@@ -82,6 +82,22 @@ pub fn parse_camera(text: &str) -> Result<irradiant_scene::Camera, String> {
     Ok(camera)
 }
 
+/// Registered technique names as a command lists them (`all`: every one), each checked.
+pub fn technique_list(names: &[String]) -> Result<Vec<String>, CliError> {
+    let names: Vec<String> = if names.iter().any(|t| t == "all") {
+        irradiant::technique::names()
+            .into_iter()
+            .map(String::from)
+            .collect()
+    } else {
+        names.to_vec()
+    };
+    for t in &names {
+        irradiant::technique::find(t).map_err(|e| CliError::Usage(e.to_string()))?;
+    }
+    Ok(names)
+}
+
 /// Checks that an output file can be written before spending GPU time on it.
 pub fn check_output(path: &Path, extensions: &[&str]) -> Result<(), CliError> {
     let extension = path

@@ -171,6 +171,32 @@ impl Budget {
     }
 }
 
+/// A 2D texture of one layer: the one place textures are described (usage decides where it
+/// binds: storage, sampled, copies).
+pub fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    mip_levels: u32,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: mip_levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 /// A byte count for people: KiB, MiB or GiB.
 pub fn bytes(n: u64) -> String {
     const K: f64 = 1024.0;

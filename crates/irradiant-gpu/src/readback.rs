@@ -22,6 +22,15 @@ pub fn read_buffer(
         });
     encoder.copy_buffer_to_buffer(buffer, offset, &staging, 0, size);
     ctx.queue.submit([encoder.finish()]);
+    map_staging(ctx, &staging, |mapped| mapped.to_vec())
+}
+
+/// Waits for the submitted copy into `staging`, maps it and reads it with `read`.
+fn map_staging(
+    ctx: &GpuContext,
+    staging: &wgpu::Buffer,
+    read: impl FnOnce(&[u8]) -> Vec<u8>,
+) -> Result<Vec<u8>, GpuError> {
     let slice = staging.slice(..);
     let (sender, receiver) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -32,10 +41,11 @@ pub fn read_buffer(
         .recv()
         .map_err(|e| GpuError::Poll(e.to_string()))?
         .map_err(|e| GpuError::Poll(format!("mapping the readback buffer failed: {e}")))?;
-    let data = slice
-        .get_mapped_range()
-        .map_err(|e| GpuError::Poll(e.to_string()))?
-        .to_vec();
+    let data = read(
+        &slice
+            .get_mapped_range()
+            .map_err(|e| GpuError::Poll(e.to_string()))?,
+    );
     staging.unmap();
     Ok(data)
 }
@@ -107,25 +117,12 @@ pub fn read_texture_level(
         },
     );
     ctx.queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = sender.send(r);
-    });
-    ctx.wait()?;
-    receiver
-        .recv()
-        .map_err(|e| GpuError::Poll(e.to_string()))?
-        .map_err(|e| GpuError::Poll(format!("mapping the readback buffer failed: {e}")))?;
-    let mapped = slice
-        .get_mapped_range()
-        .map_err(|e| GpuError::Poll(e.to_string()))?;
-    let mut data = Vec::with_capacity(row as usize * size.height as usize);
-    for y in 0..size.height as usize {
-        let start = y * padded as usize;
-        data.extend_from_slice(&mapped[start..start + row as usize]);
-    }
-    drop(mapped);
-    staging.unmap();
-    Ok(data)
+    map_staging(ctx, &staging, |mapped| {
+        let mut data = Vec::with_capacity(row as usize * size.height as usize);
+        for y in 0..size.height as usize {
+            let start = y * padded as usize;
+            data.extend_from_slice(&mapped[start..start + row as usize]);
+        }
+        data
+    })
 }

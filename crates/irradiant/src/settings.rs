@@ -61,6 +61,39 @@ impl Preset {
     }
 }
 
+/// A settings type's three named points. `preset` picks one by name.
+pub trait Presets: Sized {
+    fn fast() -> Self;
+    fn balanced() -> Self;
+    fn quality() -> Self;
+
+    fn preset(preset: Preset) -> Self {
+        match preset {
+            Preset::Fast => Self::fast(),
+            Preset::Balanced => Self::balanced(),
+            Preset::Quality => Self::quality(),
+        }
+    }
+}
+
+/// Implements [`Presets`] with a settings type's own `fast`, `balanced` and `quality`.
+macro_rules! presets_from_inherent {
+    ($settings:ty) => {
+        impl $crate::settings::Presets for $settings {
+            fn fast() -> Self {
+                <$settings>::fast()
+            }
+            fn balanced() -> Self {
+                <$settings>::balanced()
+            }
+            fn quality() -> Self {
+                <$settings>::quality()
+            }
+        }
+    };
+}
+pub(crate) use presets_from_inherent;
+
 /// A setting that cannot be used. Every message names the field, the value and the fix.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SettingsError {

@@ -155,17 +155,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     } else {
         (args.size, args.iterations.max(1), args.warmup)
     };
-    let techniques: Vec<String> = if args.techniques.iter().any(|t| t == "all") {
-        irradiant::technique::names()
-            .into_iter()
-            .map(String::from)
-            .collect()
-    } else {
-        args.techniques.clone()
-    };
-    for t in &techniques {
-        irradiant::technique::find(t).map_err(|e| CliError::Usage(e.to_string()))?;
-    }
+    let techniques = crate::options::technique_list(&args.techniques)?;
     let ddgi_variants = ddgi_variants(args)?;
     let ctx = std::sync::Arc::new(GpuContext::new(adapter)?);
     let mut record = BenchRecord {

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::settings::{Preset, SettingsError, check_range, overlay};
+use crate::settings::{Presets, SettingsError, check_range, overlay};
 use crate::technique::TechniqueSpec;
 
 /// Which of the query's weights are on: the paper's Figure 7 ladder, each step adding one.
@@ -132,15 +132,9 @@ impl Default for DdgiSettings {
     }
 }
 
-impl DdgiSettings {
-    pub fn preset(preset: Preset) -> Self {
-        match preset {
-            Preset::Fast => Self::fast(),
-            Preset::Balanced => Self::balanced(),
-            Preset::Quality => Self::quality(),
-        }
-    }
+crate::settings::presets_from_inherent!(DdgiSettings);
 
+impl DdgiSettings {
     pub fn fast() -> Self {
         let mut s = Self::balanced();
         s.volume.rays_per_probe = 64;
@@ -282,6 +276,7 @@ impl DdgiSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::settings::Preset;
 
     #[test]
     fn every_preset_round_trips_through_a_spec() {

@@ -205,23 +205,17 @@ fn frame_texture(
     mip_levels: u32,
     per_level_views: bool,
 ) -> FrameTexture {
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(name),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: mip_levels,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
+    let texture = irradiant_gpu::texture_2d(
+        device,
+        name,
+        (width, height),
         format,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
+        mip_levels,
+        wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
+    );
     let view = texture.create_view(&Default::default());
     let levels = if per_level_views {
         (0..mip_levels)

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::settings::{Preset, SettingsError, check_range};
+use crate::settings::{SettingsError, check_range};
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FrameSettings {
@@ -56,15 +56,9 @@ impl Default for FrameSettings {
     }
 }
 
-impl FrameSettings {
-    pub fn preset(preset: Preset) -> Self {
-        match preset {
-            Preset::Fast => Self::fast(),
-            Preset::Balanced => Self::balanced(),
-            Preset::Quality => Self::quality(),
-        }
-    }
+crate::settings::presets_from_inherent!(FrameSettings);
 
+impl FrameSettings {
     pub fn fast() -> Self {
         Self {
             area_light_samples: 1,

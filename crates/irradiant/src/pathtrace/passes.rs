@@ -48,20 +48,14 @@ impl PathTracer {
             &PassDesc::new("pathtrace/trace", include_str!("trace.wgsl"))
                 .constants(scene.shader_constants()),
         )?;
-        let accumulation = ctx.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("pathtrace/accumulation"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let accumulation = irradiant_gpu::texture_2d(
+            &ctx.device,
+            "pathtrace/accumulation",
+            (width, height),
+            wgpu::TextureFormat::Rgba32Float,
+            1,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        );
         Ok(Self {
             pass,
             accumulation_view: accumulation.create_view(&Default::default()),
