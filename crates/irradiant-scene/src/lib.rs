@@ -26,6 +26,7 @@ pub use manifest::{
     RegionDesc,
 };
 pub use model::*;
+pub use textures::{MAX_TEXTURE_SIDE, decode_texture};
 pub use validate::MAX_PROBES_PER_AXIS;
 
 /// A loaded scene and the warnings collected on the way (missing textures, unknown keys, …).

@@ -55,14 +55,32 @@ fn read_rgba(base_dir: &Path, name: &str) -> Result<Texture, String> {
     let path = resolve(base_dir, name).ok_or_else(|| {
         format!("{}: texture not found; the material is drawn with its flat colour. Put the file there or fix the name in the material file", base_dir.join(name).display())
     })?;
-    let image = image::open(&path)
-        .map_err(|e| {
-            format!(
-                "{}: texture cannot be decoded ({e}); the material is drawn with its flat colour",
-                path.display()
-            )
-        })?
-        .to_rgba8();
+    let bytes = std::fs::read(&path)
+        .map_err(|e| format!("{}: texture cannot be read ({e})", path.display()))?;
+    decode_texture(&bytes, name).map_err(|e| {
+        format!(
+            "{}: texture cannot be decoded ({e}); the material is drawn with its flat colour",
+            path.display()
+        )
+    })
+}
+
+/// Largest texture side decoded: larger files are refused before their pixels are allocated
+/// (a corrupt header can claim 4 billion pixels).
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+
+/// Decodes a PNG or JPEG (or any format the image crate knows, by its content) into sRGB RGBA8,
+/// refusing images past [`MAX_TEXTURE_SIDE`] or 1 GiB of pixels before allocating them.
+pub fn decode_texture(bytes: &[u8], name: &str) -> Result<Texture, String> {
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+    limits.max_alloc = Some(1 << 30);
+    reader.limits(limits);
+    let image = reader.decode().map_err(|e| e.to_string())?.to_rgba8();
     Ok(Texture {
         name: name.to_owned(),
         width: image.width(),

@@ -156,9 +156,9 @@ pub fn all_layouts() -> Vec<Expected> {
             taa_clip_sigma,
             exposure,
             tone_curve,
-            _pad0,
-            _pad1,
-            _pad2
+            pyramid_pixel_sigma,
+            pyramid_normal_sigma,
+            pyramid_depth_sigma
         }),
         gpu_layout!(GpuDdgiVolume {
             origin,

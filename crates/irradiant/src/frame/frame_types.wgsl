@@ -24,9 +24,11 @@ struct GpuFrameParams {
     // frame/tonemap: multiplier before the curve, and TONE_FILMIC or TONE_CLAMP
     exposure: f32,
     tone_curve: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // the G-buffer pyramid's voting filter (frame/pyramid_down): Gaussian widths of the pixel
+    // distance, of 1 − n·n' and of the relative depth difference
+    pyramid_pixel_sigma: f32,
+    pyramid_normal_sigma: f32,
+    pyramid_depth_sigma: f32,
 }
 
 // Pixel coordinates (y down, continuous: pixel centres at .5) of a world point seen by a camera.

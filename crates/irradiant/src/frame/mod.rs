@@ -13,7 +13,7 @@ pub mod types;
 pub use change::{LightingChange, SceneChange};
 pub use image_io::{Image, write_png};
 pub use resources::{FrameNeeds, FrameResources};
-pub use settings::{FrameSettings, TaaSettings, ToneSettings};
+pub use settings::{FrameSettings, PyramidSettings, TaaSettings, ToneSettings};
 
 use glam::Vec2;
 use irradiant_gpu::{
@@ -122,7 +122,7 @@ impl Frame {
                         .texture("target_normal_depth", view("pyramid_normal_depth", level))
                         .texture("target_radiance", view("pyramid_radiance", level))
                         .texture("target_albedo", view("pyramid_albedo", level));
-                    pyramid.push(down.bind(ctx, &[&table])?);
+                    pyramid.push(down.bind(ctx, &[&table, &frame_table])?);
                 }
             }
             FramePasses {
@@ -225,9 +225,9 @@ impl Frame {
             } else {
                 constants::TONE_CLAMP
             },
-            _pad0: 0,
-            _pad1: 0,
-            _pad2: 0,
+            pyramid_pixel_sigma: s.pyramid.pixel_sigma,
+            pyramid_normal_sigma: s.pyramid.normal_sigma,
+            pyramid_depth_sigma: s.pyramid.depth_sigma,
         };
         ctx.queue
             .write_buffer(&self.resources.params, 0, bytemuck::bytes_of(&params));

@@ -14,6 +14,32 @@ pub struct FrameSettings {
     pub seed: u32,
     pub taa: TaaSettings,
     pub tone: ToneSettings,
+    pub pyramid: PyramidSettings,
+}
+
+/// The G-buffer pyramid's voting filter (Soler et al. 2009, eq. 5), for techniques that ask for
+/// a pyramid: each coarser texel takes the normal and depth of the finer texel whose
+/// neighbourhood agrees most with it. Wider Gaussians let more neighbours vote (smoother,
+/// small objects vanish sooner); narrower ones keep small objects longer (more flicker as they
+/// come and go).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PyramidSettings {
+    /// Width of the pixel-distance Gaussian, in texels of the finer level.
+    pub pixel_sigma: f32,
+    /// Width of the Gaussian of 1 − n·n' (0.2: normals within about 35° agree).
+    pub normal_sigma: f32,
+    /// Width of the Gaussian of the relative depth difference (0.05: within 5 %).
+    pub depth_sigma: f32,
+}
+
+impl Default for PyramidSettings {
+    fn default() -> Self {
+        Self {
+            pixel_sigma: 1.0,
+            normal_sigma: 0.2,
+            depth_sigma: 0.05,
+        }
+    }
 }
 
 /// Temporal anti-aliasing: primary rays jittered inside the pixel, blended over frames.
@@ -80,6 +106,7 @@ impl FrameSettings {
                 clip_sigma: 1.25,
             },
             tone: ToneSettings::default(),
+            pyramid: PyramidSettings::default(),
         }
     }
 
@@ -106,6 +133,24 @@ impl FrameSettings {
         check_range("frame.taa.blend", self.taa.blend, 0.001, 1.0)?;
         check_range("frame.taa.clip_sigma", self.taa.clip_sigma, 0.1, 16.0)?;
         check_range("frame.tone.exposure", self.tone.exposure, 1e-6, 1e6)?;
+        check_range(
+            "frame.pyramid.pixel_sigma",
+            self.pyramid.pixel_sigma,
+            0.01,
+            100.0,
+        )?;
+        check_range(
+            "frame.pyramid.normal_sigma",
+            self.pyramid.normal_sigma,
+            0.001,
+            100.0,
+        )?;
+        check_range(
+            "frame.pyramid.depth_sigma",
+            self.pyramid.depth_sigma,
+            0.0001,
+            100.0,
+        )?;
         Ok(())
     }
 }

@@ -30,8 +30,10 @@ pub struct GpuFrameParams {
     pub exposure: f32,
     /// [`super::constants::TONE_FILMIC`] or [`super::constants::TONE_CLAMP`].
     pub tone_curve: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+    /// The G-buffer pyramid's voting filter: Gaussian widths of the pixel distance, of
+    /// 1 − n·n' and of the relative depth difference.
+    pub pyramid_pixel_sigma: f32,
+    pub pyramid_normal_sigma: f32,
+    pub pyramid_depth_sigma: f32,
 }
 const _: () = assert!(size_of::<GpuFrameParams>() == 192);
