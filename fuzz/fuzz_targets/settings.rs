@@ -15,7 +15,7 @@ fuzz_target!(|data: &[u8]| {
         && let Ok(kind) = spec.kind()
     {
         let _ = kind.check(spec);
-        let _ = kind.plan(spec, &irradiant_scene::builtin("cornell").unwrap());
+        let _ = kind.plan(spec, &irradiant_scene::builtin("cornell").unwrap(), (64, 64));
     }
     // What parses must round-trip.
     let again = irradiant::SettingsFile::parse(&file.to_toml(), "again", &mut warnings).unwrap();

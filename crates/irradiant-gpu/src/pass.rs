@@ -346,6 +346,7 @@ impl ComputePass {
         Ok(BoundPass {
             pass: self.clone(),
             groups,
+            label: self.label,
         })
     }
 }
@@ -354,11 +355,18 @@ impl ComputePass {
 pub struct BoundPass {
     pass: Arc<ComputePass>,
     groups: Vec<Option<wgpu::BindGroup>>,
+    label: &'static str,
 }
 
 impl BoundPass {
     pub fn label(&self) -> &'static str {
-        self.pass.label
+        self.label
+    }
+
+    /// The same pass under another label (`ssil/gather_2`): one pipeline timed per use.
+    pub fn labelled(mut self, label: &'static str) -> Self {
+        self.label = label;
+        self
     }
 
     /// Records one dispatch in its own compute pass (so that it gets its own timestamps).
@@ -391,9 +399,9 @@ impl BoundPass {
         encoder: &'e mut wgpu::CommandEncoder,
         profiler: Option<&mut Profiler>,
     ) -> wgpu::ComputePass<'e> {
-        let timestamp_writes = profiler.and_then(|p| p.pass(self.pass.label));
+        let timestamp_writes = profiler.and_then(|p| p.pass(self.label));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(self.pass.label),
+            label: Some(self.label),
             timestamp_writes,
         });
         pass.set_pipeline(&self.pass.pipeline);

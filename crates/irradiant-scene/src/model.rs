@@ -26,6 +26,24 @@ impl Mesh {
         self.indices.len() / 3
     }
 
+    /// Edges that bound only one triangle: where the mesh is not closed (watertight). Vertices
+    /// are matched by position, since loaders split a vertex wherever its normal or texture
+    /// coordinate changes.
+    pub fn open_edges(&self) -> usize {
+        let key = |p: Vec3| p.to_array().map(f32::to_bits);
+        let mut edges: std::collections::HashMap<([u32; 3], [u32; 3]), u32> =
+            std::collections::HashMap::new();
+        for t in 0..self.triangle_count() {
+            let [a, b, c] = self.triangle(t).map(key);
+            for (u, v) in [(a, b), (b, c), (c, a)] {
+                *edges
+                    .entry(if u < v { (u, v) } else { (v, u) })
+                    .or_default() += 1;
+            }
+        }
+        edges.values().filter(|&&n| n == 1).count()
+    }
+
     pub fn triangle(&self, t: usize) -> [Vec3; 3] {
         let i = &self.indices[3 * t..3 * t + 3];
         [

@@ -9,6 +9,7 @@ pub use crate::frame::types::*;
 pub use crate::pathtrace::types::*;
 pub use crate::raycast::types::*;
 pub use crate::scene::types::*;
+pub use crate::ssil::types::*;
 
 /// Every GPU struct with its expected layout, for the WGSL check.
 pub fn all_layouts() -> Vec<Expected> {
@@ -204,6 +205,34 @@ pub fn all_layouts() -> Vec<Expected> {
             sample,
             contribution,
             light
+        }),
+        gpu_layout!(GpuSsilParams {
+            start_level,
+            levels,
+            samples,
+            visibility,
+            radius,
+            near,
+            far,
+            visibility_steps,
+            visibility_bias,
+            importance_alpha,
+            hysteresis,
+            motion_pixels,
+            depth_tolerance,
+            normal_tolerance,
+            history_valid,
+            hybrid
+        }),
+        gpu_layout!(GpuSsilPass {
+            level,
+            first,
+            last_bounce,
+            radiance_level,
+            coarse_level,
+            with_gather,
+            _pad0,
+            _pad1
         }),
     ]
 }

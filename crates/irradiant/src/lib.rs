@@ -21,6 +21,7 @@ pub mod scene;
 mod session;
 pub mod settings;
 pub mod shaders;
+pub mod ssil;
 pub mod technique;
 
 pub use error::RenderError;

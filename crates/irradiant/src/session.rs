@@ -61,7 +61,7 @@ impl Session {
         let kind = settings.technique.kind()?;
         let (w, h) = settings.size;
         let mut plan = Frame::plan(w, h, kind.frame_needs(&settings.technique));
-        plan.extend(kind.plan(&settings.technique, scene)?);
+        plan.extend(kind.plan(&settings.technique, scene, settings.size)?);
         Ok(plan)
     }
 
@@ -73,6 +73,7 @@ impl Session {
     ) -> Result<Self, RenderError> {
         let kind = settings.technique.kind()?;
         let mut warnings = kind.check(&settings.technique)?;
+        warnings.extend(kind.scene_warnings(&settings.technique, &scene));
         settings.frame.validate()?;
         ctx.check_allocations(&Self::plan(&scene, &settings)?)?;
         let pose = scene.pose_at(settings.time);
@@ -220,7 +221,7 @@ impl Session {
             return Ok(());
         }
         let needs = kind.frame_needs(&spec);
-        let mut plan = kind.plan(&spec, &self.scene)?;
+        let mut plan = kind.plan(&spec, &self.scene, self.frame.size())?;
         if needs != self.frame.resources.needs {
             let (w, h) = self.frame.size();
             plan.extend(Frame::plan(w, h, needs));
@@ -266,7 +267,7 @@ impl Session {
 
     fn record_and_submit(&mut self, profiled: bool) -> Result<(), RenderError> {
         self.frame.prepare(&self.ctx, &self.camera);
-        self.technique.prepare(&self.ctx);
+        self.technique.prepare(&self.ctx, &self.camera);
         let mut encoder = self
             .ctx
             .device

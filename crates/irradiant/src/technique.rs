@@ -26,6 +26,8 @@ pub static REGISTRY: &[&dyn TechniqueKind] = &[
     &crate::none::NONE,
     &crate::ddgi::CLASSIC_PROBES,
     &crate::ddgi::DDGI,
+    &crate::ssil::SSIL,
+    &crate::ssil::SSIL_DDGI,
 ];
 
 /// A registered technique by name.
@@ -116,8 +118,17 @@ pub trait TechniqueKind: Sync {
     fn frame_needs(&self, _spec: &TechniqueSpec) -> FrameNeeds {
         FrameNeeds::default()
     }
+    /// Warnings about the scene for this technique (a scene it cannot handle well).
+    fn scene_warnings(&self, _spec: &TechniqueSpec, _scene: &Scene) -> Vec<String> {
+        Vec::new()
+    }
     /// Every GPU allocation it would make for this scene, before making any.
-    fn plan(&self, spec: &TechniqueSpec, scene: &Scene) -> Result<Vec<Allocation>, RenderError>;
+    fn plan(
+        &self,
+        spec: &TechniqueSpec,
+        scene: &Scene,
+        size: (u32, u32),
+    ) -> Result<Vec<Allocation>, RenderError>;
     /// Every dispatch it would record for this scene at this image size, with its label
     /// (the test that every pass fits the adapter at the largest sizes reads these).
     fn dispatches(
@@ -154,12 +165,13 @@ pub trait Technique: Any {
     fn name(&self) -> &'static str;
     /// The labels of the passes it records (bench groups timings by them).
     fn passes(&self) -> TechniquePasses;
-    /// Uploads this frame's parameters (before the frame's commands are submitted).
-    fn prepare(&mut self, _ctx: &GpuContext) {}
+    /// Uploads this frame's parameters (before the frame's commands are submitted); `camera`
+    /// is the view the frame renders.
+    fn prepare(&mut self, _ctx: &GpuContext, _camera: &irradiant_scene::Camera) {}
     /// Records the per-frame update (DDGI: trace, shade, blend; nothing for a baked technique).
     fn update(&mut self, _encoder: &mut wgpu::CommandEncoder, _profiler: Option<&mut Profiler>) {}
     /// Records the resolve: indirect light into the frame's `indirect`.
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>);
+    fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>);
     /// Records a debug overlay into the frame's `radiance` (after compose).
     fn visualize(&self, _encoder: &mut wgpu::CommandEncoder) {}
     /// Forgets all history (the next frame starts from scratch).

@@ -11,6 +11,7 @@ fn rust_structs_match_wgsl() {
         include_str!("../src/frame/frame_types.wgsl"),
         include_str!("../src/ddgi/volume.wgsl"),
         include_str!("../src/ddgi/rays.wgsl"),
+        include_str!("../src/ssil/common.wgsl"),
     ];
     // The structs are declared across these files; strip imports and bindings so that each
     // parses alone, and check each layout against the file that declares it.

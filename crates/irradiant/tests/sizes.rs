@@ -8,6 +8,7 @@ use irradiant::ddgi::DdgiSettings;
 use irradiant::frame::{Frame, FrameNeeds, FrameSettings};
 use irradiant::pathtrace::PathTracer;
 use irradiant::raycast::RayCaster;
+use irradiant::ssil::{HybridSettings, SsilSettings, StartResolution};
 use irradiant::technique::REGISTRY;
 use irradiant::{Preset, Session, SessionSettings, TechniqueSpec};
 use irradiant_gpu::MAX_WORKGROUPS_PER_DIMENSION;
@@ -25,15 +26,22 @@ fn largest_grid_scene() -> irradiant_scene::Scene {
 
 /// A spec of every registered technique at its most demanding settings.
 fn largest_spec(name: &str, probes_per_group: u32) -> TechniqueSpec {
-    if name == "none" {
-        return TechniqueSpec::new(name, Preset::Quality);
+    let mut ddgi = DdgiSettings::quality();
+    ddgi.volume.rays_per_probe = 4096;
+    ddgi.volume.irradiance_texels = 16;
+    ddgi.volume.distance_texels = 30;
+    ddgi.speed.probes_per_group = probes_per_group;
+    let mut ssil = SsilSettings::quality();
+    ssil.start = StartResolution::Full;
+    ssil.levels = 6;
+    ssil.samples = 1024;
+    ssil.bounces = 4;
+    match name {
+        "none" => TechniqueSpec::new(name, Preset::Quality),
+        "ssil" => TechniqueSpec::with_settings(name, &ssil),
+        "ssil+ddgi" => TechniqueSpec::with_settings(name, &HybridSettings { ssil, ddgi }),
+        _ => TechniqueSpec::with_settings(name, &ddgi),
     }
-    let mut s = DdgiSettings::quality();
-    s.volume.rays_per_probe = 4096;
-    s.volume.irradiance_texels = 16;
-    s.volume.distance_texels = 30;
-    s.speed.probes_per_group = probes_per_group;
-    TechniqueSpec::with_settings(name, &s)
 }
 
 #[test]

@@ -76,10 +76,19 @@ impl FrameBench<'_> {
             if i < warmup {
                 continue;
             }
+            // A label recorded several times in a frame (a pass per probe volume or per
+            // level) counts once, as the sum of its dispatches.
+            let mut frame: Vec<(String, f64)> = Vec::new();
             for t in timings {
-                match per_pass.iter_mut().find(|(l, _)| *l == t.label) {
-                    Some((_, v)) => v.push(t.milliseconds),
-                    None => per_pass.push((t.label, vec![t.milliseconds])),
+                match frame.iter_mut().find(|(l, _)| *l == t.label) {
+                    Some((_, ms)) => *ms += t.milliseconds,
+                    None => frame.push((t.label, t.milliseconds)),
+                }
+            }
+            for (label, ms) in frame {
+                match per_pass.iter_mut().find(|(l, _)| *l == label) {
+                    Some((_, v)) => v.push(ms),
+                    None => per_pass.push((label, vec![ms])),
                 }
             }
         }

@@ -93,7 +93,12 @@ impl TechniqueKind for DdgiKind {
         self.settings(spec, &mut warnings)?;
         Ok(warnings)
     }
-    fn plan(&self, spec: &TechniqueSpec, scene: &Scene) -> Result<Vec<Allocation>, RenderError> {
+    fn plan(
+        &self,
+        spec: &TechniqueSpec,
+        scene: &Scene,
+        _size: (u32, u32),
+    ) -> Result<Vec<Allocation>, RenderError> {
         let settings = self.settings(spec, &mut Vec::new())?;
         Ok(volume_descs(scene, &settings)
             .iter()
@@ -232,7 +237,7 @@ impl Technique for Ddgi {
             resolve: vec!["ddgi/resolve"],
         }
     }
-    fn prepare(&mut self, ctx: &GpuContext) {
+    fn prepare(&mut self, ctx: &GpuContext, _camera: &irradiant_scene::Camera) {
         for v in &mut self.volumes {
             v.prepare(ctx);
         }
@@ -242,7 +247,7 @@ impl Technique for Ddgi {
             v.record_update(encoder, profiler.as_deref_mut());
         }
     }
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
+    fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
         for v in &self.volumes {
             v.record_resolve(encoder, profiler.as_deref_mut());
         }

@@ -1,7 +1,8 @@
 // frame/pyramid: level 0 of the G-buffer pyramid (FrameNeeds::pyramid_levels), from the
-// G-buffer and the direct light: normal and view depth, the radiance each surface sends
-// towards the camera (emission + direct), and albedo. frame/pyramid_down makes the levels
-// above.
+// G-buffer and the direct light: normal and view depth, the direct light each surface
+// reflects, and albedo. Not emission: frame/direct already samples every emitter, so an
+// emitter's light gathered again from the screen would be counted twice. frame/pyramid_down
+// makes the levels above.
 #import gbuffer
 
 @group(2) @binding(0) var direct: texture_2d<f32>;
@@ -25,6 +26,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let s = gbuffer_surface(id.xy);
     let view_depth = dot(s.position - frame.camera.position, frame.camera.forward);
     textureStore(pyramid_normal_depth_level0, pixel, vec4<f32>(s.normal, view_depth));
-    textureStore(pyramid_radiance_level0, pixel, vec4<f32>(s.emission + textureLoad(direct, id.xy, 0).rgb, 1.0));
+    textureStore(pyramid_radiance_level0, pixel, vec4<f32>(textureLoad(direct, id.xy, 0).rgb, 1.0));
     textureStore(pyramid_albedo_level0, pixel, vec4<f32>(s.albedo * (1.0 - s.metallic), 1.0));
 }

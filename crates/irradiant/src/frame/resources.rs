@@ -53,7 +53,8 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64)] = &[
 const PYRAMID: &[(&str, wgpu::TextureFormat, u64)] = &[
     // xyz: shading normal, w: view depth (distance along the camera's forward axis; < 0: sky)
     ("pyramid_normal_depth", wgpu::TextureFormat::Rgba32Float, 16),
-    // rgb: emitted + direct radiance leaving the surface towards the camera
+    // rgb: the direct light the surface reflects (not its emission, which frame/direct
+    // already samples as light)
     ("pyramid_radiance", wgpu::TextureFormat::Rgba16Float, 8),
     // rgb: diffuse albedo
     ("pyramid_albedo", wgpu::TextureFormat::Rgba16Float, 8),
@@ -190,6 +191,16 @@ impl FrameResources {
             .find(|t| t.name == name)
             .unwrap_or_else(|| panic!("the frame has no texture '{name}'"))
             .texture
+    }
+
+    /// The view of a frame texture (every mip) by name.
+    pub fn view(&self, name: &str) -> &wgpu::TextureView {
+        &self
+            .textures
+            .iter()
+            .find(|t| t.name == name)
+            .unwrap_or_else(|| panic!("the frame has no texture '{name}'"))
+            .view
     }
 
     pub fn pixels(&self) -> u64 {

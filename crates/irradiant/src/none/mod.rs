@@ -30,7 +30,12 @@ impl TechniqueKind for NoneKind {
             .map(|k| format!("unknown setting technique.{k} is ignored: 'none' has no settings"))
             .collect())
     }
-    fn plan(&self, _spec: &TechniqueSpec, _scene: &Scene) -> Result<Vec<Allocation>, RenderError> {
+    fn plan(
+        &self,
+        _: &TechniqueSpec,
+        _: &Scene,
+        _: (u32, u32),
+    ) -> Result<Vec<Allocation>, RenderError> {
         Ok(Vec::new())
     }
     fn dispatches(
@@ -64,7 +69,7 @@ impl Technique for NoIndirect {
     fn passes(&self) -> TechniquePasses {
         TechniquePasses::default()
     }
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder, _profiler: Option<&mut Profiler>) {
+    fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, _profiler: Option<&mut Profiler>) {
         encoder.clear_texture(&self.indirect, &wgpu::ImageSubresourceRange::default());
     }
     fn invalidate(&mut self) {}

@@ -1,0 +1,183 @@
+// ssil/gather_<level>: one level's screen-space gather (Soler et al. 2009, §3–4). Each texel
+// of pyramid level k sums the light of `samples` texels of the same level on the disc of
+// radius r around it (the start level) or the ring r/2…r (the others) — r in pixels of the
+// level, so each level reaches twice as far as the one before — as the irradiance they send
+// it: the point-to-disc form factor (eq. 4), with each sample's surface area from its screen
+// area (eqs. 2–3: the level's pixel area, 2^(2k) times level 0's, over the samples, at the
+// sample's depth, corrected for its tilt), and visibility from marching the level's voxel grid.
+// For the last bounce the samples are importance-sampled around the mirror direction
+// projected on the screen (f(θ) = α + exp(−s (θr − θ)² / 2π)) and the full BRDF gathers them.
+// Writes (E: cosine-weighted incident radiance ∫L cos dω, coverage: the share of the cosine
+// lobe the samples covered) and the glossy radiance.
+#import ssil_common
+#import gbuffer
+#import brdf
+#import random
+
+@group(2) @binding(0) var<uniform> ssil: GpuSsilParams;
+@group(2) @binding(1) var<uniform> ssil_pass: GpuSsilPass;
+@group(2) @binding(2) var pyramid_normal_depth: texture_2d<f32>;
+@group(2) @binding(3) var source_radiance: texture_2d<f32>;
+@group(2) @binding(4) var ssil_voxels: texture_2d<u32>;
+@group(2) @binding(5) var target_light: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(6) var target_specular: texture_storage_2d<rgba16float, write>;
+
+// Whether the segment between two surface points crosses a solid voxel of this level's grid,
+// skipping `visibility_bias` of it at each end (the surfaces' own voxels).
+fn occluded(from_point: vec3<f32>, to_point: vec3<f32>, level: u32) -> bool {
+    let size = vec2<f32>(f32(frame.width), f32(frame.height));
+    let grid = level_size(level);
+    let voxel_level = level - ssil.start_level;
+    let steps = ssil.visibility_steps;
+    for (var i = 0u; i < steps; i++) {
+        let t = ssil.visibility_bias + (1.0 - 2.0 * ssil.visibility_bias) * (f32(i) + 0.5) / f32(steps);
+        let p = mix(from_point, to_point, t);
+        let depth = view_depth(p);
+        if depth <= 0.0 {
+            continue;
+        }
+        let texel = project(frame.camera, p, size) / f32(1u << level);
+        if any(texel < vec2<f32>(0.0)) || any(texel >= vec2<f32>(grid)) {
+            continue;
+        }
+        if voxel_bit(textureLoad(ssil_voxels, vec2<u32>(texel), voxel_level), slice_of(depth)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The standard normal's inverse CDF would be costly; Box–Muller from two uniforms.
+fn gaussian_sample(u: vec2<f32>) -> f32 {
+    return sqrt(-2.0 * log(max(u.x, 1e-7))) * cos(TAU * u.y);
+}
+
+// A wrapped Gaussian of standard deviation sigma at angle difference d, summed over the three
+// nearest periods (enough below sigma = π).
+fn wrapped_gaussian(d: f32, sigma: f32) -> f32 {
+    var g = 0.0;
+    for (var k = -1; k <= 1; k++) {
+        let x = d + TAU * f32(k);
+        g += exp(-x * x / (2.0 * sigma * sigma));
+    }
+    return g;
+}
+
+fn wrap_angle(a: f32) -> f32 {
+    return a - TAU * floor((a + PI) / TAU);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let level = ssil_pass.level;
+    let size = level_size(level);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let out_texel = vec2<i32>(id.xy);
+    let nd = textureLoad(pyramid_normal_depth, id.xy, level);
+    if nd.w < 0.0 {
+        textureStore(target_light, out_texel, vec4<f32>(0.0));
+        textureStore(target_specular, out_texel, vec4<f32>(0.0));
+        return;
+    }
+    let x = level_position(id.xy, level, nd.w);
+    let n = nd.xyz;
+    let wo = normalize(frame.camera.position - x);
+    let image = vec2<f32>(f32(frame.width), f32(frame.height));
+    // The receiver's material, for the glossy gather: the full-resolution texel at this
+    // texel's centre.
+    let full = min(vec2<u32>(level_to_image(vec2<f32>(id.xy) + 0.5, level)), vec2<u32>(frame.width, frame.height) - 1u);
+    var receiver = gbuffer_surface(full);
+    receiver.normal = n;
+    receiver.position = x;
+    let glossy = ssil_pass.last_bounce == 1u && has_specular(receiver);
+    // eq. 2: the world area of one pixel of this level at unit depth, facing the camera:
+    // 2^(2k) times a level-0 pixel's.
+    let pixel_area = 4.0 * frame.camera.tan_half_fov_y * frame.camera.tan_half_fov_y * frame.camera.aspect
+        / (image.x * image.y) * f32(1u << (2u * level));
+    let r = ssil.radius;
+    let inner = select(0.5 * r, 0.0, ssil_pass.first == 1u);
+    let region = PI * (r * r - inner * inner);
+    // Importance of angles around the projected mirror direction (glossy last bounce only).
+    var lobe_angle = 0.0;
+    var sigma = 1e6;
+    if glossy {
+        let reflected = reflect(-wo, n);
+        let ahead = project(frame.camera, x + reflected * max(0.1 * view_depth(x), 1e-3), image) - project(frame.camera, x, image);
+        let alpha = max(receiver.roughness * receiver.roughness, 1e-3);
+        // Phong exponent of the GGX lobe (Walter et al. 2007), and the Gaussian's width.
+        let s = clamp(2.0 / (alpha * alpha) - 2.0, 0.0, 1e4);
+        if dot(ahead, ahead) > 1e-6 && s > 0.0 {
+            lobe_angle = atan2(ahead.y, ahead.x);
+            sigma = sqrt(PI / s);
+        }
+    }
+    let importance = sigma < PI;
+    let uniform_weight = TAU * ssil.importance_alpha;
+    let gaussian_weight = sqrt(TAU) * sigma;
+    var rng = rng_seed(id.y * size.x + id.x, frame.frame_index, level * 7919u + 0x2545f491u);
+    let rotation = TAU * rand(&rng);
+    var light = vec3<f32>(0.0);
+    var specular = vec3<f32>(0.0);
+    var coverage = 0.0;
+    let n_samples = ssil.samples;
+    for (var i = 0u; i < n_samples; i++) {
+        // Radius uniform in area over the disc or ring, stratified; angle along a golden-angle
+        // spiral, or drawn from the importance function.
+        let u = (f32(i) + rand(&rng)) / f32(n_samples);
+        let rho = sqrt(mix(inner * inner, r * r, u));
+        var angle = rotation + f32(i) * 2.39996323;
+        var weight = 1.0;
+        if importance {
+            if rand(&rng) * (uniform_weight + gaussian_weight) < uniform_weight {
+                angle = TAU * rand(&rng);
+            } else {
+                angle = lobe_angle + sigma * gaussian_sample(rand2(&rng));
+            }
+            let pdf = (ssil.importance_alpha + wrapped_gaussian(wrap_angle(angle - lobe_angle), sigma)) / (uniform_weight + gaussian_weight);
+            weight = 1.0 / (TAU * pdf);
+        }
+        let q = vec2<f32>(id.xy) + 0.5 + rho * vec2<f32>(cos(angle), sin(angle));
+        if any(q < vec2<f32>(0.0)) || any(q >= vec2<f32>(size)) {
+            continue;
+        }
+        let qi = vec2<u32>(q);
+        let ndq = textureLoad(pyramid_normal_depth, qi, level);
+        if ndq.w < 0.0 {
+            continue;
+        }
+        let xi = level_position(qi, level, ndq.w);
+        let d = xi - x;
+        let r2 = dot(d, d);
+        if r2 < 1e-10 {
+            continue;
+        }
+        let wi = d * inverseSqrt(r2);
+        let cos_receiver = dot(n, wi);
+        let cos_sender = dot(ndq.xyz, -wi);
+        if cos_receiver <= 0.0 || cos_sender <= 0.0 {
+            continue;
+        }
+        // eqs. 2–3: the sample's surface area from its share of the region's pixels.
+        let view = normalize(xi - frame.camera.position);
+        let cos_alpha = dot(view, frame.camera.forward);
+        let cos_beta = max(abs(dot(ndq.xyz, view)), 0.05);
+        let ds = ndq.w * ndq.w * pixel_area * (region / f32(n_samples)) * weight * cos_alpha / cos_beta;
+        // eq. 4: the point-to-disc form factor, bounded where the sample is close.
+        let disc = cos_sender * ds / PI;
+        let g = cos_receiver * cos_sender * ds / (r2 + disc);
+        if ssil.visibility == 1u && occluded(x, xi, level) {
+            continue;
+        }
+        let l = textureLoad(source_radiance, qi, ssil_pass.radiance_level).rgb;
+        light += l * g;
+        coverage += g / PI;
+        if glossy {
+            let f = brdf_eval(receiver, wo, wi) - diffuse_weight(receiver) / PI;
+            specular += max(f, vec3<f32>(0.0)) * l * g;
+        }
+    }
+    textureStore(target_light, out_texel, vec4<f32>(light, min(coverage, 1.0)));
+    textureStore(target_specular, out_texel, vec4<f32>(specular, 1.0));
+}

@@ -1,0 +1,738 @@
+//! Hierarchical screen-space indirect illumination (Soler, Hoel, Rochet and Holzschuch 2009):
+//! the light of what the camera sees, gathered over the frame's G-buffer pyramid. Each frame:
+//!
+//! ```text
+//! ssil/voxelize      the view frustum, 128 depth slices a texel, solid inside closed objects
+//! ssil/voxel_down    each level's grid from the one below (AND)
+//! ssil/gather_<n>    each level's disc or ring of samples: point-to-disc form factors,
+//!                    visibility by marching the level's grid, glossy importance sampling
+//! ssil/upsample      the levels combined coarsest first, joint-bilaterally upsampled
+//! ssil/bounce        (more bounces) the light of bounce n for bounce n + 1 to gather
+//! ssil/temporal      blended with last frame's light where the same surface was there
+//! ssil/resolve       into the frame's indirect light (with ssil+ddgi, over the probes' light)
+//! ```
+//!
+//! See docs/ssil.md. Two registry entries: `ssil` alone, and `ssil+ddgi`, where DDGI's probes
+//! supply the light the screen cannot see.
+
+mod resources;
+mod settings;
+pub mod types;
+
+pub use resources::plan;
+pub use settings::{SsilSettings, StartResolution};
+
+use std::any::Any;
+use std::sync::Arc;
+
+use glam::Vec3;
+use irradiant_gpu::{
+    Allocation, BoundPass, ComputePass, GpuContext, PassDesc, Profiler, ResourceTable, Workgroups,
+    read_buffer_as, wgpu,
+};
+use irradiant_scene::{Camera, Scene};
+use serde::{Deserialize, Serialize};
+
+use crate::RenderError;
+use crate::ddgi::{Ddgi, DdgiSettings};
+use crate::frame::{FrameNeeds, IMAGE_TILE, SceneChange};
+use crate::technique::{
+    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec,
+};
+use resources::SsilResources;
+use types::{GpuSsilParams, GpuSsilPass};
+
+/// The registry entry `ssil`.
+pub static SSIL: SsilKind = SsilKind { hybrid: false };
+/// The registry entry `ssil+ddgi`: DDGI supplies what the screen cannot see.
+pub static SSIL_DDGI: SsilKind = SsilKind { hybrid: true };
+
+/// Per-level labels, so that bench times each level as the paper's table does.
+const GATHER_LABELS: [&str; 6] = [
+    "ssil/gather_1",
+    "ssil/gather_2",
+    "ssil/gather_3",
+    "ssil/gather_4",
+    "ssil/gather_5",
+    "ssil/gather_6",
+];
+
+/// The settings of `ssil+ddgi`: each technique's own, under its name.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HybridSettings {
+    pub ssil: SsilSettings,
+    pub ddgi: DdgiSettings,
+}
+
+crate::settings::presets_from_inherent!(HybridSettings);
+
+impl HybridSettings {
+    pub fn fast() -> Self {
+        Self {
+            ssil: SsilSettings::fast(),
+            ddgi: DdgiSettings::fast(),
+        }
+    }
+    pub fn balanced() -> Self {
+        Self {
+            ssil: SsilSettings::balanced(),
+            ddgi: DdgiSettings::balanced(),
+        }
+    }
+    pub fn quality() -> Self {
+        Self {
+            ssil: SsilSettings::quality(),
+            ddgi: DdgiSettings::quality(),
+        }
+    }
+}
+
+pub struct SsilKind {
+    hybrid: bool,
+}
+
+impl SsilKind {
+    /// The screen-space settings a spec asks for (and, for the hybrid, DDGI's).
+    pub fn settings(
+        &self,
+        spec: &TechniqueSpec,
+        warnings: &mut Vec<String>,
+    ) -> Result<(SsilSettings, Option<DdgiSettings>), RenderError> {
+        if self.hybrid {
+            let preset = <HybridSettings as crate::settings::Presets>::preset(spec.preset);
+            let s: HybridSettings =
+                crate::settings::overlay(&preset, &spec.settings, "technique", warnings)?;
+            s.ssil.validate()?;
+            s.ddgi.validate()?;
+            Ok((s.ssil, Some(s.ddgi)))
+        } else {
+            Ok((SsilSettings::from_spec(spec, warnings)?, None))
+        }
+    }
+}
+
+impl TechniqueKind for SsilKind {
+    fn name(&self) -> &'static str {
+        if self.hybrid { "ssil+ddgi" } else { "ssil" }
+    }
+    fn description(&self) -> &'static str {
+        if self.hybrid {
+            "screen-space indirect light, with DDGI's probes where the screen has none"
+        } else {
+            "hierarchical screen-space indirect illumination"
+        }
+    }
+    fn check(&self, spec: &TechniqueSpec) -> Result<Vec<String>, RenderError> {
+        let mut warnings = Vec::new();
+        self.settings(spec, &mut warnings)?;
+        Ok(warnings)
+    }
+    fn frame_needs(&self, spec: &TechniqueSpec) -> FrameNeeds {
+        let levels = self
+            .settings(spec, &mut Vec::new())
+            .map_or(0, |(s, _)| s.pyramid_levels());
+        FrameNeeds {
+            pyramid_levels: levels,
+        }
+    }
+    fn scene_warnings(&self, spec: &TechniqueSpec, scene: &Scene) -> Vec<String> {
+        let Ok((settings, _)) = self.settings(spec, &mut Vec::new()) else {
+            return Vec::new();
+        };
+        let open: usize = scene
+            .instances
+            .iter()
+            .map(|i| scene.meshes[i.mesh as usize].open_edges())
+            .sum();
+        if settings.visibility && open > 0 {
+            vec![format!(
+                "scene '{}' is not watertight ({open} open edges): screen-space visibility treats the space behind an open surface as solid until the next surface; close the meshes, or set technique.visibility = false",
+                scene.name
+            )]
+        } else {
+            Vec::new()
+        }
+    }
+    fn plan(
+        &self,
+        spec: &TechniqueSpec,
+        scene: &Scene,
+        size: (u32, u32),
+    ) -> Result<Vec<Allocation>, RenderError> {
+        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
+        settings.check_size(size)?;
+        let mut plan = resources::plan(&settings, size);
+        if let Some(ddgi) = ddgi {
+            plan.extend(crate::ddgi::DDGI.plan(
+                &TechniqueSpec::with_settings("ddgi", &ddgi),
+                scene,
+                size,
+            )?);
+        }
+        Ok(plan)
+    }
+    fn dispatches(
+        &self,
+        spec: &TechniqueSpec,
+        scene: &Scene,
+        size: (u32, u32),
+    ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
+        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
+        let mut all = dispatches(&settings, size);
+        if let Some(ddgi) = ddgi {
+            all.extend(crate::ddgi::DDGI.dispatches(
+                &TechniqueSpec::with_settings("ddgi", &ddgi),
+                scene,
+                size,
+            )?);
+        }
+        Ok(all)
+    }
+    fn build(
+        &self,
+        cx: &TechniqueContext,
+        spec: &TechniqueSpec,
+    ) -> Result<Box<dyn Technique>, RenderError> {
+        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
+        settings.check_size(cx.frame.size())?;
+        let ssil = Ssil::new(cx, &settings, ddgi.is_some())?;
+        Ok(match ddgi {
+            Some(ddgi) => Box::new(SsilDdgi {
+                ddgi: Ddgi::new(cx, "ddgi", &ddgi)?,
+                ssil,
+            }),
+            None => Box::new(ssil),
+        })
+    }
+}
+
+/// Every dispatch, with its label (the frame's pyramid aside).
+pub fn dispatches(
+    settings: &SsilSettings,
+    (width, height): (u32, u32),
+) -> Vec<(&'static str, Workgroups)> {
+    let level =
+        |k: u32| Workgroups::for_image((width >> k).max(1), (height >> k).max(1), IMAGE_TILE);
+    let s = settings.start.level();
+    let mut all = vec![("ssil/voxelize", level(s))];
+    for j in 1..settings.levels {
+        all.push(("ssil/voxel_down", level(s + j)));
+    }
+    for bounce in 0..settings.bounces {
+        if bounce > 0 {
+            all.push(("ssil/bounce", level(s)));
+            for j in 1..settings.levels {
+                all.push(("ssil/bounce", level(s + j)));
+            }
+        }
+        for j in 0..settings.levels {
+            all.push((GATHER_LABELS[j as usize], level(s + j)));
+        }
+        for j in (0..settings.levels).rev() {
+            all.push(("ssil/upsample", level(s + j)));
+        }
+    }
+    all.extend([
+        ("ssil/upsample", level(0)),
+        ("ssil/temporal", level(0)),
+        ("ssil/resolve", level(0)),
+    ]);
+    all
+}
+
+/// The compiled passes.
+struct Pipelines {
+    voxelize: Arc<ComputePass>,
+    voxel_down: Arc<ComputePass>,
+    gather: Arc<ComputePass>,
+    upsample: Arc<ComputePass>,
+    bounce: Arc<ComputePass>,
+    bounce_down: Arc<ComputePass>,
+    temporal: Arc<ComputePass>,
+    resolve: Arc<ComputePass>,
+}
+
+/// One bounce's dispatches, in order: its light (after the first), the gathers finest first,
+/// the upsamples coarsest first.
+struct BouncePasses {
+    light: Vec<(BoundPass, Workgroups)>,
+    gathers: Vec<(BoundPass, Workgroups)>,
+    upsamples: Vec<(BoundPass, Workgroups)>,
+}
+
+pub struct Ssil {
+    settings: SsilSettings,
+    hybrid: bool,
+    resources: SsilResources,
+    voxels: Vec<(BoundPass, Workgroups)>,
+    bounces: Vec<BouncePasses>,
+    finish: Vec<(BoundPass, Workgroups)>,
+    /// The frame's level-0 normal and depth, kept as next frame's history geometry.
+    pyramid_normal_depth: wgpu::Texture,
+    /// Scene bounds (grown for animation) for the voxel grid's depth range.
+    bounds: (Vec3, Vec3),
+    frames: u32,
+}
+
+impl Ssil {
+    pub fn new(
+        cx: &TechniqueContext,
+        settings: &SsilSettings,
+        hybrid: bool,
+    ) -> Result<Self, RenderError> {
+        settings.validate()?;
+        let ctx = cx.ctx;
+        let size = cx.frame.size();
+        let resources = SsilResources::new(ctx, settings, size)?;
+        let compile = |label: &'static str, source: &str, tracing: bool| {
+            let mut desc = PassDesc::new(label, source);
+            if tracing {
+                desc = desc.constants(cx.gpu_scene.shader_constants());
+            }
+            crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
+        };
+        let p = Pipelines {
+            voxelize: compile("ssil/voxelize", include_str!("voxelize.wgsl"), true)?,
+            voxel_down: compile("ssil/voxel_down", include_str!("voxel_down.wgsl"), false)?,
+            gather: compile("ssil/gather", include_str!("gather.wgsl"), false)?,
+            upsample: compile("ssil/upsample", include_str!("upsample.wgsl"), false)?,
+            bounce: compile("ssil/bounce", include_str!("bounce.wgsl"), false)?,
+            bounce_down: compile("ssil/bounce", include_str!("bounce_down.wgsl"), false)?,
+            temporal: compile("ssil/temporal", include_str!("temporal.wgsl"), false)?,
+            resolve: compile("ssil/resolve", include_str!("resolve.wgsl"), false)?,
+        };
+        let scene_table = cx.gpu_scene.resources();
+        let frame_table = cx.frame.resources.table();
+        let r = &resources;
+        let s = settings.start.level();
+        let levels = settings.levels;
+        let group =
+            |k: u32| Workgroups::for_image((size.0 >> k).max(1), (size.1 >> k).max(1), IMAGE_TILE);
+        let pass_uniform = |pass: GpuSsilPass| SsilResources::pass_uniform(ctx, pass);
+        let bind =
+            |pipeline: &Arc<ComputePass>, own: ResourceTable| -> Result<BoundPass, RenderError> {
+                Ok(pipeline.bind(ctx, &[&scene_table, &frame_table, &own])?)
+            };
+        // The voxel grid: level 0 by tracing, each further level by AND.
+        let mut voxels = vec![(
+            bind(
+                &p.voxelize,
+                ResourceTable::new()
+                    .buffer("ssil", &r.params)
+                    .buffer("ssil_counters", &r.counters)
+                    .texture("target_voxels", &r.voxels.levels[0]),
+            )?,
+            group(s),
+        )];
+        for j in 1..levels as usize {
+            let own = ResourceTable::new()
+                .texture("source_voxels", &r.voxels.levels[j - 1])
+                .texture("target_voxels", &r.voxels.levels[j]);
+            voxels.push((p.voxel_down.bind(ctx, &[&own])?, group(s + j as u32)));
+        }
+        let pyramid_radiance = cx.frame.resources.view("pyramid_radiance");
+        let mut bounces = Vec::new();
+        let mut uniforms = Vec::new();
+        for bounce in 0..settings.bounces {
+            let last = bounce + 1 == settings.bounces;
+            let mut light = Vec::new();
+            if bounce > 0 {
+                let b = r
+                    .bounce
+                    .as_ref()
+                    .expect("a bounce chain with more than one bounce");
+                light.push((
+                    bind(
+                        &p.bounce,
+                        ResourceTable::new()
+                            .buffer("ssil", &r.params)
+                            .texture("combined_light", &r.combined.levels[0])
+                            .texture("target_radiance", &b.levels[0]),
+                    )?,
+                    group(s),
+                ));
+                for j in 1..levels {
+                    uniforms.push(pass_uniform(GpuSsilPass {
+                        level: s + j,
+                        ..Default::default()
+                    }));
+                    let own = ResourceTable::new()
+                        .buffer("ssil", &r.params)
+                        .buffer("ssil_pass", uniforms.last().unwrap())
+                        .texture("source_radiance", &b.levels[j as usize - 1])
+                        .texture("target_radiance", &b.levels[j as usize]);
+                    light.push((bind(&p.bounce_down, own)?, group(s + j)));
+                }
+            }
+            let mut gathers = Vec::new();
+            for j in 0..levels {
+                let (source, radiance_level) = match (&r.bounce, bounce) {
+                    (Some(b), 1..) => (&b.view, j),
+                    _ => (pyramid_radiance, s + j),
+                };
+                uniforms.push(pass_uniform(GpuSsilPass {
+                    level: s + j,
+                    first: (j == 0) as u32,
+                    last_bounce: last as u32,
+                    radiance_level,
+                    ..Default::default()
+                }));
+                let own = ResourceTable::new()
+                    .buffer("ssil", &r.params)
+                    .buffer("ssil_pass", uniforms.last().unwrap())
+                    .texture("source_radiance", source)
+                    .texture("ssil_voxels", &r.voxels.view)
+                    .texture("target_light", &r.gather.levels[j as usize])
+                    .texture("target_specular", &r.gather_specular.levels[j as usize]);
+                gathers.push((
+                    bind(&p.gather, own)?.labelled(GATHER_LABELS[j as usize]),
+                    group(s + j),
+                ));
+            }
+            let mut upsamples = Vec::new();
+            for j in (0..levels).rev() {
+                let coarsest = j + 1 == levels;
+                // The coarsest level has nothing above: its own gather stands in, unread.
+                let above = if coarsest { j } else { j + 1 } as usize;
+                let (coarse, coarse_specular) = if coarsest {
+                    (&r.gather.levels[above], &r.gather_specular.levels[above])
+                } else {
+                    (
+                        &r.combined.levels[above],
+                        &r.combined_specular.levels[above],
+                    )
+                };
+                uniforms.push(pass_uniform(GpuSsilPass {
+                    level: s + j,
+                    coarse_level: if coarsest { 0 } else { s + j + 1 },
+                    with_gather: 1,
+                    ..Default::default()
+                }));
+                let own = ResourceTable::new()
+                    .buffer("ssil", &r.params)
+                    .buffer("ssil_pass", uniforms.last().unwrap())
+                    .texture("source_light", &r.gather.levels[j as usize])
+                    .texture("source_specular", &r.gather_specular.levels[j as usize])
+                    .texture("coarse_light", coarse)
+                    .texture("coarse_specular", coarse_specular)
+                    .texture("target_light", &r.combined.levels[j as usize])
+                    .texture("target_specular", &r.combined_specular.levels[j as usize]);
+                upsamples.push((bind(&p.upsample, own)?, group(s + j)));
+            }
+            bounces.push(BouncePasses {
+                light,
+                gathers,
+                upsamples,
+            });
+        }
+        // To full resolution: the start level joint-bilaterally upsampled (at a full start, the
+        // combined level 0 itself).
+        uniforms.push(pass_uniform(GpuSsilPass {
+            level: 0,
+            coarse_level: s,
+            with_gather: (s == 0) as u32,
+            ..Default::default()
+        }));
+        let mut finish = vec![(
+            bind(
+                &p.upsample,
+                ResourceTable::new()
+                    .buffer("ssil", &r.params)
+                    .buffer("ssil_pass", uniforms.last().unwrap())
+                    .texture("source_light", &r.combined.levels[0])
+                    .texture("source_specular", &r.combined_specular.levels[0])
+                    .texture("coarse_light", &r.combined.levels[0])
+                    .texture("coarse_specular", &r.combined_specular.levels[0])
+                    .texture("target_light", &r.full.view)
+                    .texture("target_specular", &r.full_specular.view),
+            )?,
+            group(0),
+        )];
+        finish.push((
+            bind(
+                &p.temporal,
+                ResourceTable::new()
+                    .buffer("ssil", &r.params)
+                    .texture("ssil_full", &r.full.view)
+                    .texture("ssil_full_specular", &r.full_specular.view)
+                    .texture("ssil_history", &r.history.view)
+                    .texture("ssil_history_specular", &r.history_specular.view)
+                    .texture("ssil_history_geometry", &r.history_geometry.view)
+                    .texture("ssil_filtered", &r.filtered.view)
+                    .texture("ssil_filtered_specular", &r.filtered_specular.view),
+            )?,
+            group(0),
+        ));
+        finish.push((
+            bind(
+                &p.resolve,
+                ResourceTable::new()
+                    .buffer("ssil", &r.params)
+                    .texture("ssil_filtered", &r.filtered.view)
+                    .texture("ssil_filtered_specular", &r.filtered_specular.view),
+            )?,
+            group(0),
+        ));
+        // The pass uniforms stay alive through the bind groups that hold them.
+        drop(uniforms);
+        let (lo, hi) = cx.scene.bounds();
+        let grow = (hi - lo).max(Vec3::splat(1e-3)) * 0.1;
+        Ok(Self {
+            settings: settings.clone(),
+            hybrid,
+            resources,
+            voxels,
+            bounces,
+            finish,
+            pyramid_normal_depth: cx.frame.resources.texture("pyramid_normal_depth").clone(),
+            bounds: (lo - grow, hi + grow),
+            frames: 0,
+        })
+    }
+
+    pub fn settings(&self) -> &SsilSettings {
+        &self.settings
+    }
+
+    /// The view depths the voxel grid's slices span: the scene's bounds seen from the camera.
+    fn depth_range(&self, camera: &Camera) -> (f32, f32) {
+        let forward = (camera.target - camera.position).normalize_or(Vec3::NEG_Z);
+        let (lo, hi) = self.bounds;
+        let depths = (0..8).map(|c| {
+            let corner = Vec3::new(
+                if c & 1 == 0 { lo.x } else { hi.x },
+                if c & 2 == 0 { lo.y } else { hi.y },
+                if c & 4 == 0 { lo.z } else { hi.z },
+            );
+            (corner - camera.position).dot(forward)
+        });
+        let (near, far) = depths.fold((f32::MAX, f32::MIN), |(n, f), d| (n.min(d), f.max(d)));
+        let far = far.max(1e-3);
+        (near.max(far * 1e-3), far)
+    }
+
+    /// Voxelization rays of the last frame that ended inside a solid (crossed an odd number of
+    /// surfaces), and all of them: the share of open geometry the camera sees.
+    pub fn read_open_rays(&self, ctx: &GpuContext) -> Result<(u32, u32), RenderError> {
+        let c: Vec<u32> = read_buffer_as(ctx, &self.resources.counters)?;
+        Ok((c[0], c[1]))
+    }
+
+    /// The last frame's filtered light at full resolution: (E rgb, coverage) a pixel, E being
+    /// ∫ L cos dω (a Lambertian surface of albedo ρ reflects ρ/π × E).
+    pub fn read_light(&self, ctx: &GpuContext) -> Result<Vec<[f32; 4]>, RenderError> {
+        read_rgba16(ctx, &self.resources.filtered.texture, 0)
+    }
+
+    /// One level of the last bounce's gathers (level 0: the start level), as [`Self::read_light`].
+    pub fn read_gather(&self, ctx: &GpuContext, level: u32) -> Result<Vec<[f32; 4]>, RenderError> {
+        read_rgba16(ctx, &self.resources.gather.texture, level)
+    }
+
+    fn record_frame(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+    ) {
+        if self.settings.visibility {
+            encoder.clear_buffer(&self.resources.counters, 0, None);
+            for (pass, groups) in &self.voxels {
+                pass.dispatch(encoder, profiler.as_deref_mut(), *groups);
+            }
+        }
+        for bounce in &self.bounces {
+            for (pass, groups) in bounce
+                .light
+                .iter()
+                .chain(&bounce.gathers)
+                .chain(&bounce.upsamples)
+            {
+                pass.dispatch(encoder, profiler.as_deref_mut(), *groups);
+            }
+        }
+        let (upsample, temporal, resolve) = (&self.finish[0], &self.finish[1], &self.finish[2]);
+        upsample
+            .0
+            .dispatch(encoder, profiler.as_deref_mut(), upsample.1);
+        temporal
+            .0
+            .dispatch(encoder, profiler.as_deref_mut(), temporal.1);
+        let r = &self.resources;
+        for (from, to) in [
+            (&r.filtered, &r.history),
+            (&r.filtered_specular, &r.history_specular),
+        ] {
+            encoder.copy_texture_to_texture(
+                from.texture.as_image_copy(),
+                to.texture.as_image_copy(),
+                from.texture.size(),
+            );
+        }
+        encoder.copy_texture_to_texture(
+            self.pyramid_normal_depth.as_image_copy(),
+            r.history_geometry.texture.as_image_copy(),
+            r.history_geometry.texture.size(),
+        );
+        resolve.0.dispatch(encoder, profiler, resolve.1);
+        self.frames += 1;
+    }
+}
+
+impl Technique for Ssil {
+    fn name(&self) -> &'static str {
+        if self.hybrid { "ssil+ddgi" } else { "ssil" }
+    }
+    fn passes(&self) -> TechniquePasses {
+        let mut update = vec!["ssil/voxelize", "ssil/voxel_down"];
+        update.extend(&GATHER_LABELS[..self.settings.levels as usize]);
+        update.extend(["ssil/upsample", "ssil/bounce", "ssil/temporal"]);
+        TechniquePasses {
+            update,
+            resolve: vec!["ssil/resolve"],
+        }
+    }
+    fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {
+        let s = &self.settings;
+        let (near, far) = self.depth_range(camera);
+        let height = self.resources.full.texture.size().height;
+        let params = GpuSsilParams {
+            start_level: s.start.level(),
+            levels: s.levels,
+            samples: s.samples,
+            visibility: s.visibility as u32,
+            radius: s.radius_at(height),
+            near,
+            far,
+            visibility_steps: s.visibility_steps,
+            visibility_bias: s.visibility_bias,
+            importance_alpha: if s.glossy { s.importance_alpha } else { 1e9 },
+            hysteresis: s.hysteresis,
+            motion_pixels: s.motion_pixels,
+            depth_tolerance: s.depth_tolerance,
+            normal_tolerance: s.normal_tolerance,
+            history_valid: (self.frames > 0) as u32,
+            hybrid: self.hybrid as u32,
+        };
+        ctx.queue
+            .write_buffer(&self.resources.params, 0, bytemuck::bytes_of(&params));
+    }
+    fn update(&mut self, _encoder: &mut wgpu::CommandEncoder, _profiler: Option<&mut Profiler>) {}
+    /// The whole technique runs at resolve time: it gathers the frame's own direct light.
+    fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
+        self.record_frame(encoder, profiler);
+    }
+    fn invalidate(&mut self) {
+        self.frames = 0;
+    }
+    fn reconfigure(
+        &mut self,
+        _ctx: &GpuContext,
+        spec: &TechniqueSpec,
+    ) -> Result<bool, RenderError> {
+        if spec.name != Technique::name(self) {
+            return Ok(false);
+        }
+        let kind = if self.hybrid { &SSIL_DDGI } else { &SSIL };
+        let (settings, _) = kind.settings(spec, &mut Vec::new())?;
+        // Sizes, levels, bounces and the samples' layout shape the passes: only the filter's
+        // and the march's numbers change live.
+        let live = SsilSettings {
+            hysteresis: self.settings.hysteresis,
+            motion_pixels: self.settings.motion_pixels,
+            depth_tolerance: self.settings.depth_tolerance,
+            normal_tolerance: self.settings.normal_tolerance,
+            visibility_bias: self.settings.visibility_bias,
+            importance_alpha: self.settings.importance_alpha,
+            ..settings.clone()
+        };
+        if live != self.settings || self.hybrid {
+            return Ok(false);
+        }
+        self.settings = settings;
+        Ok(true)
+    }
+    fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
+        let (open, total) = self.read_open_rays(ctx)?;
+        Ok(vec![
+            Counter {
+                name: "voxel_rays",
+                value: total as f64,
+            },
+            Counter {
+                name: "open_voxel_rays",
+                value: open as f64,
+            },
+        ])
+    }
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+}
+
+fn read_rgba16(
+    ctx: &GpuContext,
+    texture: &wgpu::Texture,
+    level: u32,
+) -> Result<Vec<[f32; 4]>, RenderError> {
+    let bytes = irradiant_gpu::read_texture_level(ctx, texture, level, 8)?;
+    let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
+    Ok(halves
+        .chunks_exact(4)
+        .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
+        .collect())
+}
+
+/// `ssil+ddgi`: DDGI's probes light everything, then the screen-space light replaces them in
+/// the share of each pixel's hemisphere the screen covers.
+pub struct SsilDdgi {
+    pub ddgi: Ddgi,
+    pub ssil: Ssil,
+}
+
+impl Technique for SsilDdgi {
+    fn name(&self) -> &'static str {
+        "ssil+ddgi"
+    }
+    fn passes(&self) -> TechniquePasses {
+        let (d, s) = (self.ddgi.passes(), self.ssil.passes());
+        TechniquePasses {
+            update: d.update.into_iter().chain(s.update).collect(),
+            resolve: d.resolve.into_iter().chain(s.resolve).collect(),
+        }
+    }
+    fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {
+        self.ddgi.prepare(ctx, camera);
+        self.ssil.prepare(ctx, camera);
+    }
+    fn update(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
+        self.ddgi.update(encoder, profiler);
+    }
+    fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
+        self.ddgi.resolve(encoder, profiler.as_deref_mut());
+        self.ssil.resolve(encoder, profiler);
+    }
+    fn visualize(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.ddgi.visualize(encoder);
+    }
+    fn invalidate(&mut self) {
+        self.ddgi.invalidate();
+        self.ssil.invalidate();
+    }
+    fn scene_changed(&mut self, change: &SceneChange) {
+        self.ddgi.scene_changed(change);
+    }
+    fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
+        let mut all = self.ddgi.counters(ctx)?;
+        all.extend(self.ssil.counters(ctx)?);
+        Ok(all)
+    }
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
+}

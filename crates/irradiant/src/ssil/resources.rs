@@ -1,0 +1,220 @@
+//! Screen-space indirect illumination's textures: the voxel grid and the per-level light at the
+//! start level's resolution (with a mip a level), and the full-resolution light, its filtered
+//! value and last frame's, with the geometry it was filtered on.
+
+use irradiant_gpu::{Allocation, GpuContext, wgpu};
+
+use super::settings::SsilSettings;
+use super::types::{GpuSsilParams, GpuSsilPass};
+use crate::RenderError;
+
+const SETTING: &str = "the image size (--size), technique.start or technique.levels";
+
+/// A texture and its views: the whole chain, and each mip alone (a pass writes one mip while it
+/// reads another).
+pub struct LevelTexture {
+    pub texture: wgpu::Texture,
+    pub view: wgpu::TextureView,
+    pub levels: Vec<wgpu::TextureView>,
+}
+
+impl LevelTexture {
+    fn new(
+        device: &wgpu::Device,
+        label: &str,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+        mips: u32,
+    ) -> Self {
+        let texture = irradiant_gpu::texture_2d(
+            device,
+            label,
+            size,
+            format,
+            mips,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
+        );
+        let levels = (0..mips)
+            .map(|level| {
+                texture.create_view(&wgpu::TextureViewDescriptor {
+                    base_mip_level: level,
+                    mip_level_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        Self {
+            view: texture.create_view(&Default::default()),
+            texture,
+            levels,
+        }
+    }
+}
+
+/// (name, format, bytes a texel, at the start level with a mip a level?)
+const TEXTURES: &[(&str, wgpu::TextureFormat, u64, bool)] = &[
+    ("ssil/voxels", wgpu::TextureFormat::Rgba32Uint, 16, true),
+    ("ssil/gather", wgpu::TextureFormat::Rgba16Float, 8, true),
+    (
+        "ssil/gather_specular",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        true,
+    ),
+    ("ssil/combined", wgpu::TextureFormat::Rgba16Float, 8, true),
+    (
+        "ssil/combined_specular",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        true,
+    ),
+    ("ssil/full", wgpu::TextureFormat::Rgba16Float, 8, false),
+    (
+        "ssil/full_specular",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        false,
+    ),
+    ("ssil/filtered", wgpu::TextureFormat::Rgba16Float, 8, false),
+    (
+        "ssil/filtered_specular",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        false,
+    ),
+    ("ssil/history", wgpu::TextureFormat::Rgba16Float, 8, false),
+    (
+        "ssil/history_specular",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        false,
+    ),
+    (
+        "ssil/history_geometry",
+        wgpu::TextureFormat::Rgba32Float,
+        16,
+        false,
+    ),
+];
+
+/// The bounce light's chain, only with more than one bounce.
+const BOUNCE: (&str, wgpu::TextureFormat, u64) =
+    ("ssil/bounce", wgpu::TextureFormat::Rgba16Float, 8);
+
+fn start_size(settings: &SsilSettings, (width, height): (u32, u32)) -> (u32, u32) {
+    let s = settings.start.level();
+    ((width >> s).max(1), (height >> s).max(1))
+}
+
+/// Every allocation, from the settings and the image size alone.
+pub fn plan(settings: &SsilSettings, size: (u32, u32)) -> Vec<Allocation> {
+    let start = start_size(settings, size);
+    let mut plan: Vec<Allocation> = TEXTURES
+        .iter()
+        .map(|&(name, _, texel, chain)| {
+            if chain {
+                Allocation::texture(name, start, texel, settings.levels, SETTING)
+            } else {
+                Allocation::texture(name, size, texel, 1, SETTING)
+            }
+        })
+        .collect();
+    if settings.bounces > 1 {
+        plan.push(Allocation::texture(
+            BOUNCE.0,
+            start,
+            BOUNCE.2,
+            settings.levels,
+            SETTING,
+        ));
+    }
+    plan
+}
+
+pub struct SsilResources {
+    pub params: wgpu::Buffer,
+    /// Open and total voxelization rays of the last frame (two u32).
+    pub counters: wgpu::Buffer,
+    pub voxels: LevelTexture,
+    pub gather: LevelTexture,
+    pub gather_specular: LevelTexture,
+    pub combined: LevelTexture,
+    pub combined_specular: LevelTexture,
+    pub full: LevelTexture,
+    pub full_specular: LevelTexture,
+    pub filtered: LevelTexture,
+    pub filtered_specular: LevelTexture,
+    pub history: LevelTexture,
+    pub history_specular: LevelTexture,
+    pub history_geometry: LevelTexture,
+    pub bounce: Option<LevelTexture>,
+}
+
+impl SsilResources {
+    pub fn new(
+        ctx: &GpuContext,
+        settings: &SsilSettings,
+        size: (u32, u32),
+    ) -> Result<Self, RenderError> {
+        ctx.check_allocations(&plan(settings, size))?;
+        let device = &ctx.device;
+        let start = start_size(settings, size);
+        let make = |name: &str| {
+            let &(_, format, _, chain) = TEXTURES
+                .iter()
+                .find(|t| t.0 == name)
+                .expect("a planned texture");
+            if chain {
+                LevelTexture::new(device, name, start, format, settings.levels)
+            } else {
+                LevelTexture::new(device, name, size, format, 1)
+            }
+        };
+        Ok(Self {
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ssil/params"),
+                size: size_of::<GpuSsilParams>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            counters: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ssil/counters"),
+                size: 16,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            voxels: make("ssil/voxels"),
+            gather: make("ssil/gather"),
+            gather_specular: make("ssil/gather_specular"),
+            combined: make("ssil/combined"),
+            combined_specular: make("ssil/combined_specular"),
+            full: make("ssil/full"),
+            full_specular: make("ssil/full_specular"),
+            filtered: make("ssil/filtered"),
+            filtered_specular: make("ssil/filtered_specular"),
+            history: make("ssil/history"),
+            history_specular: make("ssil/history_specular"),
+            history_geometry: make("ssil/history_geometry"),
+            bounce: (settings.bounces > 1)
+                .then(|| LevelTexture::new(device, BOUNCE.0, start, BOUNCE.1, settings.levels)),
+        })
+    }
+
+    /// A uniform holding one dispatch's level, written once.
+    pub fn pass_uniform(ctx: &GpuContext, pass: GpuSsilPass) -> wgpu::Buffer {
+        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ssil/pass"),
+            size: size_of::<GpuSsilPass>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        ctx.queue
+            .write_buffer(&buffer, 0, bytemuck::bytes_of(&pass));
+        buffer
+    }
+}

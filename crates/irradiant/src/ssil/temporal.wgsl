@@ -1,0 +1,51 @@
+// ssil/temporal: eq. 6 — the light blended with last frame's, warped along the motion vectors
+// (camera and moving objects alike), where last frame's pixel held the same surface: its
+// stored depth within depth_tolerance of this surface's depth seen from last frame's camera,
+// its normal within normal_tolerance. The weight a falls with motion, and more for the glossy
+// light, which moves over a surface differently from the surface itself.
+#import ssil_common
+#import gbuffer
+
+@group(2) @binding(0) var<uniform> ssil: GpuSsilParams;
+@group(2) @binding(1) var pyramid_normal_depth: texture_2d<f32>;
+@group(2) @binding(2) var ssil_full: texture_2d<f32>;
+@group(2) @binding(3) var ssil_full_specular: texture_2d<f32>;
+@group(2) @binding(4) var ssil_history: texture_2d<f32>;
+@group(2) @binding(5) var ssil_history_specular: texture_2d<f32>;
+@group(2) @binding(6) var ssil_history_geometry: texture_2d<f32>;
+@group(2) @binding(7) var ssil_filtered: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(8) var ssil_filtered_specular: texture_storage_2d<rgba16float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let texel = vec2<i32>(id.xy);
+    var light = textureLoad(ssil_full, texel, 0);
+    var specular = textureLoad(ssil_full_specular, texel, 0).rgb;
+    let here = textureLoad(pyramid_normal_depth, id.xy, 0);
+    if here.w >= 0.0 && ssil.history_valid == 1u {
+        let motion = gbuffer_motion_at(id.xy);
+        let previous = vec2<f32>(id.xy) + 0.5 + motion;
+        if all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
+            let p = vec2<i32>(previous);
+            let old = textureLoad(ssil_history_geometry, p, 0);
+            // This surface's depth as last frame's camera saw it.
+            let x = level_position(id.xy, 0u, here.w);
+            let expected = dot(x - frame.previous_camera.position, frame.previous_camera.forward);
+            let same = old.w >= 0.0
+                && abs(old.w - expected) <= ssil.depth_tolerance * max(expected, 1e-6)
+                && dot(old.xyz, here.xyz) >= ssil.normal_tolerance;
+            if same {
+                let a = ssil.hysteresis * exp(-length(motion) / ssil.motion_pixels);
+                let s = gbuffer_surface(id.xy);
+                let a_specular = a * clamp(2.0 * s.roughness, 0.2, 1.0);
+                light = mix(light, textureLoad(ssil_history, p, 0), a);
+                specular = mix(specular, textureLoad(ssil_history_specular, p, 0).rgb, a_specular);
+            }
+        }
+    }
+    textureStore(ssil_filtered, texel, light);
+    textureStore(ssil_filtered_specular, texel, vec4<f32>(specular, 1.0));
+}

@@ -1,0 +1,54 @@
+//! Screen-space indirect illumination's GPU structs (`ssil/common.wgsl`), checked against the
+//! WGSL by `tests/gpu_structs.rs`.
+
+use bytemuck::{Pod, Zeroable};
+
+/// The technique's parameters, written once a frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuSsilParams {
+    /// Pyramid level of the first gather (0 full, 1 half, 2 quarter resolution).
+    pub start_level: u32,
+    pub levels: u32,
+    pub samples: u32,
+    /// 1: march the voxel grid for visibility.
+    pub visibility: u32,
+    /// r, in pixels of every level.
+    pub radius: f32,
+    /// The voxel grid's 128 slices span these view depths.
+    pub near: f32,
+    pub far: f32,
+    pub visibility_steps: u32,
+    pub visibility_bias: f32,
+    pub importance_alpha: f32,
+    pub hysteresis: f32,
+    pub motion_pixels: f32,
+    pub depth_tolerance: f32,
+    pub normal_tolerance: f32,
+    /// 0 on the first frame after a reset.
+    pub history_valid: u32,
+    /// 1: probe light fills what the screen does not cover.
+    pub hybrid: u32,
+}
+const _: () = assert!(size_of::<GpuSsilParams>() == 64);
+
+/// What one dispatch works on.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct GpuSsilPass {
+    /// Pyramid level.
+    pub level: u32,
+    /// 1 at the start level: the whole disc instead of the ring.
+    pub first: u32,
+    /// 1 for the last bounce: the glossy gather.
+    pub last_bounce: u32,
+    /// Mip of the gather's light source that holds this level.
+    pub radiance_level: u32,
+    /// ssil/upsample: the pyramid level of the combined light above (none: 0).
+    pub coarse_level: u32,
+    /// ssil/upsample: 1 to add this level's own gather.
+    pub with_gather: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+}
+const _: () = assert!(size_of::<GpuSsilPass>() == 32);
