@@ -35,3 +35,34 @@ pub enum SceneError {
 }
 
 pub type Result<T, E = SceneError> = std::result::Result<T, E>;
+
+thread_local! {
+    static CONTAINING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs a third-party parser (tobj, gltf) that may panic on malformed input instead of
+/// returning an error (the fuzz targets found such inputs), and turns a panic into the
+/// parser's message. The process's panic hook stays quiet for panics contained here and
+/// reports every other panic as before.
+pub(crate) fn contain_parser_panic<T>(parse: impl FnOnce() -> T) -> std::result::Result<T, String> {
+    static QUIET_HOOK: std::sync::Once = std::sync::Once::new();
+    QUIET_HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !CONTAINING.with(|c| c.get()) {
+                previous(info);
+            }
+        }));
+    });
+    CONTAINING.with(|c| c.set(true));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(parse));
+    CONTAINING.with(|c| c.set(false));
+    result.map_err(|payload| {
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("no message");
+        format!("the parser failed on malformed input ({message})")
+    })
+}

@@ -231,3 +231,55 @@ fn unknown_manifest_keys_warn_but_load() {
         "{w}"
     );
 }
+
+/// The inputs on which the fuzz targets (fuzz/) found a panic, in the targets' own form:
+/// `*.gltf`/`*.glb` as they are, `*.objmtl` an OBJ and, after a NUL byte, the `m.mtl` it
+/// names. Each must load or fail with an error naming its file.
+#[test]
+fn inputs_the_fuzzers_broke_are_errors_not_panics() {
+    let dir = scratch("fuzz-regressions");
+    let regressions = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz-regressions");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&regressions).unwrap() {
+        let input = std::fs::read(entry.unwrap().path()).unwrap();
+        let path = match input.iter().position(|&b| b == 0) {
+            Some(nul) if !input.starts_with(b"{") && !input.starts_with(b"glTF") => {
+                std::fs::write(dir.join("m.mtl"), &input[nul + 1..]).unwrap();
+                std::fs::write(dir.join("f.obj"), &input[..nul]).unwrap();
+                dir.join("f.obj")
+            }
+            _ => {
+                let name = if input.starts_with(b"{") { "f.gltf" } else { "f.glb" };
+                std::fs::write(dir.join(name), &input).unwrap();
+                dir.join(name)
+            }
+        };
+        if let Err(e) = load(path.to_str().unwrap()) {
+            assert!(e.to_string().contains(path.to_str().unwrap()), "{e}");
+        }
+        checked += 1;
+    }
+    assert!(checked >= 2, "the regression inputs are missing from {}", regressions.display());
+}
+
+/// The two panics the fuzzers found, written small: an MTL colour with one number (tobj
+/// unwraps three) and a primitive whose POSITION accessor does not exist (gltf-json indexes
+/// it while validating).
+#[test]
+fn parser_panics_become_errors_naming_the_file() {
+    let dir = scratch("parser-panics");
+    write(&dir, "short.mtl", "newmtl grey\nKd 0.5\n");
+    let obj = write(&dir, "short.obj", &format!("mtllib short.mtl\nusemtl grey\n{TRIANGLE_OBJ}"));
+    match load(&obj) {
+        Ok(loaded) => assert!(loaded.warnings.iter().any(|w| w.contains("short")), "{:?}", loaded.warnings),
+        Err(e) => assert!(e.to_string().contains("short.obj") && e.to_string().contains("malformed"), "{e}"),
+    }
+    let gltf = write(
+        &dir,
+        "missing-accessor.gltf",
+        r#"{"asset":{"version":"2.0"},"accessors":[],"meshes":[{"primitives":[{"attributes":{"POSITION":5}}]}]}"#,
+    );
+    let e = load(&gltf).unwrap_err();
+    assert!(matches!(e, SceneError::Gltf { .. }), "{e}");
+    assert!(e.to_string().contains("missing-accessor.gltf"), "{e}");
+}

@@ -495,7 +495,7 @@ impl Ssil {
     }
 
     /// The view depths the voxel grid's slices span: the scene's bounds seen from the camera.
-    fn depth_range(&self, camera: &Camera) -> (f32, f32) {
+    pub fn depth_range(&self, camera: &Camera) -> (f32, f32) {
         let forward = (camera.target - camera.position).normalize_or(Vec3::NEG_Z);
         let (lo, hi) = self.bounds;
         let depths = (0..8).map(|c| {
@@ -527,6 +527,13 @@ impl Ssil {
     /// One level of the last bounce's gathers (level 0: the start level), as [`Self::read_light`].
     pub fn read_gather(&self, ctx: &GpuContext, level: u32) -> Result<Vec<[f32; 4]>, RenderError> {
         read_rgba16(ctx, &self.resources.gather.texture, level)
+    }
+
+    /// One level of the voxel grid (level 0: the start level's resolution): 128 slice bits a
+    /// texel, as four u32.
+    pub fn read_voxels(&self, ctx: &GpuContext, level: u32) -> Result<Vec<[u32; 4]>, RenderError> {
+        let bytes = irradiant_gpu::read_texture_level(ctx, &self.resources.voxels.texture, level, 16)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
     fn record_frame(
