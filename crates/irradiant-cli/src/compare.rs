@@ -42,6 +42,11 @@ pub struct CompareArgs {
     /// Samples per pixel of the path-traced reference.
     #[arg(long, default_value = "2048")]
     pub reference_spp: u32,
+    /// Indirect bounces the references follow (default: every bounce, full global
+    /// illumination). 1 measures a one-bounce technique (SSIL with one bounce) against the
+    /// light it models; 0 leaves direct light only.
+    #[arg(long)]
+    pub reference_bounces: Option<u32>,
     /// Frames each real-time technique runs before its image is taken.
     #[arg(long, default_value = "120")]
     pub frames: u32,
@@ -56,6 +61,11 @@ pub struct CompareArgs {
     /// light switches.
     #[arg(long, default_value = "0")]
     pub over_time: u32,
+    /// Over time, also pan the camera by this many degrees about the vertical through it,
+    /// evenly over the --over-time frames: the flicker of a camera move (0: the view stays,
+    /// unless the scene animates its camera).
+    #[arg(long, default_value = "0")]
+    pub pan: f32,
     /// Frames a second of the animation.
     #[arg(long, default_value = "60")]
     pub fps: f32,
@@ -83,6 +93,18 @@ pub struct Setup<'a> {
 }
 
 impl Setup<'_> {
+    /// The path tracer's settings for a reference of `spp` samples a pixel.
+    pub fn reference_settings(&self, spp: u32) -> PathTraceSettings {
+        let settings = PathTraceSettings {
+            samples_per_pixel: spp,
+            ..PathTraceSettings::balanced()
+        };
+        match self.args.reference_bounces {
+            Some(bounces) => settings.with_indirect_bounces(bounces),
+            None => settings,
+        }
+    }
+
     /// A session of one technique at the comparison's size, at animation time `time`.
     pub fn session(&self, spec: &TechniqueSpec, time: f32) -> Result<Session, CliError> {
         Ok(Session::new(
@@ -101,6 +123,11 @@ impl Setup<'_> {
 
 pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let techniques = crate::options::technique_list(&args.techniques)?;
+    if let Some(bounces) = args.reference_bounces.filter(|&b| b > 1023) {
+        return Err(CliError::Usage(format!(
+            "--reference-bounces {bounces} is out of range: use 0…1023, or leave it out for every bounce"
+        )));
+    }
     if args.reference_spp == 0 || args.frames == 0 {
         return Err(CliError::Usage(
             "--reference-spp and --frames must be at least 1".into(),
@@ -125,6 +152,22 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
     let mut scene = loaded.scene;
     if let Some(camera) = &args.camera {
         scene.camera = camera.clone();
+    }
+    if args.pan != 0.0 {
+        if !args.pan.is_finite() || args.pan.abs() > 360.0 || args.over_time < 2 {
+            return Err(CliError::Usage(format!(
+                "--pan {} needs --over-time of 2 frames or more and an angle within ±360 degrees",
+                args.pan
+            )));
+        }
+        let seconds = (args.over_time - 1) as f32 / args.fps;
+        scene.animations.push(irradiant_scene::Animation {
+            target: irradiant_scene::AnimationTarget::Camera,
+            tracks: irradiant_scene::Tracks {
+                rotation_y_degrees: vec![(0.0, 0.0), (seconds, args.pan)],
+                ..Default::default()
+            },
+        });
     }
     let scene = scene;
     let regions: Vec<irradiant_scene::Region> = if args.regions.is_empty() {
@@ -151,7 +194,9 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
         .collect::<Result<_, _>>()?;
     let mut warnings = run.warnings.clone();
     for spec in &specs {
-        warnings.extend(spec.kind()?.check(spec)?);
+        let kind = spec.kind()?;
+        warnings.extend(kind.check(spec)?);
+        warnings.extend(kind.scene_warnings(spec, &scene));
     }
     for w in &warnings {
         eprintln!("warning: {w}");
@@ -211,10 +256,7 @@ fn compare_into(
     let ctx = &setup.ctx;
     let scene = setup.scene;
     let gpu_scene = GpuScene::new(ctx, scene, &GpuSceneSettings::default())?;
-    let pt = PathTraceSettings {
-        samples_per_pixel: args.reference_spp,
-        ..PathTraceSettings::balanced()
-    };
+    let pt = setup.reference_settings(args.reference_spp);
     let (reference, cached) = reference(
         ctx,
         &gpu_scene,
@@ -279,6 +321,7 @@ fn compare_into(
         height,
         adapter: ctx.info.name.clone(),
         reference_spp: args.reference_spp,
+        reference_indirect_bounces: args.reference_bounces,
         reference_image: "reference.png".into(),
         reference_cached: cached,
         frames: args.frames,

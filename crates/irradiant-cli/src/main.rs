@@ -26,8 +26,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// List adapters and show the one Irradiant would use, with its driver and limits.
-    Info,
+    /// List adapters and show the one Irradiant would use, with its driver and limits; with
+    /// --scene, what a scene holds instead.
+    Info(info::InfoArgs),
     /// Render a scene to a PNG (tonemapped) or EXR (linear) image.
     Render(render::RenderArgs),
     /// Time every GPU pass with timestamp queries and report rays per second.
@@ -52,7 +53,7 @@ fn main() -> ExitCode {
         .map(irradiant::AdapterChoice::parse)
         .unwrap_or_else(irradiant::AdapterChoice::from_env);
     let result = match cli.command {
-        Command::Info => info::run(&adapter),
+        Command::Info(args) => info::run(&args, &adapter),
         Command::Render(args) => render::run(&args, &adapter),
         Command::Bench(args) => bench::run(&args, &adapter),
         Command::Compare(args) => compare::run(&args, &adapter),

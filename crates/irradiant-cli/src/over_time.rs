@@ -3,7 +3,6 @@
 //! path-traced reference of that frame, and the lag after a light switches.
 
 use irradiant::frame::{Image, LightingChange, SceneChange};
-use irradiant::pathtrace::PathTraceSettings;
 use irradiant::{GpuScene, GpuSceneSettings};
 use irradiant_eval::report::TimeSeries;
 
@@ -25,10 +24,7 @@ pub fn follow_animation(setup: &Setup) -> Result<Vec<TimeSeries>, CliError> {
         .map(|i| i as u32);
     // The references of the sampled frames, each cached under its own pose.
     let mut reference_scene = GpuScene::new(ctx, scene, &GpuSceneSettings::default())?;
-    let settings = PathTraceSettings {
-        samples_per_pixel: args.sequence_spp,
-        ..PathTraceSettings::balanced()
-    };
+    let settings = setup.reference_settings(args.sequence_spp);
     let mut references = Vec::new();
     for i in (0..args.over_time).step_by(args.every.max(1) as usize) {
         reference_scene.update(ctx, &poses[i as usize]);

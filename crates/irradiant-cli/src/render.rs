@@ -136,6 +136,9 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         // Settings errors come before any GPU work.
         let kind = spec.kind()?;
         run_settings.warnings.extend(kind.check(&spec)?);
+        run_settings
+            .warnings
+            .extend(kind.scene_warnings(&spec, &scene));
     }
     for w in &run_settings.warnings {
         eprintln!("warning: {w}");

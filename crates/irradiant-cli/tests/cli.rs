@@ -563,3 +563,112 @@ fn settings_files_and_manifests_set_the_frame_and_the_technique() {
         "/nonexistent/s.toml",
     );
 }
+
+/// `info --scene` describes a scene's size and watertightness (two-rooms is closed, the
+/// Cornell box's walls are open quads).
+#[test]
+fn info_describes_a_scene_and_its_watertightness() {
+    let (ok, stdout, stderr) = irradiant(&["info", "--scene", "two-rooms"]);
+    assert!(ok, "{stderr}");
+    assert!(
+        stdout.contains("triangles (instanced)   108") && stdout.contains("watertight"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("open edges              0 of"), "{stdout}");
+    let (ok, stdout, stderr) = irradiant(&["info", "--scene", "cornell"]);
+    assert!(ok, "{stderr}");
+    assert!(stdout.contains("not watertight"), "{stdout}");
+    fails_with(&["info", "--scene", "cornel"], "unknown scene 'cornel'");
+}
+
+/// Needs the test adapter: over time with the camera panning, against one-bounce references.
+/// A pan changes every pixel from frame to frame, so the flicker the lab measures must rise
+/// well above that of the same frames with the camera at rest (TAA's jitter alone).
+#[test]
+fn compare_pans_the_camera_against_one_bounce_references() {
+    let dir = scratch("compare-pan");
+    let cache = dir.join("cache").to_string_lossy().into_owned();
+    fails_with(
+        &[
+            "compare",
+            "--pan",
+            "30",
+            "--out",
+            &dir.join("refused").to_string_lossy(),
+        ],
+        "--pan 30 needs --over-time",
+    );
+    fails_with(
+        &[
+            "compare",
+            "--reference-bounces",
+            "5000",
+            "--out",
+            &dir.join("refused").to_string_lossy(),
+        ],
+        "--reference-bounces 5000 is out of range",
+    );
+    let mean_flicker = |pan: &str| {
+        let out = dir
+            .join(format!("report-{pan}"))
+            .to_string_lossy()
+            .into_owned();
+        let args = [
+            "compare",
+            "--scene",
+            "cornell",
+            "--size",
+            "24x18",
+            "--reference-spp",
+            "8",
+            "--frames",
+            "2",
+            "--techniques",
+            "none,ssil",
+            "--reference-bounces",
+            "1",
+            "--over-time",
+            "6",
+            "--fps",
+            "6",
+            "--every",
+            "5",
+            "--sequence-spp",
+            "4",
+            "--pan",
+            pan,
+            "--out",
+            &out,
+            "--cache",
+            &cache,
+        ];
+        let (ok, _, stderr) = irradiant(&args);
+        if !ok && stderr.contains("no GPU adapter") && std::env::var("CI").as_deref() != Ok("true")
+        {
+            return None;
+        }
+        assert!(ok, "{stderr}");
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(format!("{out}/comparison.json")).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(json["reference_indirect_bounces"], 1);
+        let html = std::fs::read_to_string(format!("{out}/report.html")).unwrap();
+        assert!(html.contains("one indirect bounce"));
+        let series = json["over_time"].as_array().unwrap();
+        assert_eq!(series.len(), 2);
+        let flicker = series[0]["flicker"].as_array().unwrap();
+        assert_eq!(flicker.len(), 5);
+        Some(flicker.iter().map(|f| f[1].as_f64().unwrap()).sum::<f64>() / flicker.len() as f64)
+    };
+    let Some(panning) = mean_flicker("40") else {
+        eprintln!("SKIPPED: no GPU adapter");
+        return;
+    };
+    let resting = mean_flicker("0").unwrap();
+    eprintln!("mean flicker of `none`: panning {panning:.5}, at rest {resting:.5}");
+    assert!(
+        panning > 3.0 * resting,
+        "panning {panning}, at rest {resting}"
+    );
+}

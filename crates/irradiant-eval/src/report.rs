@@ -27,6 +27,8 @@ pub struct Comparison {
     pub height: u32,
     pub adapter: String,
     pub reference_spp: u32,
+    /// Indirect bounces the reference follows; None: every bounce (full global illumination).
+    pub reference_indirect_bounces: Option<u32>,
     pub reference_image: String,
     /// Whether the reference came from the cache.
     pub reference_cached: bool,
@@ -96,12 +98,17 @@ pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
     s.push_str(&escape(&c.scene));
     s.push_str("</title><style>body{font-family:sans-serif;margin:2em;background:#fafafa}table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}th{background:#eee}.grid{display:flex;flex-wrap:wrap;gap:12px}.grid figure{margin:0}img{image-rendering:pixelated;max-width:100%}</style></head><body>");
     s.push_str(&format!(
-        "<h1>{}</h1><p>{}×{} on {}; reference: path tracer, {} samples per pixel{}; real-time techniques after {} frames.</p>",
+        "<h1>{}</h1><p>{}×{} on {}; reference: path tracer, {} samples per pixel, {}{}; real-time techniques after {} frames.</p>",
         escape(&c.scene),
         c.width,
         c.height,
         escape(&c.adapter),
         c.reference_spp,
+        match c.reference_indirect_bounces {
+            None => "every bounce".to_string(),
+            Some(1) => "one indirect bounce".to_string(),
+            Some(n) => format!("{n} indirect bounces"),
+        },
         if c.reference_cached { " (from the cache)" } else { "" },
         c.frames
     ));
@@ -242,6 +249,7 @@ mod tests {
             height: 4,
             adapter: "test".into(),
             reference_spp: 64,
+            reference_indirect_bounces: Some(1),
             reference_image: "reference.png".into(),
             reference_cached: false,
             frames: 10,
@@ -257,6 +265,7 @@ mod tests {
         };
         let page = html(&c, &|name| name.as_bytes().to_vec());
         assert_eq!(page.matches("data:image/png;base64,").count(), 3);
+        assert!(page.contains("one indirect bounce"));
         assert!(page.contains("ddgi &lt;full&gt;") && !page.contains("<full>"));
         assert!(page.contains("dark-room") && page.contains("ddgi/trace"));
         assert_eq!(

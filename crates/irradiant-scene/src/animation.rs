@@ -2,13 +2,14 @@
 
 use glam::{Mat4, Vec3};
 
-use crate::model::{AnimationTarget, Light, Scene};
+use crate::model::{AnimationTarget, Camera, Light, Scene};
 
 /// What animation changes, at one instant. Everything else in the scene is static.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pose {
     pub lights: Vec<Light>,
     pub instance_transforms: Vec<Mat4>,
+    pub camera: Camera,
 }
 
 impl Scene {
@@ -18,6 +19,7 @@ impl Scene {
         let mut pose = Pose {
             lights: self.lights.clone(),
             instance_transforms: self.instances.iter().map(|i| i.transform).collect(),
+            camera: self.camera.clone(),
         };
         for animation in &self.animations {
             let tracks = &animation.tracks;
@@ -54,6 +56,13 @@ impl Scene {
                             * rest
                             * Mat4::from_rotation_y(angle.to_radians());
                     }
+                }
+                AnimationTarget::Camera => {
+                    let camera = &mut pose.camera;
+                    let view = Mat4::from_rotation_y(angle.to_radians())
+                        .transform_vector3(camera.target - camera.position);
+                    camera.position += offset;
+                    camera.target = camera.position + view;
                 }
             }
         }
@@ -126,5 +135,39 @@ mod tests {
         let off = &scene.pose_at(1.5).lights[0];
         assert!(!off.enabled);
         assert_eq!(off.power(), Vec3::ZERO);
+    }
+
+    /// A camera track pans the view about the camera's position and dollies position and
+    /// target together; a manifest's `camera = true` names it.
+    #[test]
+    fn a_camera_track_pans_and_dollies_the_view() {
+        let manifest = r#"
+            [mesh]
+            path = "cornell"
+            [[animation]]
+            camera = true
+            rotation_y_degrees = [[0, 0], [1, 90]]
+            translation = [[1, 0, 0, 0], [2, 0, 1, 0]]
+        "#;
+        let path = std::path::Path::new("pan.toml");
+        let mut scene = crate::builtin::builtin("cornell").unwrap();
+        crate::manifest::Manifest::parse(manifest, path, &mut Vec::new())
+            .unwrap()
+            .apply(&mut scene, path)
+            .unwrap();
+        let rest = scene.camera.clone();
+        assert_eq!(scene.pose_at(0.0).camera, rest);
+        let panned = scene.pose_at(1.0).camera;
+        assert_eq!(panned.position, rest.position);
+        let (before, after) = (rest.target - rest.position, panned.target - panned.position);
+        assert!((before.length() - after.length()).abs() < 1e-5);
+        assert!(
+            before.dot(after).abs() < 1e-4 * before.length_squared(),
+            "a quarter turn: {before} → {after}"
+        );
+        let moved = scene.pose_at(2.0).camera;
+        assert!((moved.position - rest.position - Vec3::Y).length() < 1e-6);
+        assert!((moved.target - moved.position - after).length() < 1e-5);
+        assert_eq!(scene.pose_at(2.0).lights, scene.pose_at(0.0).lights);
     }
 }

@@ -6,12 +6,15 @@ use std::path::Path;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use crate::error::{contain_parser_panic, Result, SceneError};
+use crate::error::{Result, SceneError, contain_parser_panic};
 use crate::model::{AlphaMode, Camera, Instance, Light, LightKind, Material, Mesh, Scene, Texture};
 use crate::obj::file_stem;
 
 pub fn load_gltf(path: &Path, warnings: &mut Vec<String>) -> Result<Scene> {
-    let gltf_error = |message| SceneError::Gltf { path: path.to_owned(), message };
+    let gltf_error = |message| SceneError::Gltf {
+        path: path.to_owned(),
+        message,
+    };
     let (document, buffers, images) = contain_parser_panic(|| gltf::import(path))
         .map_err(gltf_error)?
         .map_err(|e| gltf_error(e.to_string()))?;

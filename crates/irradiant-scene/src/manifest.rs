@@ -148,6 +148,9 @@ pub struct AnimationDesc {
     pub light: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub instance: Option<String>,
+    /// The camera: translation moves it with its target, rotation pans its view.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub camera: bool,
     /// Keys `[time, x, y, z]`: offset from the rest position.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub translation: Vec<[f32; 4]>,
@@ -278,7 +281,8 @@ impl Manifest {
         }
         for a in &self.animations {
             let target = match (&a.light, &a.instance) {
-                (Some(light), None) => {
+                (None, None) if a.camera => AnimationTarget::Camera,
+                (Some(light), None) if !a.camera => {
                     if !scene.lights.iter().any(|l| &l.name == light) {
                         return Err(invalid(
                             path,
@@ -290,7 +294,7 @@ impl Manifest {
                     }
                     AnimationTarget::Light(light.clone())
                 }
-                (None, Some(instance)) => {
+                (None, Some(instance)) if !a.camera => {
                     if !scene.instances.iter().any(|i| &i.name == instance) {
                         let names: Vec<_> = scene
                             .instances
@@ -311,8 +315,9 @@ impl Manifest {
                 _ => {
                     return Err(invalid(
                         path,
-                        "an [[animation]] must name exactly one of `light` or `instance`".into(),
-                        "Add `light = \"name\"` or `instance = \"name\"`.",
+                        "an [[animation]] must name exactly one of `light`, `instance` or `camera`"
+                            .into(),
+                        "Add `light = \"name\"`, `instance = \"name\"` or `camera = true`.",
                     ));
                 }
             };

@@ -30,6 +30,11 @@ impl Mesh {
     /// are matched by position, since loaders split a vertex wherever its normal or texture
     /// coordinate changes.
     pub fn open_edges(&self) -> usize {
+        self.edges().open
+    }
+
+    /// The mesh's distinct edges, and how many of them bound only one triangle.
+    pub fn edges(&self) -> EdgeCount {
         let key = |p: Vec3| p.to_array().map(f32::to_bits);
         let mut edges: std::collections::HashMap<([u32; 3], [u32; 3]), u32> =
             std::collections::HashMap::new();
@@ -41,7 +46,10 @@ impl Mesh {
                     .or_default() += 1;
             }
         }
-        edges.values().filter(|&&n| n == 1).count()
+        EdgeCount {
+            total: edges.len(),
+            open: edges.values().filter(|&&n| n == 1).count(),
+        }
     }
 
     pub fn triangle(&self, t: usize) -> [Vec3; 3] {
@@ -52,6 +60,13 @@ impl Mesh {
             self.positions[i[2] as usize],
         ]
     }
+}
+
+/// A mesh's distinct edges (vertices matched by position) and those that bound one triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EdgeCount {
+    pub total: usize,
+    pub open: usize,
 }
 
 /// A placed copy of a mesh: the unit of the top-level BVH, and what animation moves.
@@ -192,6 +207,9 @@ pub struct Region {
 pub enum AnimationTarget {
     Light(String),
     Instance(String),
+    /// The scene's camera: translation moves its position and target together (a dolly),
+    /// rotation turns its view about its position (a pan).
+    Camera,
 }
 
 /// Keyframed tracks, linearly interpolated and clamped at both ends.

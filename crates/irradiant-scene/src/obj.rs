@@ -4,7 +4,7 @@ use std::path::Path;
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 
-use crate::error::{contain_parser_panic, Result, SceneError};
+use crate::error::{Result, SceneError, contain_parser_panic};
 use crate::model::{AlphaMode, Instance, Material, Mesh, Scene};
 use crate::textures::TextureCache;
 
@@ -15,7 +15,10 @@ pub fn load_obj(path: &Path, warnings: &mut Vec<String>) -> Result<Scene> {
         single_index: true,
         ..Default::default()
     };
-    let obj_error = |message| SceneError::Obj { path: path.to_owned(), message };
+    let obj_error = |message| SceneError::Obj {
+        path: path.to_owned(),
+        message,
+    };
     let (models, materials) = contain_parser_panic(|| tobj::load_obj(path, &options))
         .map_err(obj_error)?
         .map_err(|e| obj_error(e.to_string()))?;

@@ -238,7 +238,8 @@ fn unknown_manifest_keys_warn_but_load() {
 #[test]
 fn inputs_the_fuzzers_broke_are_errors_not_panics() {
     let dir = scratch("fuzz-regressions");
-    let regressions = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz-regressions");
+    let regressions =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz-regressions");
     let mut checked = 0;
     for entry in std::fs::read_dir(&regressions).unwrap() {
         let input = std::fs::read(entry.unwrap().path()).unwrap();
@@ -249,7 +250,11 @@ fn inputs_the_fuzzers_broke_are_errors_not_panics() {
                 dir.join("f.obj")
             }
             _ => {
-                let name = if input.starts_with(b"{") { "f.gltf" } else { "f.glb" };
+                let name = if input.starts_with(b"{") {
+                    "f.gltf"
+                } else {
+                    "f.glb"
+                };
                 std::fs::write(dir.join(name), &input).unwrap();
                 dir.join(name)
             }
@@ -259,7 +264,11 @@ fn inputs_the_fuzzers_broke_are_errors_not_panics() {
         }
         checked += 1;
     }
-    assert!(checked >= 2, "the regression inputs are missing from {}", regressions.display());
+    assert!(
+        checked >= 2,
+        "the regression inputs are missing from {}",
+        regressions.display()
+    );
 }
 
 /// The two panics the fuzzers found, written small: an MTL colour with one number (tobj
@@ -269,10 +278,21 @@ fn inputs_the_fuzzers_broke_are_errors_not_panics() {
 fn parser_panics_become_errors_naming_the_file() {
     let dir = scratch("parser-panics");
     write(&dir, "short.mtl", "newmtl grey\nKd 0.5\n");
-    let obj = write(&dir, "short.obj", &format!("mtllib short.mtl\nusemtl grey\n{TRIANGLE_OBJ}"));
+    let obj = write(
+        &dir,
+        "short.obj",
+        &format!("mtllib short.mtl\nusemtl grey\n{TRIANGLE_OBJ}"),
+    );
     match load(&obj) {
-        Ok(loaded) => assert!(loaded.warnings.iter().any(|w| w.contains("short")), "{:?}", loaded.warnings),
-        Err(e) => assert!(e.to_string().contains("short.obj") && e.to_string().contains("malformed"), "{e}"),
+        Ok(loaded) => assert!(
+            loaded.warnings.iter().any(|w| w.contains("short")),
+            "{:?}",
+            loaded.warnings
+        ),
+        Err(e) => assert!(
+            e.to_string().contains("short.obj") && e.to_string().contains("malformed"),
+            "{e}"
+        ),
     }
     let gltf = write(
         &dir,

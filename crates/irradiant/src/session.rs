@@ -99,7 +99,7 @@ impl Session {
         warnings.dedup();
         let profiler = Profiler::new(&ctx, PROFILED_PASSES);
         Ok(Self {
-            camera: scene.camera.clone(),
+            camera: pose.camera.clone(),
             ctx,
             scene,
             gpu_scene,
@@ -179,7 +179,15 @@ impl Session {
         if next == self.pose {
             return;
         }
+        // Only a camera animation moves the view: a view set by hand stays otherwise.
+        if next.camera != self.pose.camera {
+            self.camera = next.camera.clone();
+        }
         let change = SceneChange::between(&self.pose, &next);
+        if change.is_empty() {
+            self.pose = next;
+            return;
+        }
         self.gpu_scene.update(&self.ctx, &next);
         self.frame.restart_direct();
         self.technique.scene_changed(&SceneChange {

@@ -37,8 +37,12 @@ fn read_level(ctx: &irradiant::GpuContext, frame: &Frame, name: &str, level: u32
     if texture.format() == irradiant_gpu::wgpu::TextureFormat::Rgba32Float {
         return bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 16).unwrap());
     }
-    let halves: Vec<half::f16> = bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 8).unwrap());
-    halves.chunks_exact(4).map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()]).collect()
+    let halves: Vec<half::f16> =
+        bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 8).unwrap());
+    halves
+        .chunks_exact(4)
+        .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
+        .collect()
 }
 
 /// One level's gather (no visibility, diffuse) against the same sum on the CPU, over the
@@ -59,7 +63,8 @@ fn a_level_gather_matches_the_cpu_oracle() {
     let ssil = session.technique_as::<Ssil>().unwrap();
     let camera = GpuCamera::new(session.camera(), size.0, size.1);
     let radius = settings.radius_at(size.1);
-    let pixel_area0 = 4.0 * camera.tan_half_fov_y * camera.tan_half_fov_y * camera.aspect / (size.0 * size.1) as f32;
+    let pixel_area0 = 4.0 * camera.tan_half_fov_y * camera.tan_half_fov_y * camera.aspect
+        / (size.0 * size.1) as f32;
     let forward = Vec3::from(camera.forward);
     let mut compared = 0;
     let mut worst = 0.0f32;
@@ -70,7 +75,11 @@ fn a_level_gather_matches_the_cpu_oracle() {
         let radiance = read_level(&ctx, session.frame(), "pyramid_radiance", level);
         let gathered = ssil.read_gather(&ctx, j).unwrap();
         let position = |p: (u32, u32), depth: f32| {
-            let dir = camera.ray_dir(Vec2::new(p.0 as f32 + 0.5, p.1 as f32 + 0.5) * (1 << level) as f32, size.0, size.1);
+            let dir = camera.ray_dir(
+                Vec2::new(p.0 as f32 + 0.5, p.1 as f32 + 0.5) * (1 << level) as f32,
+                size.0,
+                size.1,
+            );
             Vec3::from(camera.position) + dir * (depth / dir.dot(forward))
         };
         let inner = if j == 0 { 0.0 } else { 0.5 * radius };
@@ -91,7 +100,8 @@ fn a_level_gather_matches_the_cpu_oracle() {
                     let u = (s as f32 + rand(&mut rng)) / settings.samples as f32;
                     let rho = (inner * inner + (radius * radius - inner * inner) * u).sqrt();
                     let angle = rotation + s as f32 * 2.399_963_2;
-                    let q = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + rho * Vec2::new(angle.cos(), angle.sin());
+                    let q = Vec2::new(x as f32 + 0.5, y as f32 + 0.5)
+                        + rho * Vec2::new(angle.cos(), angle.sin());
                     if q.x < 0.0 || q.y < 0.0 || q.x >= w as f32 || q.y >= h as f32 {
                         continue;
                     }
@@ -109,14 +119,21 @@ fn a_level_gather_matches_the_cpu_oracle() {
                         continue;
                     }
                     let view = (pq - Vec3::from(camera.position)).normalize();
-                    let ds = nd[k][3] * nd[k][3] * pixel_area * (region / settings.samples as f32) * view.dot(forward)
+                    let ds = nd[k][3]
+                        * nd[k][3]
+                        * pixel_area
+                        * (region / settings.samples as f32)
+                        * view.dot(forward)
                         / nq.dot(view).abs().max(0.05);
                     let g = cos_r * cos_s * ds / (r2 + cos_s * ds / std::f32::consts::PI);
                     light += Vec3::new(radiance[k][0], radiance[k][1], radiance[k][2]) * g;
                     coverage += g / std::f32::consts::PI;
                 }
                 let got = gathered[i];
-                let error = (Vec3::new(got[0], got[1], got[2]) - light).abs().max_element() / light.max_element().max(0.02);
+                let error = (Vec3::new(got[0], got[1], got[2]) - light)
+                    .abs()
+                    .max_element()
+                    / light.max_element().max(0.02);
                 worst = worst.max(error);
                 // Bound: f16 storage (1e-3) and float rounding of the sample positions, which
                 // can move a sample across a texel edge now and then.
@@ -170,7 +187,8 @@ fn the_voxel_grid_holds_the_parity_of_the_crossings() {
         .iter()
         .flat_map(|i| {
             let mesh = &scene.meshes[i.mesh as usize];
-            (0..mesh.triangle_count()).map(move |t| mesh.triangle(t).map(|p| i.transform.transform_point3(p)))
+            (0..mesh.triangle_count())
+                .map(move |t| mesh.triangle(t).map(|p| i.transform.transform_point3(p)))
         })
         .collect();
     let slice = |depth: f32| ((depth - near) / (far - near) * 128.0).floor() as i32;
@@ -179,8 +197,15 @@ fn the_voxel_grid_holds_the_parity_of_the_crossings() {
     let mut mismatched = 0;
     for y in 0..h {
         for x in 0..w {
-            let dir = camera.ray_dir(Vec2::new(x as f32 + 0.5, y as f32 + 0.5) * 2.0, size.0, size.1);
-            let mut ts: Vec<f32> = triangles.iter().filter_map(|&t| crossing(Vec3::from(camera.position), dir, t)).collect();
+            let dir = camera.ray_dir(
+                Vec2::new(x as f32 + 0.5, y as f32 + 0.5) * 2.0,
+                size.0,
+                size.1,
+            );
+            let mut ts: Vec<f32> = triangles
+                .iter()
+                .filter_map(|&t| crossing(Vec3::from(camera.position), dir, t))
+                .collect();
             ts.sort_by(f32::total_cmp);
             // The shader steps past each surface by 1e-4·max(1, t): crossings closer than that
             // (a ray through the edge two triangles share) are one surface.
@@ -199,8 +224,15 @@ fn the_voxel_grid_holds_the_parity_of_the_crossings() {
     }
     // Bound: a crossing that lands on a slice boundary may round to either slice on the GPU
     // and the CPU; 1% of the 32×24 texels may disagree (none do on lavapipe).
-    eprintln!("voxel level 0: {mismatched} of {} texels differ from the CPU's crossings", w * h);
-    assert!(mismatched * 100 <= w * h, "{mismatched} of {} texels differ", w * h);
+    eprintln!(
+        "voxel level 0: {mismatched} of {} texels differ from the CPU's crossings",
+        w * h
+    );
+    assert!(
+        mismatched * 100 <= w * h,
+        "{mismatched} of {} texels differ",
+        w * h
+    );
     for level in 1..settings.levels {
         let above = ssil.read_voxels(&ctx, level).unwrap();
         let below = ssil.read_voxels(&ctx, level - 1).unwrap();
@@ -210,13 +242,20 @@ fn the_voxel_grid_holds_the_parity_of_the_crossings() {
             for x in 0..wa {
                 let mut and = [u32::MAX; 4];
                 for k in 0..4u32 {
-                    let (sx, sy) = ((2 * x + (k & 1)).min(wb - 1), (2 * y + (k >> 1)).min(hb - 1));
+                    let (sx, sy) = (
+                        (2 * x + (k & 1)).min(wb - 1),
+                        (2 * y + (k >> 1)).min(hb - 1),
+                    );
                     let v = below[(sy * wb + sx) as usize];
                     for c in 0..4 {
                         and[c] &= v[c];
                     }
                 }
-                assert_eq!(above[(y * wa + x) as usize], and, "level {level} texel ({x}, {y})");
+                assert_eq!(
+                    above[(y * wa + x) as usize],
+                    and,
+                    "level {level} texel ({x}, {y})"
+                );
             }
         }
     }
@@ -252,12 +291,20 @@ fn visibility_only_removes_light() {
     for (a, b) in with.iter().zip(&without) {
         for c in 0..3 {
             // f16 rounding of the same sum.
-            assert!(a[c] <= b[c] * 1.002 + 1e-4, "visibility added light: {a:?} against {b:?}");
+            assert!(
+                a[c] <= b[c] * 1.002 + 1e-4,
+                "visibility added light: {a:?} against {b:?}"
+            );
         }
         darker += (a[1] < 0.9 * b[1]) as u32;
     }
-    eprintln!("mean indirect: visibility {mean_with:.5}, none {mean_without:.5}; {darker} pixels lost over 10 %");
-    assert!(darker > 50, "the blocks should shadow some indirect light ({darker} pixels lost over 10 %)");
+    eprintln!(
+        "mean indirect: visibility {mean_with:.5}, none {mean_without:.5}; {darker} pixels lost over 10 %"
+    );
+    assert!(
+        darker > 50,
+        "the blocks should shadow some indirect light ({darker} pixels lost over 10 %)"
+    );
     assert!(mean_with < mean_without);
 }
 
@@ -277,15 +324,28 @@ fn screen_space_light_brings_the_cornell_box_closer_to_the_path_tracer() {
         s.image().unwrap()
     };
     let flip = |image: &irradiant::frame::Image| {
-        irradiant_eval::flip(&reference.to_srgb8(1.0, true), &image.to_srgb8(1.0, true), size.0, size.1)
-            .unwrap()
-            .mean
+        irradiant_eval::flip(
+            &reference.to_srgb8(1.0, true),
+            &image.to_srgb8(1.0, true),
+            size.0,
+            size.1,
+        )
+        .unwrap()
+        .mean
     };
     let none = flip(&render(spec(None)));
     let ssil = flip(&render(ssil_spec(&SsilSettings::balanced())));
-    let hybrid = flip(&render(TechniqueSpec::with_settings("ssil+ddgi", &HybridSettings::balanced())));
-    eprintln!("Cornell box, FLIP against the path tracer: direct light {none:.4}, ssil {ssil:.4}, ssil+ddgi {hybrid:.4}");
-    assert!(ssil < none, "screen-space light must improve on direct light alone");
+    let hybrid = flip(&render(TechniqueSpec::with_settings(
+        "ssil+ddgi",
+        &HybridSettings::balanced(),
+    )));
+    eprintln!(
+        "Cornell box, FLIP against the path tracer: direct light {none:.4}, ssil {ssil:.4}, ssil+ddgi {hybrid:.4}"
+    );
+    assert!(
+        ssil < none,
+        "screen-space light must improve on direct light alone"
+    );
     assert!(hybrid < ssil, "the probes must fill what the screen misses");
 }
 
@@ -306,11 +366,19 @@ fn bounces_add_light_and_the_hybrid_runs_both() {
     let (one, two) = (mean(1), mean(2));
     eprintln!("mean indirect: 1 bounce {one:.5}, 2 bounces {two:.5}");
     assert!(two > one * 1.02, "a second bounce must add light");
-    let mut hybrid = session(&ctx, &scene, size, TechniqueSpec::with_settings("ssil+ddgi", &HybridSettings::fast()));
+    let mut hybrid = session(
+        &ctx,
+        &scene,
+        size,
+        TechniqueSpec::with_settings("ssil+ddgi", &HybridSettings::fast()),
+    );
     let timed = hybrid.render_profiled().unwrap();
     let labels: Vec<&str> = timed.iter().map(|t| t.label.as_str()).collect();
     if !timed.is_empty() {
-        assert!(labels.contains(&"ddgi/trace") && labels.contains(&"ssil/resolve"), "{labels:?}");
+        assert!(
+            labels.contains(&"ddgi/trace") && labels.contains(&"ssil/resolve"),
+            "{labels:?}"
+        );
     }
     assert!(hybrid.technique_as::<SsilDdgi>().is_some());
 }
@@ -335,8 +403,14 @@ fn bad_settings_are_refused_and_open_scenes_warned_about() {
     .err()
     .expect("six levels from a half start do not fit 40×30")
     .to_string();
-    assert!(error.contains("technique.levels") && error.contains("under one pixel"), "{error}");
+    assert!(
+        error.contains("technique.levels") && error.contains("under one pixel"),
+        "{error}"
+    );
     let s = session(&ctx, &scene, (32, 32), ssil_spec(&SsilSettings::balanced()));
     let warnings = s.warnings().join("\n");
-    assert!(warnings.contains("not watertight") && warnings.contains("technique.visibility = false"), "{warnings}");
+    assert!(
+        warnings.contains("not watertight") && warnings.contains("technique.visibility = false"),
+        "{warnings}"
+    );
 }

@@ -29,6 +29,16 @@ impl Default for PathTraceSettings {
 }
 
 impl PathTraceSettings {
+    /// Light that bounced at most `bounces` times between the emitters and the surface seen
+    /// (0: direct light only; 1: the one indirect bounce that SSIL's first bounce models):
+    /// `max_bounces` counts the hop to the emitter too.
+    pub fn with_indirect_bounces(self, bounces: u32) -> Self {
+        Self {
+            max_bounces: bounces + 1,
+            ..self
+        }
+    }
+
     pub fn fast() -> Self {
         Self {
             samples_per_pixel: 64,

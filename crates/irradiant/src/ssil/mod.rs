@@ -532,7 +532,8 @@ impl Ssil {
     /// One level of the voxel grid (level 0: the start level's resolution): 128 slice bits a
     /// texel, as four u32.
     pub fn read_voxels(&self, ctx: &GpuContext, level: u32) -> Result<Vec<[u32; 4]>, RenderError> {
-        let bytes = irradiant_gpu::read_texture_level(ctx, &self.resources.voxels.texture, level, 16)?;
+        let bytes =
+            irradiant_gpu::read_texture_level(ctx, &self.resources.voxels.texture, level, 16)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
