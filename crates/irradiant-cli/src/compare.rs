@@ -28,11 +28,9 @@ pub struct CompareArgs {
     pub camera: Option<irradiant_scene::Camera>,
     /// Techniques to compare, comma-separated, from the registry (`irradiant compare --help`
     /// lists them; `all` takes every one).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "none,classic-probes,ddgi"
-    )]
+    /// Settings of a technique's own go in braces as a TOML inline table, so that variants of
+    /// one technique compare side by side: `ssil,ssil{visibility = false}`.
+    #[arg(long, default_value = "none,classic-probes,ddgi")]
     pub techniques: Vec<String>,
     /// Output folder (created; replaced if it holds an earlier comparison).
     #[arg(long)]
@@ -42,6 +40,11 @@ pub struct CompareArgs {
     /// Samples per pixel of the path-traced reference.
     #[arg(long, default_value = "2048")]
     pub reference_spp: u32,
+    /// Also show every other technique's image minus this one's (a label from --techniques):
+    /// what a technique or a setting adds and removes, e.g. visibility with
+    /// `--techniques "ssil{visibility = false},ssil" --difference-from "ssil{visibility = false}"`.
+    #[arg(long)]
+    pub difference_from: Option<String>,
     /// Indirect bounces the references follow (default: every bounce, full global
     /// illumination). 1 measures a one-bounce technique (SSIL with one bounce) against the
     /// light it models; 0 leaves direct light only.
@@ -89,7 +92,8 @@ pub struct Setup<'a> {
     pub ctx: Arc<GpuContext>,
     pub scene: &'a irradiant_scene::Scene,
     pub run: &'a RunSettings,
-    pub specs: &'a [TechniqueSpec],
+    /// Each technique's label (as the command line names it) and spec.
+    pub specs: &'a [(String, TechniqueSpec)],
 }
 
 impl Setup<'_> {
@@ -188,12 +192,25 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
             .collect::<Result<_, _>>()?
     };
     let run = RunSettings::new(&args.settings, &scene, 0)?;
-    let specs: Vec<TechniqueSpec> = techniques
+    let specs: Vec<(String, TechniqueSpec)> = techniques
         .iter()
-        .map(|t| run.technique(t, &args.settings, 0))
-        .collect::<Result<_, _>>()?;
+        .map(|t| Ok((t.label.clone(), run.choice(t, &args.settings, 0)?)))
+        .collect::<Result<_, CliError>>()?;
+    if let Some(base) = &args.difference_from {
+        let base = crate::options::TechniqueChoice::parse(base)?.label;
+        if !specs.iter().any(|(label, _)| *label == base) {
+            return Err(CliError::Usage(format!(
+                "--difference-from '{base}' is not one of the techniques compared ({}); name one of them",
+                specs
+                    .iter()
+                    .map(|(l, _)| l.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+    }
     let mut warnings = run.warnings.clone();
-    for spec in &specs {
+    for (_, spec) in &specs {
         let kind = spec.kind()?;
         warnings.extend(kind.check(spec)?);
         warnings.extend(kind.scene_warnings(spec, &scene));
@@ -242,6 +259,12 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
             "  {:<16} FLIP mean {:.4}  p95 {:.4}  PSNR {:.2} dB  relMSE {:.5}",
             r.technique, r.flip_mean, r.flip_p95, r.psnr_db, r.relative_mse
         );
+        if let Some(d) = &r.difference {
+            println!(
+                "  {:<16} minus {}: mean luminance {:+.5}, mean |Δ| {:.5}",
+                "", d.from, d.mean, d.mean_abs
+            );
+        }
     }
     Ok(())
 }
@@ -271,7 +294,8 @@ fn compare_into(
     write_png(&dir.join("reference.png"), &reference)?;
     let reference_srgb = reference.to_srgb8(1.0, true);
     let mut results = Vec::new();
-    for spec in setup.specs {
+    let mut images = Vec::new();
+    for (label, spec) in setup.specs {
         let mut session = setup.session(spec, 0.0)?;
         let mut passes = Vec::new();
         for i in 0..args.frames {
@@ -293,13 +317,13 @@ fn compare_into(
         let relative_mse = irradiant_eval::relative_mse(&reference.pixels, &image.pixels)
             .map_err(|e| CliError::Usage(e.to_string()))?;
         let region_means = region_means(&session, &reference, regions)?;
-        let name = &spec.name;
-        let image_file = format!("{name}.png");
-        let error_file = format!("{name}-flip.png");
+        let stem = crate::options::TechniqueChoice::parse(label)?.file_stem();
+        let image_file = format!("{stem}.png");
+        let error_file = format!("{stem}-flip.png");
         write_png(&dir.join(&image_file), &image)?;
         write_rgb8(&dir.join(&error_file), &flip.error_map_rgb8, width, height)?;
         results.push(TechniqueResult {
-            technique: name.clone(),
+            technique: label.clone(),
             flip_mean: flip.mean,
             flip_p95: flip.p95,
             psnr_db: psnr,
@@ -308,7 +332,32 @@ fn compare_into(
             passes,
             image: image_file,
             error_map: error_file,
+            difference: None,
         });
+        images.push((stem, image));
+    }
+    if let Some(base) = &args.difference_from {
+        let base = crate::options::TechniqueChoice::parse(base)?;
+        let (base_stem, base_image) = images
+            .iter()
+            .find(|(stem, _)| *stem == base.file_stem())
+            .expect("checked to be compared");
+        for (result, (stem, image)) in results.iter_mut().zip(&images) {
+            if stem == base_stem {
+                continue;
+            }
+            let d = irradiant_eval::difference(&base_image.pixels, &image.pixels)
+                .map_err(|e| CliError::Usage(e.to_string()))?;
+            let file = format!("{stem}-minus-{base_stem}.png");
+            write_rgb8(&dir.join(&file), &d.map_rgb8, width, height)?;
+            result.difference = Some(irradiant_eval::report::DifferenceResult {
+                from: base.label.clone(),
+                mean: d.mean,
+                mean_abs: d.mean_abs,
+                scale: d.scale,
+                image: file,
+            });
+        }
     }
     let over_time = if args.over_time > 0 {
         crate::over_time::follow_animation(setup)?

@@ -82,20 +82,100 @@ pub fn parse_camera(text: &str) -> Result<irradiant_scene::Camera, String> {
     Ok(camera)
 }
 
-/// Registered technique names as a command lists them (`all`: every one), each checked.
-pub fn technique_list(names: &[String]) -> Result<Vec<String>, CliError> {
-    let names: Vec<String> = if names.iter().any(|t| t == "all") {
-        irradiant::technique::names()
-            .into_iter()
-            .map(String::from)
-            .collect()
-    } else {
-        names.to_vec()
-    };
-    for t in &names {
-        irradiant::technique::find(t).map_err(|e| CliError::Usage(e.to_string()))?;
+/// A technique as a command line names it: a registered name, optionally with settings over
+/// its preset in braces, as a TOML inline table (`ssil{visibility = false}`), so that one
+/// comparison can hold several variants of one technique.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TechniqueChoice {
+    /// The text as given (spaces dropped): what reports call it.
+    pub label: String,
+    pub name: String,
+    pub overrides: toml::Table,
+}
+
+impl TechniqueChoice {
+    pub fn parse(text: &str) -> Result<Self, CliError> {
+        let text = text.trim();
+        let (name, overrides) = match text.split_once('{') {
+            Some((name, rest)) => {
+                let inner = rest.strip_suffix('}').ok_or_else(|| {
+                    CliError::Usage(format!("technique '{text}': settings in braces must end with '}}', e.g. ssil{{visibility = false}}"))
+                })?;
+                let table: toml::Table = toml::from_str(&format!("v = {{{inner}}}")).map_err(|e| {
+                    CliError::Usage(format!("technique '{text}': the settings in braces are not a TOML inline table ({}); write them as key = value, comma-separated", e.message()))
+                })?;
+                let Some(toml::Value::Table(t)) = table.get("v") else {
+                    unreachable!("a table parsed from `v = {{…}}` holds the table v")
+                };
+                (name.trim(), t.clone())
+            }
+            None => (text, toml::Table::new()),
+        };
+        irradiant::technique::find(name).map_err(|e| CliError::Usage(e.to_string()))?;
+        Ok(Self {
+            label: text.split_whitespace().collect(),
+            name: name.to_owned(),
+            overrides,
+        })
     }
-    Ok(names)
+
+    /// The label as a file name: letters, digits, '-' and '+' kept, anything else '_'.
+    pub fn file_stem(&self) -> String {
+        self.label
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '+' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect()
+    }
+}
+
+/// The techniques a command lists, comma-separated outside braces (`all`: every registered
+/// one), each checked.
+pub fn technique_list(lists: &[String]) -> Result<Vec<TechniqueChoice>, CliError> {
+    let mut texts = Vec::new();
+    for list in lists {
+        let (mut depth, mut start) = (0i32, 0);
+        for (i, c) in list.char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => depth -= 1,
+                ',' if depth == 0 => {
+                    texts.push(&list[start..i]);
+                    start = i + 1;
+                }
+                _ => {}
+            }
+        }
+        texts.push(&list[start..]);
+    }
+    if texts.iter().any(|t| t.trim() == "all") {
+        return irradiant::technique::names()
+            .into_iter()
+            .map(TechniqueChoice::parse)
+            .collect();
+    }
+    texts
+        .into_iter()
+        .filter(|t| !t.trim().is_empty())
+        .map(TechniqueChoice::parse)
+        .collect()
+}
+
+/// `over` merged into `base`, table by table.
+fn merge(base: &mut toml::Table, over: &toml::Table) {
+    for (key, value) in over {
+        match (base.get_mut(key), value) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge(b, o),
+            _ => {
+                base.insert(key.clone(), value.clone());
+            }
+        }
+    }
 }
 
 /// Checks that an output file can be written before spending GPU time on it.
@@ -238,6 +318,22 @@ impl RunSettings {
         args: &SettingsArgs,
         seed: u32,
     ) -> Result<TechniqueSpec, CliError> {
+        self.choice(&TechniqueChoice::parse(name)?, args, seed)
+    }
+
+    /// [`Self::technique`] for a choice, its settings in braces over everything else.
+    pub fn choice(
+        &self,
+        choice: &TechniqueChoice,
+        args: &SettingsArgs,
+        seed: u32,
+    ) -> Result<TechniqueSpec, CliError> {
+        let mut spec = self.named(&choice.name, args, seed)?;
+        merge(&mut spec.settings, &choice.overrides);
+        Ok(spec)
+    }
+
+    fn named(&self, name: &str, args: &SettingsArgs, seed: u32) -> Result<TechniqueSpec, CliError> {
         let mut spec = match &self.file.technique {
             Some(spec) if spec.name == name => spec.clone(),
             _ => TechniqueSpec::new(name, args.preset),
@@ -282,6 +378,36 @@ impl RunSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn technique_lists_split_outside_braces_and_carry_their_settings() {
+        let list =
+            technique_list(&["none, ssil{visibility = false, samples = 32},ssil".into()]).unwrap();
+        let labels: Vec<&str> = list.iter().map(|c| c.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            ["none", "ssil{visibility=false,samples=32}", "ssil"]
+        );
+        assert_eq!(list[1].name, "ssil");
+        assert_eq!(list[1].overrides["samples"].as_integer(), Some(32));
+        assert_eq!(list[1].file_stem(), "ssil_visibility_false_samples_32_");
+        let mut base: toml::Table = toml::from_str("[update]\nhysteresis = 0.9\nrays = 8").unwrap();
+        merge(&mut base, &toml::from_str("[update]\nrays = 16").unwrap());
+        assert_eq!(base["update"]["hysteresis"].as_float(), Some(0.9));
+        assert_eq!(base["update"]["rays"].as_integer(), Some(16));
+        for (bad, expected) in [
+            ("ssil{visibility = false", "must end with"),
+            ("ssil{visibility}", "inline table"),
+            ("magic{a = 1}", "magic"),
+        ] {
+            let e = technique_list(&[bad.into()]).unwrap_err().to_string();
+            assert!(e.contains(expected), "{bad}: {e}");
+        }
+        assert_eq!(
+            technique_list(&["all".into()]).unwrap().len(),
+            irradiant::technique::names().len()
+        );
+    }
 
     #[test]
     fn sizes_parse_and_absurd_ones_are_refused() {

@@ -42,7 +42,7 @@ pub fn follow_animation(setup: &Setup) -> Result<Vec<TimeSeries>, CliError> {
     }
     drop(reference_scene);
     let mut series = Vec::new();
-    for spec in setup.specs {
+    for (label, spec) in setup.specs {
         let mut session = setup.session(spec, 0.0)?;
         let (mut error, mut flicker) = (Vec::new(), Vec::new());
         let mut previous: Option<Image> = None;
@@ -77,7 +77,7 @@ pub fn follow_animation(setup: &Setup) -> Result<Vec<TimeSeries>, CliError> {
                 .map(|(f, _)| f - c)
         });
         series.push(TimeSeries {
-            technique: spec.name.clone(),
+            technique: label.clone(),
             error,
             flicker,
             change_frame,

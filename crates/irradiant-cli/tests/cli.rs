@@ -206,6 +206,10 @@ fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
         "scene",
         "--ddgi-rays",
         "32",
+        "--ssil-start",
+        "quarter,half",
+        "--ssil-visibility",
+        "off,on",
         "--json",
         &json,
     ]);
@@ -213,8 +217,41 @@ fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
     assert!(
         stdout.contains("raycast/trace (diffuse)")
             && stdout.contains("pathtrace/trace")
-            && stdout.contains("blend_irradiance"),
+            && stdout.contains("blend_irradiance")
+            && stdout.contains("half/4/64/vis")
+            && stdout.contains("voxel grid"),
         "{stdout}"
+    );
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let ssil = record["ssil"].as_array().unwrap();
+    assert_eq!(ssil.len(), 4, "quarter and half, visibility off and on");
+    let labels = |i: usize| -> Vec<String> {
+        ssil[i]["passes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p[0].as_str().unwrap().to_owned())
+            .collect()
+    };
+    assert!(
+        labels(1).contains(&"ssil/voxelize".into()) && !labels(0).contains(&"ssil/voxelize".into())
+    );
+    assert!(
+        (1..=4).all(|l| labels(3).contains(&format!("ssil/gather_{l}"))),
+        "{:?}",
+        labels(3)
+    );
+    fails_with(
+        &[
+            "bench",
+            "--smoke",
+            "--ssil-start",
+            "quarter",
+            "--ssil-levels",
+            "9",
+        ],
+        "technique.levels",
     );
     let record: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
@@ -601,6 +638,18 @@ fn compare_pans_the_camera_against_one_bounce_references() {
     fails_with(
         &[
             "compare",
+            "--techniques",
+            "none,ssil",
+            "--difference-from",
+            "ddgi",
+            "--out",
+            &dir.join("refused").to_string_lossy(),
+        ],
+        "--difference-from 'ddgi' is not one of the techniques compared (none, ssil)",
+    );
+    fails_with(
+        &[
+            "compare",
             "--reference-bounces",
             "5000",
             "--out",
@@ -635,6 +684,8 @@ fn compare_pans_the_camera_against_one_bounce_references() {
             "5",
             "--sequence-spp",
             "4",
+            "--difference-from",
+            "none",
             "--pan",
             pan,
             "--out",
@@ -653,6 +704,12 @@ fn compare_pans_the_camera_against_one_bounce_references() {
         )
         .unwrap();
         assert_eq!(json["reference_indirect_bounces"], 1);
+        // SSIL only adds light to the frame's direct light.
+        let added = json["results"][1]["difference"]["mean"].as_f64().unwrap();
+        assert!(
+            added > 0.0 && json["results"][0]["difference"].is_null(),
+            "SSIL minus none: {added}"
+        );
         let html = std::fs::read_to_string(format!("{out}/report.html")).unwrap();
         assert!(html.contains("one indirect bounce"));
         let series = json["over_time"].as_array().unwrap();

@@ -112,9 +112,91 @@ pub fn relative_mse(reference: &[[f32; 3]], test: &[[f32; 3]]) -> Result<f64, Me
     Ok(sum / (3 * reference.len()).max(1) as f64)
 }
 
+/// One image's signed difference from another, in luminance: what a change of settings adds
+/// (warm colours) or removes (blue), for reports.
+#[derive(Clone, Debug)]
+pub struct Difference {
+    /// Mean of (test − base) luminance.
+    pub mean: f64,
+    /// Mean of |test − base| luminance.
+    pub mean_abs: f64,
+    /// |Δ luminance| that saturates the map: the 99th percentile of |Δ|, so that a few hot
+    /// pixels do not wash the rest out.
+    pub scale: f32,
+    /// RGB8: black where equal, orange where `test` is brighter, blue where it is darker.
+    pub map_rgb8: Vec<u8>,
+}
+
+/// The signed luminance difference `test` − `base` of two linear RGB images.
+pub fn difference(base: &[[f32; 3]], test: &[[f32; 3]]) -> Result<Difference, MetricError> {
+    check(base, test)?;
+    let lum = |c: &[f32; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    let delta: Vec<f32> = base
+        .iter()
+        .zip(test)
+        .map(|(b, t)| lum(t) - lum(b))
+        .collect();
+    let mut magnitudes: Vec<f32> = delta.iter().map(|d| d.abs()).collect();
+    magnitudes.sort_by(f32::total_cmp);
+    let scale = magnitudes
+        .get(magnitudes.len() * 99 / 100)
+        .copied()
+        .unwrap_or(0.0)
+        .max(1e-6);
+    let map_rgb8 = delta
+        .iter()
+        .flat_map(|&d| {
+            let v = (d.abs() / scale).min(1.0);
+            let byte = |x: f32| (x * 255.0).round() as u8;
+            if d >= 0.0 {
+                [byte(v), byte(0.55 * v), 0]
+            } else {
+                [0, byte(0.45 * v), byte(v)]
+            }
+        })
+        .collect();
+    let n = delta.len().max(1) as f64;
+    Ok(Difference {
+        mean: delta.iter().map(|&d| d as f64).sum::<f64>() / n,
+        mean_abs: delta.iter().map(|&d| d.abs() as f64).sum::<f64>() / n,
+        scale,
+        map_rgb8,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_difference_is_signed_and_scaled_to_its_99th_percentile() {
+        let base = vec![[0.5f32; 3]; 100];
+        let mut test = base.clone();
+        test[0] = [1.5; 3];
+        for p in &mut test[1..50] {
+            *p = [0.25; 3];
+        }
+        let d = difference(&base, &test).unwrap();
+        assert!(
+            (d.mean - (1.0 - 49.0 * 0.25) / 100.0).abs() < 1e-5,
+            "{}",
+            d.mean
+        );
+        assert!((d.mean_abs - (1.0 + 49.0 * 0.25) / 100.0).abs() < 1e-5);
+        assert!(
+            (d.scale - 1.0).abs() < 1e-5,
+            "the largest |Δ| is the 99th percentile of 100: {}",
+            d.scale
+        );
+        assert_eq!(&d.map_rgb8[0..3], &[255, 140, 0], "brighter: orange");
+        assert_eq!(
+            &d.map_rgb8[3..6],
+            &[0, 29, 64],
+            "darker by a quarter of the scale: blue"
+        );
+        assert_eq!(&d.map_rgb8[150..153], &[0, 0, 0], "equal: black");
+        assert!(difference(&base, &test[..10]).is_err());
+    }
 
     #[test]
     fn identical_images_have_no_error() {

@@ -18,6 +18,22 @@ pub struct TechniqueResult {
     /// PNG files (relative to the report) of the image and of its FLIP error map.
     pub image: String,
     pub error_map: String,
+    /// Its difference from another technique of the comparison (`--difference-from`).
+    pub difference: Option<DifferenceResult>,
+}
+
+/// One technique's image against another's: what a change of technique or setting does.
+#[derive(Clone, Debug, Serialize)]
+pub struct DifferenceResult {
+    /// The technique subtracted.
+    pub from: String,
+    /// Mean and mean absolute luminance difference (this − from).
+    pub mean: f64,
+    pub mean_abs: f64,
+    /// |Δ luminance| at which the map saturates.
+    pub scale: f32,
+    /// PNG file: orange where this is brighter, blue where darker.
+    pub image: String,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -153,7 +169,32 @@ pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
             r.flip_mean
         ));
     }
-    s.push_str("</div><h2>GPU time per pass (last frame, ms)</h2><table id=\"passes\"><tr><th>technique</th><th>pass</th><th>ms</th></tr>");
+    s.push_str("</div>");
+    let differences: Vec<(&TechniqueResult, &DifferenceResult)> = c
+        .results
+        .iter()
+        .filter_map(|r| r.difference.as_ref().map(|d| (r, d)))
+        .collect();
+    if let Some((_, first)) = differences.first() {
+        s.push_str(&format!(
+            "<h2>Differences from {}</h2><p>Luminance of each technique minus that of {}: orange where it is brighter, blue where darker, full colour at the |Δ| given (the 99th percentile).</p><div class=\"grid\">",
+            escape(&first.from),
+            escape(&first.from)
+        ));
+        for (r, d) in differences {
+            s.push_str(&format!(
+                "<figure>{}<figcaption>{} − {}: mean {:+.5}, mean |Δ| {:.5}, full colour at {:.4}</figcaption></figure>",
+                img(&d.image, &format!("{} minus {}", r.technique, d.from)),
+                escape(&r.technique),
+                escape(&d.from),
+                d.mean,
+                d.mean_abs,
+                d.scale
+            ));
+        }
+        s.push_str("</div>");
+    }
+    s.push_str("<h2>GPU time per pass (last frame, ms)</h2><table id=\"passes\"><tr><th>technique</th><th>pass</th><th>ms</th></tr>");
     for r in &c.results {
         for (label, ms) in &r.passes {
             s.push_str(&format!("<tr><td style=\"text-align:left\">{}</td><td style=\"text-align:left\">{}</td><td>{ms:.3}</td></tr>", escape(&r.technique), escape(label)));
@@ -242,6 +283,13 @@ mod tests {
             passes: vec![("ddgi/trace".into(), 1.5)],
             image: "ddgi.png".into(),
             error_map: "ddgi-flip.png".into(),
+            difference: Some(DifferenceResult {
+                from: "none".into(),
+                mean: 0.02,
+                mean_abs: 0.03,
+                scale: 0.1,
+                image: "ddgi-minus-none.png".into(),
+            }),
         };
         let c = Comparison {
             scene: "two-rooms".into(),
@@ -264,8 +312,9 @@ mod tests {
             }],
         };
         let page = html(&c, &|name| name.as_bytes().to_vec());
-        assert_eq!(page.matches("data:image/png;base64,").count(), 3);
+        assert_eq!(page.matches("data:image/png;base64,").count(), 4);
         assert!(page.contains("one indirect bounce"));
+        assert!(page.contains("Differences from none") && page.contains("mean +0.02000"));
         assert!(page.contains("ddgi &lt;full&gt;") && !page.contains("<full>"));
         assert!(page.contains("dark-room") && page.contains("ddgi/trace"));
         assert_eq!(

@@ -5,6 +5,7 @@
 
 mod frames;
 mod rays;
+mod ssil;
 mod table;
 
 use std::path::PathBuf;
@@ -89,12 +90,15 @@ pub struct BenchArgs {
     #[arg(long)]
     pub stack_in_workgroup: bool,
     /// Also time the real-time frame of each of these registered techniques with their
-    /// balanced settings and the scene's own probe volumes, comma-separated (`all`: every one).
-    #[arg(long, value_delimiter = ',')]
+    /// balanced settings and the scene's own probe volumes, comma-separated (`all`: every one);
+    /// settings of their own in braces, e.g. `ssil{samples = 256}`.
+    #[arg(long)]
     pub techniques: Vec<String>,
     /// Time frames without TAA (the frame/taa pass then only copies), as frames were before it.
     #[arg(long)]
     pub no_taa: bool,
+    #[command(flatten)]
+    pub ssil: ssil::SsilGridArgs,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -147,6 +151,8 @@ pub struct BenchRecord {
     ddgi: Vec<FrameRecord>,
     /// Frames of each technique asked for (--techniques).
     techniques: Vec<FrameRecord>,
+    /// SSIL frames over the grid asked for (--ssil-start, the paper's Figure 9).
+    ssil: Vec<FrameRecord>,
 }
 
 pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -157,6 +163,12 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     };
     let techniques = crate::options::technique_list(&args.techniques)?;
     let ddgi_variants = ddgi_variants(args)?;
+    let ssil_variants = ssil::variants(&args.ssil);
+    for v in &ssil_variants {
+        v.validate().map_err(|e| CliError::Usage(e.to_string()))?;
+        v.check_size(size)
+            .map_err(|e| CliError::Usage(e.to_string()))?;
+    }
     let ctx = std::sync::Arc::new(GpuContext::new(adapter)?);
     let mut record = BenchRecord {
         adapter: ctx.info.name.clone(),
@@ -179,6 +191,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         passes: Vec::new(),
         ddgi: Vec::new(),
         techniques: Vec::new(),
+        ssil: Vec::new(),
     };
     let scene_settings = GpuSceneSettings {
         stack_in_workgroup: args.stack_in_workgroup,
@@ -259,10 +272,21 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 }
             }
         }
-        for name in &techniques {
+        for settings in &ssil_variants {
             let warm = warmup.max(if args.smoke { 1 } else { 30 });
-            let spec = irradiant::TechniqueSpec::new(name, irradiant::Preset::Balanced);
-            record.techniques.push(frames.time(&spec, warm)?);
+            let spec = irradiant::TechniqueSpec::with_settings("ssil", settings);
+            let mut r = frames.time(&spec, warm)?;
+            r.variant = ssil::variant_name(settings);
+            record.ssil.push(r);
+        }
+        for choice in &techniques {
+            let warm = warmup.max(if args.smoke { 1 } else { 30 });
+            let mut spec = irradiant::TechniqueSpec::new(&choice.name, irradiant::Preset::Balanced);
+            spec.settings = choice.overrides.clone();
+            let mut r = frames.time(&spec, warm)?;
+            r.technique = choice.label.clone();
+            r.variant = choice.label.clone();
+            record.techniques.push(r);
         }
     }
     table::print_table(&record);

@@ -31,6 +31,7 @@ pub fn print_table(r: &BenchRecord) {
     }
     frame_table(&r.ddgi);
     frame_table(&r.techniques);
+    super::ssil::print_table(&r.ssil);
 }
 
 /// One row a timed frame configuration, one column a pass (any record's, in the order first
