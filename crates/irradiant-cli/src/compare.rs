@@ -215,6 +215,9 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
         warnings.extend(kind.check(spec)?);
         warnings.extend(kind.scene_warnings(spec, &scene));
     }
+    // Techniques that share a part (ssil and ssil+ddgi) share its warnings: each once.
+    let mut seen = std::collections::HashSet::new();
+    warnings.retain(|w| seen.insert(w.clone()));
     for w in &warnings {
         eprintln!("warning: {w}");
     }

@@ -93,11 +93,19 @@ fn a_level_gather_matches_the_cpu_oracle() {
                 }
                 let n = Vec3::new(nd[i][0], nd[i][1], nd[i][2]);
                 let p = position((x, y), nd[i][3]);
-                let mut rng = rng_seed(y * w + x, 0, level * 7919 + 0x2545f491);
+                // The shader's draws: the spiral's rotation from the texel's seed, each
+                // sample's jitter from its lane's (lane = sample mod GATHER_LANES).
+                let texel_seed = rng_seed(y * w + x, 0, level * 7919 + 0x2545f491);
+                let mut rng = texel_seed;
                 let rotation = std::f32::consts::TAU * rand(&mut rng);
+                let lanes = irradiant::ssil::constants::GATHER_LANES;
+                let mut lane_rngs: Vec<u32> = (0..lanes)
+                    .map(|lane| rng_seed(texel_seed, lane, 0x68e31da4))
+                    .collect();
                 let (mut light, mut coverage) = (Vec3::ZERO, 0.0f32);
                 for s in 0..settings.samples {
-                    let u = (s as f32 + rand(&mut rng)) / settings.samples as f32;
+                    let rng = &mut lane_rngs[(s % lanes) as usize];
+                    let u = (s as f32 + rand(rng)) / settings.samples as f32;
                     let rho = (inner * inner + (radius * radius - inner * inner) * u).sqrt();
                     let angle = rotation + s as f32 * 2.399_963_2;
                     let q = Vec2::new(x as f32 + 0.5, y as f32 + 0.5)

@@ -11,4 +11,7 @@ irradiant_gpu::wgsl_constants! {
     LIGHT_SPOT: u32 = 1;
     /// `GpuLight::kind` of a directional light.
     LIGHT_DIRECTIONAL: u32 = 2;
+    /// Surfaces `trace_crossings` records along one ray (SSIL's voxelization; Sponza's deepest
+    /// rays cross about 20). Past this it counts them but keeps no distance.
+    MAX_CROSSINGS: u32 = 48;
 }

@@ -23,6 +23,24 @@ const NO_HIT: f32 = 3.0e38;
 const RAY_FAR: f32 = 1.0e20;
 const INVALID: u32 = 0xffffffffu;
 
+// What a traversal looks for: the closest hit, any hit (shadow rays), or every crossing
+// (trace_crossings).
+const TRACE_CLOSEST: u32 = 0u;
+const TRACE_ANY: u32 = 1u;
+const TRACE_ALL: u32 = 2u;
+
+// trace_crossings' record: the distance of every surface the ray crosses, in the order the
+// traversal finds them (the first MAX_CROSSINGS), and how many it crossed.
+var<private> crossing_distances: array<f32, MAX_CROSSINGS>;
+var<private> crossing_count: u32;
+
+fn record_crossing(t: f32) {
+    if crossing_count < MAX_CROSSINGS {
+        crossing_distances[crossing_count] = t;
+    }
+    crossing_count++;
+}
+
 struct Hit {
     t: f32,
     triangle: u32,
@@ -60,11 +78,12 @@ fn intersect_triangle(tri: GpuTriangle, origin: vec3<f32>, dir: vec3<f32>, t_max
     return select(vec3<f32>(NO_HIT, 0.0, 0.0), vec3<f32>(t, u, v), hit);
 }
 
-// Walks one bottom-level tree with the ray in its object space, updating `hit`. With
-// `any_hit`, returns true at the first hit.
-fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_hit: bool, hit: ptr<function, Hit>) -> bool {
+// Walks one bottom-level tree with the ray in its object space, updating `hit` (a ray's t is
+// the same in object and world space). With TRACE_ANY, returns true at the first hit; with
+// TRACE_ALL, records every crossing and leaves `hit` as it was.
+fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, mode: u32, hit: ptr<function, Hit>) -> bool {
     if BLAS_WIDE == 1u {
-        return trace_blas_wide(root, instance, origin, dir, any_hit, hit);
+        return trace_blas_wide(root, instance, origin, dir, mode, hit);
     }
     let inv_dir = safe_inverse(dir);
     var stack: array<u32, BLAS_STACK_SIZE>;
@@ -87,11 +106,15 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_h
                         if (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && is_alpha_hole(i, r.yz) {
                             continue;
                         }
+                        if mode == TRACE_ALL {
+                            record_crossing(r.x);
+                            continue;
+                        }
                         (*hit).t = r.x;
                         (*hit).triangle = i;
                         (*hit).instance = instance;
                         (*hit).bary = r.yz;
-                        if any_hit {
+                        if mode == TRACE_ANY {
                             return true;
                         }
                     }
@@ -186,7 +209,7 @@ fn wide_intersect(n: GpuWideBvhNode, origin: vec3<f32>, inv_dir: vec3<f32>, oct_
     return hits;
 }
 
-fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, any_hit: bool, hit: ptr<function, Hit>) -> bool {
+fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, mode: u32, hit: ptr<function, Hit>) -> bool {
     let inv_dir = safe_inverse(dir);
     let oct_inv4 = wide_octant_inv4(dir);
     var stack: array<vec2<u32>, BLAS_STACK_SIZE>;
@@ -222,11 +245,15 @@ fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, 
                 if (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && is_alpha_hole(i, r.yz) {
                     continue;
                 }
+                if mode == TRACE_ALL {
+                    record_crossing(r.x);
+                    continue;
+                }
                 (*hit).t = r.x;
                 (*hit).triangle = i;
                 (*hit).instance = instance;
                 (*hit).bary = r.yz;
-                if any_hit {
+                if mode == TRACE_ANY {
                     return true;
                 }
             }
@@ -245,6 +272,18 @@ fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, 
 // Traces a world-space ray through the top level; returns the closest hit (or, with
 // `any_hit`, any hit) before t_max. hit.triangle is INVALID on a miss.
 fn trace_ray(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, any_hit: bool) -> Hit {
+    return trace(origin, dir, t_max, select(TRACE_CLOSEST, TRACE_ANY, any_hit));
+}
+
+// Every surface a world-space ray crosses before t_max, whatever its order or facing: their
+// count, and their distances in crossing_distances (the first MAX_CROSSINGS, unsorted).
+fn trace_crossings(origin: vec3<f32>, dir: vec3<f32>, t_max: f32) -> u32 {
+    crossing_count = 0u;
+    trace(origin, dir, t_max, TRACE_ALL);
+    return crossing_count;
+}
+
+fn trace(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, mode: u32) -> Hit {
     var hit: Hit;
     hit.t = min(t_max, RAY_FAR);
     hit.triangle = INVALID;
@@ -252,7 +291,7 @@ fn trace_ray(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, any_hit: bool) -> Hi
     // One instance (a static OBJ scene): skip the top level.
     if scene_info.instance_count == 1u {
         let inst = instances[0];
-        trace_blas(inst.blas_root, 0u, to_object_point(inst, origin), to_object_vector(inst, dir), any_hit, &hit);
+        trace_blas(inst.blas_root, 0u, to_object_point(inst, origin), to_object_vector(inst, dir), mode, &hit);
         return hit;
     }
     let inv_dir = safe_inverse(dir);
@@ -270,7 +309,7 @@ fn trace_ray(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, any_hit: bool) -> Hi
             if t_box < hit.t && count > 0u {
                 for (var i = first; i < first + count; i++) {
                     let inst = instances[i];
-                    if trace_blas(inst.blas_root, i, to_object_point(inst, origin), to_object_vector(inst, dir), any_hit, &hit) {
+                    if trace_blas(inst.blas_root, i, to_object_point(inst, origin), to_object_vector(inst, dir), mode, &hit) {
                         return hit;
                     }
                 }

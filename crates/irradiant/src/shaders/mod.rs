@@ -12,6 +12,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("scene_constants", crate::scene::constants::wgsl())
             .with("frame_constants", crate::frame::constants::wgsl())
             .with("ddgi_constants", crate::ddgi::constants::wgsl())
+            .with("ssil_constants", crate::ssil::constants::wgsl())
             .with("types", include_str!("types.wgsl"))
             .with("random", include_str!("random.wgsl"))
             .with("sampling", include_str!("sampling.wgsl"))

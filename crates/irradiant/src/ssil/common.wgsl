@@ -1,6 +1,7 @@
 // ssil: what every screen-space indirect illumination pass shares — its parameters, the
 // G-buffer pyramid's positions, and the voxel grid's depth slices (Soler et al. 2009).
 #import frame_types
+#import ssil_constants
 #import sampling
 #import camera
 
@@ -46,8 +47,6 @@ struct GpuSsilPass {
     _pad0: u32,
     _pad1: u32,
 }
-
-const SLICES: u32 = 128u;
 
 // Full-resolution pixel coordinates of the centre of texel p of pyramid level `level`.
 fn level_to_image(p: vec2<f32>, level: u32) -> vec2<f32> {

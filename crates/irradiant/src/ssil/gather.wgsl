@@ -8,7 +8,8 @@
 // For the last bounce the samples are importance-sampled around the mirror direction
 // projected on the screen (f(θ) = α + exp(−s (θr − θ)² / 2π)) and the full BRDF gathers them.
 // Writes (E: cosine-weighted incident radiance ∫L cos dω, coverage: the share of the cosine
-// lobe the samples covered) and the glossy radiance.
+// lobe the samples covered) and the glossy radiance. GATHER_LANES threads share a texel, each
+// taking every GATHER_LANES-th sample; their sums meet in workgroup memory.
 #import ssil_common
 #import gbuffer
 #import brdf
@@ -67,27 +68,31 @@ fn wrap_angle(a: f32) -> f32 {
     return a - TAU * floor((a + PI) / TAU);
 }
 
-@compute @workgroup_size(8, 8, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+// One lane's sums: E (rgb), coverage, and the glossy radiance.
+struct LaneSum {
+    light: vec4<f32>,
+    specular: vec3<f32>,
+}
+
+const TEXELS_PER_GROUP: u32 = GATHER_TILE * GATHER_TILE;
+var<workgroup> lane_sums: array<LaneSum, GATHER_LANES * TEXELS_PER_GROUP>;
+
+// `lane`'s share of texel `texel`'s samples at this level.
+fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
+    var sum = LaneSum(vec4<f32>(0.0), vec3<f32>(0.0));
     let level = ssil_pass.level;
     let size = level_size(level);
-    if id.x >= size.x || id.y >= size.y {
-        return;
-    }
-    let out_texel = vec2<i32>(id.xy);
-    let nd = textureLoad(pyramid_normal_depth, id.xy, level);
+    let nd = textureLoad(pyramid_normal_depth, texel, level);
     if nd.w < 0.0 {
-        textureStore(target_light, out_texel, vec4<f32>(0.0));
-        textureStore(target_specular, out_texel, vec4<f32>(0.0));
-        return;
+        return sum;
     }
-    let x = level_position(id.xy, level, nd.w);
+    let x = level_position(texel, level, nd.w);
     let n = nd.xyz;
     let wo = normalize(frame.camera.position - x);
     let image = vec2<f32>(f32(frame.width), f32(frame.height));
     // The receiver's material, for the glossy gather: the full-resolution texel at this
     // texel's centre.
-    let full = min(vec2<u32>(level_to_image(vec2<f32>(id.xy) + 0.5, level)), vec2<u32>(frame.width, frame.height) - 1u);
+    let full = min(vec2<u32>(level_to_image(vec2<f32>(texel) + 0.5, level)), vec2<u32>(frame.width, frame.height) - 1u);
     var receiver = gbuffer_surface(full);
     receiver.normal = n;
     receiver.position = x;
@@ -116,13 +121,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let importance = sigma < PI;
     let uniform_weight = TAU * ssil.importance_alpha;
     let gaussian_weight = sqrt(TAU) * sigma;
-    var rng = rng_seed(id.y * size.x + id.x, frame.frame_index, level * 7919u + 0x2545f491u);
+    // The spiral's rotation is the texel's (every lane draws the same); the jitter is the lane's.
+    let texel_seed = rng_seed(texel.y * size.x + texel.x, frame.frame_index, level * 7919u + 0x2545f491u);
+    var rng = texel_seed;
     let rotation = TAU * rand(&rng);
-    var light = vec3<f32>(0.0);
-    var specular = vec3<f32>(0.0);
-    var coverage = 0.0;
+    rng = rng_seed(texel_seed, lane, 0x68e31da4u);
     let n_samples = ssil.samples;
-    for (var i = 0u; i < n_samples; i++) {
+    for (var i = lane; i < n_samples; i += GATHER_LANES) {
         // Radius uniform in area over the disc or ring, stratified; angle along a golden-angle
         // spiral, or drawn from the importance function.
         let u = (f32(i) + rand(&rng)) / f32(n_samples);
@@ -138,7 +143,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let pdf = (ssil.importance_alpha + wrapped_gaussian(wrap_angle(angle - lobe_angle), sigma)) / (uniform_weight + gaussian_weight);
             weight = 1.0 / (TAU * pdf);
         }
-        let q = vec2<f32>(id.xy) + 0.5 + rho * vec2<f32>(cos(angle), sin(angle));
+        let q = vec2<f32>(texel) + 0.5 + rho * vec2<f32>(cos(angle), sin(angle));
         if any(q < vec2<f32>(0.0)) || any(q >= vec2<f32>(size)) {
             continue;
         }
@@ -171,13 +176,36 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             continue;
         }
         let l = textureLoad(source_radiance, qi, ssil_pass.radiance_level).rgb;
-        light += l * g;
-        coverage += g / PI;
+        sum.light += vec4<f32>(l * g, g / PI);
         if glossy {
             let f = brdf_eval(receiver, wo, wi) - diffuse_weight(receiver) / PI;
-            specular += max(f, vec3<f32>(0.0)) * l * g;
+            sum.specular += max(f, vec3<f32>(0.0)) * l * g;
         }
     }
-    textureStore(target_light, out_texel, vec4<f32>(light, min(coverage, 1.0)));
-    textureStore(target_specular, out_texel, vec4<f32>(specular, 1.0));
+    return sum;
+}
+
+// Workgroup: GATHER_TILE × GATHER_TILE texels, GATHER_LANES threads each (x: the lane).
+@compute @workgroup_size(GATHER_LANES, TEXELS_PER_GROUP, 1)
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) local: vec3<u32>) {
+    let size = level_size(ssil_pass.level);
+    let texel = group.xy * GATHER_TILE + vec2<u32>(local.y % GATHER_TILE, local.y / GATHER_TILE);
+    let inside = all(texel < size);
+    var own = LaneSum(vec4<f32>(0.0), vec3<f32>(0.0));
+    if inside {
+        own = gather_lane(texel, local.x);
+    }
+    lane_sums[local.y * GATHER_LANES + local.x] = own;
+    workgroupBarrier();
+    if local.x != 0u || !inside {
+        return;
+    }
+    var total = own;
+    for (var lane = 1u; lane < GATHER_LANES; lane++) {
+        let other = lane_sums[local.y * GATHER_LANES + lane];
+        total.light += other.light;
+        total.specular += other.specular;
+    }
+    textureStore(target_light, vec2<i32>(texel), vec4<f32>(total.light.rgb, min(total.light.a, 1.0)));
+    textureStore(target_specular, vec2<i32>(texel), vec4<f32>(total.specular, 1.0));
 }

@@ -15,6 +15,7 @@
 //! See docs/ssil.md. Two registry entries: `ssil` alone, and `ssil+ddgi`, where DDGI's probes
 //! supply the light the screen cannot see.
 
+pub mod constants;
 mod resources;
 mod settings;
 pub mod types;
@@ -161,7 +162,7 @@ impl TechniqueKind for SsilKind {
     ) -> Result<Vec<Allocation>, RenderError> {
         let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
         settings.check_size(size)?;
-        let mut plan = resources::plan(&settings, size);
+        let mut plan = resources::plan(&settings, size, self.hybrid);
         if let Some(ddgi) = ddgi {
             plan.extend(crate::ddgi::DDGI.plan(
                 &TechniqueSpec::with_settings("ddgi", &ddgi),
@@ -178,7 +179,7 @@ impl TechniqueKind for SsilKind {
         size: (u32, u32),
     ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
         let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
-        let mut all = dispatches(&settings, size);
+        let mut all = dispatches(&settings, size, self.hybrid);
         if let Some(ddgi) = ddgi {
             all.extend(crate::ddgi::DDGI.dispatches(
                 &TechniqueSpec::with_settings("ddgi", &ddgi),
@@ -206,27 +207,46 @@ impl TechniqueKind for SsilKind {
     }
 }
 
+/// Workgroups of a pass with a thread a texel of pyramid level `k`.
+fn level_groups((width, height): (u32, u32), k: u32) -> Workgroups {
+    Workgroups::for_image((width >> k).max(1), (height >> k).max(1), IMAGE_TILE)
+}
+
+/// Workgroups of a gather at pyramid level `k` (GATHER_LANES threads a texel).
+fn gather_groups((width, height): (u32, u32), k: u32) -> Workgroups {
+    let tile = (constants::GATHER_TILE, constants::GATHER_TILE);
+    Workgroups::for_image((width >> k).max(1), (height >> k).max(1), tile)
+}
+
 /// Every dispatch, with its label (the frame's pyramid aside).
 pub fn dispatches(
     settings: &SsilSettings,
     (width, height): (u32, u32),
+    hybrid: bool,
 ) -> Vec<(&'static str, Workgroups)> {
-    let level =
-        |k: u32| Workgroups::for_image((width >> k).max(1), (height >> k).max(1), IMAGE_TILE);
+    let level = |k: u32| level_groups((width, height), k);
+    let gather_groups = |k: u32| gather_groups((width, height), k);
     let s = settings.start.level();
     let mut all = vec![("ssil/voxelize", level(s))];
     for j in 1..settings.levels {
         all.push(("ssil/voxel_down", level(s + j)));
     }
     for bounce in 0..settings.bounces {
-        if bounce > 0 {
-            all.push(("ssil/bounce", level(s)));
+        if bounce > 0 || hybrid {
+            all.push((
+                if bounce > 0 {
+                    "ssil/bounce"
+                } else {
+                    "ssil/probe_light"
+                },
+                level(s),
+            ));
             for j in 1..settings.levels {
                 all.push(("ssil/bounce", level(s + j)));
             }
         }
         for j in 0..settings.levels {
-            all.push((GATHER_LABELS[j as usize], level(s + j)));
+            all.push((GATHER_LABELS[j as usize], gather_groups(s + j)));
         }
         for j in (0..settings.levels).rev() {
             all.push(("ssil/upsample", level(s + j)));
@@ -247,6 +267,7 @@ struct Pipelines {
     gather: Arc<ComputePass>,
     upsample: Arc<ComputePass>,
     bounce: Arc<ComputePass>,
+    probe_light: Arc<ComputePass>,
     bounce_down: Arc<ComputePass>,
     temporal: Arc<ComputePass>,
     resolve: Arc<ComputePass>,
@@ -283,7 +304,7 @@ impl Ssil {
         settings.validate()?;
         let ctx = cx.ctx;
         let size = cx.frame.size();
-        let resources = SsilResources::new(ctx, settings, size)?;
+        let resources = SsilResources::new(ctx, settings, size, hybrid)?;
         let compile = |label: &'static str, source: &str, tracing: bool| {
             let mut desc = PassDesc::new(label, source);
             if tracing {
@@ -297,6 +318,7 @@ impl Ssil {
             gather: compile("ssil/gather", include_str!("gather.wgsl"), false)?,
             upsample: compile("ssil/upsample", include_str!("upsample.wgsl"), false)?,
             bounce: compile("ssil/bounce", include_str!("bounce.wgsl"), false)?,
+            probe_light: compile("ssil/probe_light", include_str!("probe_light.wgsl"), false)?,
             bounce_down: compile("ssil/bounce", include_str!("bounce_down.wgsl"), false)?,
             temporal: compile("ssil/temporal", include_str!("temporal.wgsl"), false)?,
             resolve: compile("ssil/resolve", include_str!("resolve.wgsl"), false)?,
@@ -306,8 +328,7 @@ impl Ssil {
         let r = &resources;
         let s = settings.start.level();
         let levels = settings.levels;
-        let group =
-            |k: u32| Workgroups::for_image((size.0 >> k).max(1), (size.1 >> k).max(1), IMAGE_TILE);
+        let group = |k: u32| level_groups(size, k);
         let pass_uniform = |pass: GpuSsilPass| SsilResources::pass_uniform(ctx, pass);
         let bind =
             |pipeline: &Arc<ComputePass>, own: ResourceTable| -> Result<BoundPass, RenderError> {
@@ -336,21 +357,30 @@ impl Ssil {
         for bounce in 0..settings.bounces {
             let last = bounce + 1 == settings.bounces;
             let mut light = Vec::new();
-            if bounce > 0 {
+            if bounce > 0 || hybrid {
                 let b = r
                     .bounce
                     .as_ref()
-                    .expect("a bounce chain with more than one bounce");
-                light.push((
+                    .expect("a bounce chain with more than one bounce or probes");
+                // The start level: the last bounce's light reflected, or (the hybrid's first
+                // bounce) the probes' light added.
+                let start_light = if bounce > 0 {
                     bind(
                         &p.bounce,
                         ResourceTable::new()
                             .buffer("ssil", &r.params)
                             .texture("combined_light", &r.combined.levels[0])
                             .texture("target_radiance", &b.levels[0]),
-                    )?,
-                    group(s),
-                ));
+                    )?
+                } else {
+                    bind(
+                        &p.probe_light,
+                        ResourceTable::new()
+                            .buffer("ssil", &r.params)
+                            .texture("target_radiance", &b.levels[0]),
+                    )?
+                };
+                light.push((start_light, group(s)));
                 for j in 1..levels {
                     uniforms.push(pass_uniform(GpuSsilPass {
                         level: s + j,
@@ -366,8 +396,8 @@ impl Ssil {
             }
             let mut gathers = Vec::new();
             for j in 0..levels {
-                let (source, radiance_level) = match (&r.bounce, bounce) {
-                    (Some(b), 1..) => (&b.view, j),
+                let (source, radiance_level) = match &r.bounce {
+                    Some(b) if bounce > 0 || hybrid => (&b.view, j),
                     _ => (pyramid_radiance, s + j),
                 };
                 uniforms.push(pass_uniform(GpuSsilPass {
@@ -386,7 +416,7 @@ impl Ssil {
                     .texture("target_specular", &r.gather_specular.levels[j as usize]);
                 gathers.push((
                     bind(&p.gather, own)?.labelled(GATHER_LABELS[j as usize]),
-                    group(s + j),
+                    gather_groups(size, s + j),
                 ));
             }
             let mut upsamples = Vec::new();
@@ -593,7 +623,12 @@ impl Technique for Ssil {
     fn passes(&self) -> TechniquePasses {
         let mut update = vec!["ssil/voxelize", "ssil/voxel_down"];
         update.extend(&GATHER_LABELS[..self.settings.levels as usize]);
-        update.extend(["ssil/upsample", "ssil/bounce", "ssil/temporal"]);
+        update.extend([
+            "ssil/upsample",
+            "ssil/probe_light",
+            "ssil/bounce",
+            "ssil/temporal",
+        ]);
         TechniquePasses {
             update,
             resolve: vec!["ssil/resolve"],

@@ -100,7 +100,8 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64, bool)] = &[
     ),
 ];
 
-/// The bounce light's chain, only with more than one bounce.
+/// The light the gathers read when it is not the frame's pyramid: more than one bounce, or
+/// the probes' light in it (ssil+ddgi).
 const BOUNCE: (&str, wgpu::TextureFormat, u64) =
     ("ssil/bounce", wgpu::TextureFormat::Rgba16Float, 8);
 
@@ -109,8 +110,13 @@ fn start_size(settings: &SsilSettings, (width, height): (u32, u32)) -> (u32, u32
     ((width >> s).max(1), (height >> s).max(1))
 }
 
+/// Whether the gathers read the bounce chain.
+fn needs_bounce_chain(settings: &SsilSettings, hybrid: bool) -> bool {
+    settings.bounces > 1 || hybrid
+}
+
 /// Every allocation, from the settings and the image size alone.
-pub fn plan(settings: &SsilSettings, size: (u32, u32)) -> Vec<Allocation> {
+pub fn plan(settings: &SsilSettings, size: (u32, u32), hybrid: bool) -> Vec<Allocation> {
     let start = start_size(settings, size);
     let mut plan: Vec<Allocation> = TEXTURES
         .iter()
@@ -122,7 +128,7 @@ pub fn plan(settings: &SsilSettings, size: (u32, u32)) -> Vec<Allocation> {
             }
         })
         .collect();
-    if settings.bounces > 1 {
+    if needs_bounce_chain(settings, hybrid) {
         plan.push(Allocation::texture(
             BOUNCE.0,
             start,
@@ -158,8 +164,9 @@ impl SsilResources {
         ctx: &GpuContext,
         settings: &SsilSettings,
         size: (u32, u32),
+        hybrid: bool,
     ) -> Result<Self, RenderError> {
-        ctx.check_allocations(&plan(settings, size))?;
+        ctx.check_allocations(&plan(settings, size, hybrid))?;
         let device = &ctx.device;
         let start = start_size(settings, size);
         let make = |name: &str| {
@@ -200,7 +207,7 @@ impl SsilResources {
             history: make("ssil/history"),
             history_specular: make("ssil/history_specular"),
             history_geometry: make("ssil/history_geometry"),
-            bounce: (settings.bounces > 1)
+            bounce: needs_bounce_chain(settings, hybrid)
                 .then(|| LevelTexture::new(device, BOUNCE.0, start, BOUNCE.1, settings.levels)),
         })
     }

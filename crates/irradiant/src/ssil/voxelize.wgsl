@@ -1,11 +1,12 @@
 // ssil/voxelize: solid voxelization of the view frustum (Eisemann and Décoret 2008), at the
 // start level's resolution with 128 depth slices a texel, one bit each. Instead of rasterizing
-// every triangle with XOR blending, each texel's camera ray walks through every surface it
-// crosses (one closest-hit trace after another through our BVH) and, at each crossing, flips
-// every slice from the crossing's slice on: the XOR parity that makes the inside of closed
-// objects solid. Exact per texel, independent of the triangle count, and the same traversal
-// the rest of Irradiant uses. A ray that ends inside (an odd number of crossings) met an open
-// surface: it is counted, so that the scene's watertightness can be reported.
+// every triangle with XOR blending, each texel's camera ray collects every surface it crosses
+// in one traversal of our BVH (trace_crossings) and, at each crossing, flips every slice from
+// the crossing's slice on: the XOR parity that makes the inside of closed objects solid. Exact
+// per texel, independent of the triangle count, and the same traversal the rest of Irradiant
+// uses. Crossings closer than the ray's precision are one surface: a ray through the edge two
+// triangles share hits both. A ray that ends inside (an odd number of crossings) is counted,
+// so that the share of open geometry in view can be reported.
 #import ssil_common
 #import bvh
 #import camera
@@ -14,9 +15,6 @@
 @group(2) @binding(1) var target_voxels: texture_storage_2d<rgba32uint, write>;
 @group(2) @binding(2) var<storage, read_write> ssil_counters: array<atomic<u32>>;
 @group(1) @binding(0) var<uniform> frame: GpuFrameParams;
-
-// Surfaces a ray may cross before it gives up (Sponza's deepest rays cross about 20).
-const MAX_CROSSINGS: u32 = 64u;
 
 // Every slice from `slice` on.
 fn slices_from(slice: i32) -> vec4<u32> {
@@ -42,18 +40,29 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     let image = vec2<f32>(f32(frame.width), f32(frame.height));
     let dir = camera_ray_dir(frame.camera, level_to_image(vec2<f32>(id.xy) + 0.5, ssil.start_level), image);
     let cos_forward = dot(dir, frame.camera.forward);
-    var mask = vec4<u32>(0u);
-    var travelled = 0.0;
-    var crossings = 0u;
-    for (; crossings < MAX_CROSSINGS; crossings++) {
-        let hit = trace_ray(frame.camera.position + dir * travelled, dir, RAY_FAR, false);
-        if hit.triangle == INVALID {
-            break;
+    let found = min(trace_crossings(frame.camera.position, dir, RAY_FAR), MAX_CROSSINGS);
+    // Nearest first (insertion sort: a few dozen at most).
+    for (var i = 1u; i < found; i++) {
+        let t = crossing_distances[i];
+        var j = i;
+        while j > 0u && crossing_distances[j - 1u] > t {
+            crossing_distances[j] = crossing_distances[j - 1u];
+            j--;
         }
-        travelled += hit.t;
-        mask ^= slices_from(slice_of(travelled * cos_forward));
-        // Past the surface, by a margin that grows with the distance (f32 precision).
-        travelled += 1e-4 * max(1.0, travelled);
+        crossing_distances[j] = t;
+    }
+    var mask = vec4<u32>(0u);
+    var crossings = 0u;
+    var last = 0.0;
+    for (var i = 0u; i < found; i++) {
+        let t = crossing_distances[i];
+        // Within the margin of the last surface kept (f32 precision): the same surface.
+        if crossings > 0u && t - last < 1e-4 * max(1.0, last) {
+            continue;
+        }
+        mask ^= slices_from(slice_of(t * cos_forward));
+        crossings++;
+        last = t;
     }
     if crossings % 2u == 1u {
         atomicAdd(&ssil_counters[0], 1u);
