@@ -384,7 +384,9 @@ fn bounces_add_light_and_the_hybrid_runs_both() {
     let labels: Vec<&str> = timed.iter().map(|t| t.label.as_str()).collect();
     if !timed.is_empty() {
         assert!(
-            labels.contains(&"ddgi/trace") && labels.contains(&"ssil/resolve"),
+            labels.contains(&"ddgi/trace")
+                && labels.contains(&"ssil/probe_light")
+                && labels.contains(&"ssil/temporal"),
             "{labels:?}"
         );
     }

@@ -111,18 +111,12 @@ pub fn print_table(records: &[FrameRecord]) {
         }
     }
     rows.push((
+        "bounce and probe light".into(),
+        Box::new(|r| ms(r, |l| l == "ssil/bounce" || l == "ssil/probe_light")),
+    ));
+    rows.push((
         "upsampling + temporal".into(),
-        Box::new(|r| {
-            ms(r, |l| {
-                [
-                    "ssil/upsample",
-                    "ssil/bounce",
-                    "ssil/temporal",
-                    "ssil/resolve",
-                ]
-                .contains(&l)
-            })
-        }),
+        Box::new(|r| ms(r, |l| l == "ssil/upsample" || l == "ssil/temporal")),
     ));
     rows.push((
         "SSIL total".into(),

@@ -23,24 +23,24 @@
 @group(2) @binding(5) var target_light: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(6) var target_specular: texture_storage_2d<rgba16float, write>;
 
-// Whether the segment between two surface points crosses a solid voxel of this level's grid,
-// skipping `visibility_bias` of it at each end (the surfaces' own voxels).
-fn occluded(from_point: vec3<f32>, to_point: vec3<f32>, level: u32) -> bool {
-    let size = vec2<f32>(f32(frame.width), f32(frame.height));
-    let grid = level_size(level);
+// Whether the segment between two surface points of this level — texel positions a and b,
+// view depths da and db — crosses a solid voxel of the level's grid, skipping
+// `visibility_bias` of it at each end (the surfaces' own voxels). The march steps evenly over
+// the screen, where the grid's texels are, with the depth interpolated perspective-correctly
+// (1/depth is linear in screen space): no projection per step.
+fn occluded(a: vec2<f32>, da: f32, b: vec2<f32>, db: f32, level: u32) -> bool {
+    let grid = vec2<f32>(level_size(level));
     let voxel_level = level - ssil.start_level;
     let steps = ssil.visibility_steps;
+    let inv_a = 1.0 / da;
+    let inv_b = 1.0 / db;
     for (var i = 0u; i < steps; i++) {
         let t = ssil.visibility_bias + (1.0 - 2.0 * ssil.visibility_bias) * (f32(i) + 0.5) / f32(steps);
-        let p = mix(from_point, to_point, t);
-        let depth = view_depth(p);
-        if depth <= 0.0 {
+        let texel = mix(a, b, t);
+        if any(texel < vec2<f32>(0.0)) || any(texel >= grid) {
             continue;
         }
-        let texel = project(frame.camera, p, size) / f32(1u << level);
-        if any(texel < vec2<f32>(0.0)) || any(texel >= vec2<f32>(grid)) {
-            continue;
-        }
+        let depth = 1.0 / mix(inv_a, inv_b, t);
         if voxel_bit(textureLoad(ssil_voxels, vec2<u32>(texel), voxel_level), slice_of(depth)) {
             return true;
         }
@@ -172,7 +172,7 @@ fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
         // eq. 4: the point-to-disc form factor, bounded where the sample is close.
         let disc = cos_sender * ds / PI;
         let g = cos_receiver * cos_sender * ds / (r2 + disc);
-        if ssil.visibility == 1u && occluded(x, xi, level) {
+        if ssil.visibility == 1u && occluded(vec2<f32>(texel) + 0.5, nd.w, vec2<f32>(qi) + 0.5, ndq.w, level) {
             continue;
         }
         let l = textureLoad(source_radiance, qi, ssil_pass.radiance_level).rgb;

@@ -8,8 +8,8 @@
 //!                    visibility by marching the level's grid, glossy importance sampling
 //! ssil/upsample      the levels combined coarsest first, joint-bilaterally upsampled
 //! ssil/bounce        (more bounces) the light of bounce n for bounce n + 1 to gather
-//! ssil/temporal      blended with last frame's light where the same surface was there
-//! ssil/resolve       into the frame's indirect light (with ssil+ddgi, over the probes' light)
+//! ssil/temporal      blended with last frame's light where the same surface was there, into
+//!                    the frame's indirect light (with ssil+ddgi, over the probes' light)
 //! ```
 //!
 //! See docs/ssil.md. Two registry entries: `ssil` alone, and `ssil+ddgi`, where DDGI's probes
@@ -252,11 +252,7 @@ pub fn dispatches(
             all.push(("ssil/upsample", level(s + j)));
         }
     }
-    all.extend([
-        ("ssil/upsample", level(0)),
-        ("ssil/temporal", level(0)),
-        ("ssil/resolve", level(0)),
-    ]);
+    all.extend([("ssil/upsample", level(0)), ("ssil/temporal", level(0))]);
     all
 }
 
@@ -270,7 +266,6 @@ struct Pipelines {
     probe_light: Arc<ComputePass>,
     bounce_down: Arc<ComputePass>,
     temporal: Arc<ComputePass>,
-    resolve: Arc<ComputePass>,
 }
 
 /// One bounce's dispatches, in order: its light (after the first), the gathers finest first,
@@ -287,9 +282,11 @@ pub struct Ssil {
     resources: SsilResources,
     voxels: Vec<(BoundPass, Workgroups)>,
     bounces: Vec<BouncePasses>,
-    finish: Vec<(BoundPass, Workgroups)>,
-    /// The frame's level-0 normal and depth, kept as next frame's history geometry.
-    pyramid_normal_depth: wgpu::Texture,
+    /// To full resolution.
+    upsample: (BoundPass, Workgroups),
+    /// Temporal filtering into the frame's indirect light: [frame n mod 2] writes that set of
+    /// filtered textures and reads the other.
+    temporal: [(BoundPass, Workgroups); 2],
     /// Scene bounds (grown for animation) for the voxel grid's depth range.
     bounds: (Vec3, Vec3),
     frames: u32,
@@ -321,7 +318,6 @@ impl Ssil {
             probe_light: compile("ssil/probe_light", include_str!("probe_light.wgsl"), false)?,
             bounce_down: compile("ssil/bounce", include_str!("bounce_down.wgsl"), false)?,
             temporal: compile("ssil/temporal", include_str!("temporal.wgsl"), false)?,
-            resolve: compile("ssil/resolve", include_str!("resolve.wgsl"), false)?,
         };
         let scene_table = cx.gpu_scene.resources();
         let frame_table = cx.frame.resources.table();
@@ -463,7 +459,7 @@ impl Ssil {
             with_gather: (s == 0) as u32,
             ..Default::default()
         }));
-        let mut finish = vec![(
+        let upsample = (
             bind(
                 &p.upsample,
                 ResourceTable::new()
@@ -477,32 +473,22 @@ impl Ssil {
                     .texture("target_specular", &r.full_specular.view),
             )?,
             group(0),
-        )];
-        finish.push((
-            bind(
-                &p.temporal,
-                ResourceTable::new()
-                    .buffer("ssil", &r.params)
-                    .texture("ssil_full", &r.full.view)
-                    .texture("ssil_full_specular", &r.full_specular.view)
-                    .texture("ssil_history", &r.history.view)
-                    .texture("ssil_history_specular", &r.history_specular.view)
-                    .texture("ssil_history_geometry", &r.history_geometry.view)
-                    .texture("ssil_filtered", &r.filtered.view)
-                    .texture("ssil_filtered_specular", &r.filtered_specular.view),
-            )?,
-            group(0),
-        ));
-        finish.push((
-            bind(
-                &p.resolve,
-                ResourceTable::new()
-                    .buffer("ssil", &r.params)
-                    .texture("ssil_filtered", &r.filtered.view)
-                    .texture("ssil_filtered_specular", &r.filtered_specular.view),
-            )?,
-            group(0),
-        ));
+        );
+        let temporal = |now: usize| -> Result<(BoundPass, Workgroups), RenderError> {
+            let before = 1 - now;
+            let own = ResourceTable::new()
+                .buffer("ssil", &r.params)
+                .texture("ssil_full", &r.full.view)
+                .texture("ssil_full_specular", &r.full_specular.view)
+                .texture("ssil_history", &r.filtered[before].view)
+                .texture("ssil_history_specular", &r.filtered_specular[before].view)
+                .texture("ssil_history_geometry", &r.filtered_geometry[before].view)
+                .texture("ssil_filtered", &r.filtered[now].view)
+                .texture("ssil_filtered_specular", &r.filtered_specular[now].view)
+                .texture("ssil_filtered_geometry", &r.filtered_geometry[now].view);
+            Ok((bind(&p.temporal, own)?, group(0)))
+        };
+        let temporal = [temporal(0)?, temporal(1)?];
         // The pass uniforms stay alive through the bind groups that hold them.
         drop(uniforms);
         let (lo, hi) = cx.scene.bounds();
@@ -513,8 +499,8 @@ impl Ssil {
             resources,
             voxels,
             bounces,
-            finish,
-            pyramid_normal_depth: cx.frame.resources.texture("pyramid_normal_depth").clone(),
+            upsample,
+            temporal,
             bounds: (lo - grow, hi + grow),
             frames: 0,
         })
@@ -551,7 +537,9 @@ impl Ssil {
     /// The last frame's filtered light at full resolution: (E rgb, coverage) a pixel, E being
     /// ∫ L cos dω (a Lambertian surface of albedo ρ reflects ρ/π × E).
     pub fn read_light(&self, ctx: &GpuContext) -> Result<Vec<[f32; 4]>, RenderError> {
-        read_rgba16(ctx, &self.resources.filtered.texture, 0)
+        // The set the last frame wrote.
+        let last = (self.frames + 1) as usize % 2;
+        read_rgba16(ctx, &self.resources.filtered[last].texture, 0)
     }
 
     /// One level of the last bounce's gathers (level 0: the start level), as [`Self::read_light`].
@@ -588,30 +576,10 @@ impl Ssil {
                 pass.dispatch(encoder, profiler.as_deref_mut(), *groups);
             }
         }
-        let (upsample, temporal, resolve) = (&self.finish[0], &self.finish[1], &self.finish[2]);
-        upsample
-            .0
-            .dispatch(encoder, profiler.as_deref_mut(), upsample.1);
-        temporal
-            .0
-            .dispatch(encoder, profiler.as_deref_mut(), temporal.1);
-        let r = &self.resources;
-        for (from, to) in [
-            (&r.filtered, &r.history),
-            (&r.filtered_specular, &r.history_specular),
-        ] {
-            encoder.copy_texture_to_texture(
-                from.texture.as_image_copy(),
-                to.texture.as_image_copy(),
-                from.texture.size(),
-            );
-        }
-        encoder.copy_texture_to_texture(
-            self.pyramid_normal_depth.as_image_copy(),
-            r.history_geometry.texture.as_image_copy(),
-            r.history_geometry.texture.size(),
-        );
-        resolve.0.dispatch(encoder, profiler, resolve.1);
+        let (upsample, groups) = &self.upsample;
+        upsample.dispatch(encoder, profiler.as_deref_mut(), *groups);
+        let (temporal, groups) = &self.temporal[self.frames as usize % 2];
+        temporal.dispatch(encoder, profiler, *groups);
         self.frames += 1;
     }
 }
@@ -623,15 +591,10 @@ impl Technique for Ssil {
     fn passes(&self) -> TechniquePasses {
         let mut update = vec!["ssil/voxelize", "ssil/voxel_down"];
         update.extend(&GATHER_LABELS[..self.settings.levels as usize]);
-        update.extend([
-            "ssil/upsample",
-            "ssil/probe_light",
-            "ssil/bounce",
-            "ssil/temporal",
-        ]);
+        update.extend(["ssil/upsample", "ssil/probe_light", "ssil/bounce"]);
         TechniquePasses {
             update,
-            resolve: vec!["ssil/resolve"],
+            resolve: vec!["ssil/temporal"],
         }
     }
     fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {

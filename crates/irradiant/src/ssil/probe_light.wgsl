@@ -2,7 +2,7 @@
 // it: what leaves each surface of the start level — its direct light plus the diffuse light
 // DDGI's probes put there (frame `indirect`, already albedo-weighted; averaged over the
 // texel's block of full-resolution pixels). The screen then carries every bounce the probes
-// hold, where it can see the sender, and the probes light the rest (ssil/resolve) — neither
+// hold, where it can see the sender, and the probes light the rest (ssil/temporal) — neither
 // counted twice. ssil/bounce averages it up the levels.
 #import ssil_common
 #import gbuffer

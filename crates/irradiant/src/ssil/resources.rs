@@ -1,6 +1,6 @@
 //! Screen-space indirect illumination's textures: the voxel grid and the per-level light at the
-//! start level's resolution (with a mip a level), and the full-resolution light, its filtered
-//! value and last frame's, with the geometry it was filtered on.
+//! start level's resolution (with a mip a level), and the full-resolution light and its
+//! filtered value with the geometry it was filtered on, this frame's and last frame's.
 
 use irradiant_gpu::{Allocation, GpuContext, wgpu};
 
@@ -78,22 +78,40 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64, bool)] = &[
         8,
         false,
     ),
-    ("ssil/filtered", wgpu::TextureFormat::Rgba16Float, 8, false),
+    // Two of each: this frame's filtered light is next frame's history (ping-pong).
     (
-        "ssil/filtered_specular",
-        wgpu::TextureFormat::Rgba16Float,
-        8,
-        false,
-    ),
-    ("ssil/history", wgpu::TextureFormat::Rgba16Float, 8, false),
-    (
-        "ssil/history_specular",
+        "ssil/filtered_0",
         wgpu::TextureFormat::Rgba16Float,
         8,
         false,
     ),
     (
-        "ssil/history_geometry",
+        "ssil/filtered_1",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        false,
+    ),
+    (
+        "ssil/filtered_specular_0",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        false,
+    ),
+    (
+        "ssil/filtered_specular_1",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+        false,
+    ),
+    // normal and view depth the light was filtered on
+    (
+        "ssil/filtered_geometry_0",
+        wgpu::TextureFormat::Rgba32Float,
+        16,
+        false,
+    ),
+    (
+        "ssil/filtered_geometry_1",
         wgpu::TextureFormat::Rgba32Float,
         16,
         false,
@@ -151,11 +169,11 @@ pub struct SsilResources {
     pub combined_specular: LevelTexture,
     pub full: LevelTexture,
     pub full_specular: LevelTexture,
-    pub filtered: LevelTexture,
-    pub filtered_specular: LevelTexture,
-    pub history: LevelTexture,
-    pub history_specular: LevelTexture,
-    pub history_geometry: LevelTexture,
+    /// The filtered light, its glossy part and the geometry it was filtered on, twice: frame
+    /// n writes set n mod 2 and reads the other as its history.
+    pub filtered: [LevelTexture; 2],
+    pub filtered_specular: [LevelTexture; 2],
+    pub filtered_geometry: [LevelTexture; 2],
     pub bounce: Option<LevelTexture>,
 }
 
@@ -202,11 +220,15 @@ impl SsilResources {
             combined_specular: make("ssil/combined_specular"),
             full: make("ssil/full"),
             full_specular: make("ssil/full_specular"),
-            filtered: make("ssil/filtered"),
-            filtered_specular: make("ssil/filtered_specular"),
-            history: make("ssil/history"),
-            history_specular: make("ssil/history_specular"),
-            history_geometry: make("ssil/history_geometry"),
+            filtered: [make("ssil/filtered_0"), make("ssil/filtered_1")],
+            filtered_specular: [
+                make("ssil/filtered_specular_0"),
+                make("ssil/filtered_specular_1"),
+            ],
+            filtered_geometry: [
+                make("ssil/filtered_geometry_0"),
+                make("ssil/filtered_geometry_1"),
+            ],
             bounce: needs_bounce_chain(settings, hybrid)
                 .then(|| LevelTexture::new(device, BOUNCE.0, start, BOUNCE.1, settings.levels)),
         })

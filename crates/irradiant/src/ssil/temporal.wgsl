@@ -2,9 +2,16 @@
 // (camera and moving objects alike), where last frame's pixel held the same surface: its
 // stored depth within depth_tolerance of this surface's depth seen from last frame's camera,
 // its normal within normal_tolerance. The weight a falls with motion, and more for the glossy
-// light, which moves over a surface differently from the surface itself.
+// light, which moves over a surface differently from the surface itself. The result, with the
+// geometry it was filtered on, is next frame's history; and it resolves into the frame's
+// indirect light: the diffuse share of the irradiance plus the glossy radiance. In ssil+ddgi
+// (`hybrid`) DDGI has already written its light there; the screen-space light replaces it in
+// the share of the cosine lobe the screen covered (coverage C) and the probes keep the rest —
+// off-screen and hidden senders, and what lies past the largest ring — so that nothing is
+// counted twice.
 #import ssil_common
 #import gbuffer
+#import brdf
 
 @group(2) @binding(0) var<uniform> ssil: GpuSsilParams;
 @group(2) @binding(1) var pyramid_normal_depth: texture_2d<f32>;
@@ -15,6 +22,8 @@
 @group(2) @binding(6) var ssil_history_geometry: texture_2d<f32>;
 @group(2) @binding(7) var ssil_filtered: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(8) var ssil_filtered_specular: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(9) var ssil_filtered_geometry: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -22,10 +31,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let texel = vec2<i32>(id.xy);
+    let here = textureLoad(pyramid_normal_depth, id.xy, 0);
+    textureStore(ssil_filtered_geometry, texel, here);
+    if here.w < 0.0 {
+        textureStore(ssil_filtered, texel, vec4<f32>(0.0));
+        textureStore(ssil_filtered_specular, texel, vec4<f32>(0.0));
+        textureStore(indirect, texel, vec4<f32>(0.0));
+        return;
+    }
     var light = textureLoad(ssil_full, texel, 0);
     var specular = textureLoad(ssil_full_specular, texel, 0).rgb;
-    let here = textureLoad(pyramid_normal_depth, id.xy, 0);
-    if here.w >= 0.0 && ssil.history_valid == 1u {
+    let s = gbuffer_surface(id.xy);
+    if ssil.history_valid == 1u {
         let motion = gbuffer_motion_at(id.xy);
         let previous = vec2<f32>(id.xy) + 0.5 + motion;
         if all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
@@ -39,7 +56,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 && dot(old.xyz, here.xyz) >= ssil.normal_tolerance;
             if same {
                 let a = ssil.hysteresis * exp(-length(motion) / ssil.motion_pixels);
-                let s = gbuffer_surface(id.xy);
                 let a_specular = a * clamp(2.0 * s.roughness, 0.2, 1.0);
                 light = mix(light, textureLoad(ssil_history, p, 0), a);
                 specular = mix(specular, textureLoad(ssil_history_specular, p, 0).rgb, a_specular);
@@ -48,4 +64,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     textureStore(ssil_filtered, texel, light);
     textureStore(ssil_filtered_specular, texel, vec4<f32>(specular, 1.0));
+    var out = diffuse_weight(s) / PI * light.rgb + specular;
+    if ssil.hybrid == 1u {
+        let probes = textureLoad(indirect, texel);
+        out += (1.0 - light.a) * probes.rgb / max(probes.a, 1e-6);
+    }
+    textureStore(indirect, texel, vec4<f32>(out, 1.0));
 }
