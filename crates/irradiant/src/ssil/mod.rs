@@ -212,6 +212,12 @@ fn level_groups((width, height): (u32, u32), k: u32) -> Workgroups {
     Workgroups::for_image((width >> k).max(1), (height >> k).max(1), IMAGE_TILE)
 }
 
+/// Workgroups of the voxelization at pyramid level `k` (VOXEL_SEGMENTS threads a texel).
+fn voxelize_groups((width, height): (u32, u32), k: u32) -> Workgroups {
+    let tile = (constants::VOXEL_TILE, constants::VOXEL_TILE);
+    Workgroups::for_image((width >> k).max(1), (height >> k).max(1), tile)
+}
+
 /// Workgroups of a gather at pyramid level `k` (GATHER_LANES threads a texel).
 fn gather_groups((width, height): (u32, u32), k: u32) -> Workgroups {
     let tile = (constants::GATHER_TILE, constants::GATHER_TILE);
@@ -227,7 +233,7 @@ pub fn dispatches(
     let level = |k: u32| level_groups((width, height), k);
     let gather_groups = |k: u32| gather_groups((width, height), k);
     let s = settings.start.level();
-    let mut all = vec![("ssil/voxelize", level(s))];
+    let mut all = vec![("ssil/voxelize", voxelize_groups((width, height), s))];
     for j in 1..settings.levels {
         all.push(("ssil/voxel_down", level(s + j)));
     }
@@ -339,7 +345,7 @@ impl Ssil {
                     .buffer("ssil_counters", &r.counters)
                     .texture("target_voxels", &r.voxels.levels[0]),
             )?,
-            group(s),
+            voxelize_groups(size, s),
         )];
         for j in 1..levels as usize {
             let own = ResourceTable::new()
