@@ -4,8 +4,11 @@
 # visibility) beside the other techniques' frames; comparisons against one-bounce and full
 # path-traced references on the Cornell box and Sponza, with visibility off and on and their
 # difference (the paper's Figure 7); error and flicker over a camera pan.
-# Expects .dev/ as tools/device/pack.sh lays it out; writes results.tar into $OUT.
-# BENCH=0, COMPARE=0 or PAN=0 skip a part.
+# With .dev/before (the binary before a change), also the rays and DDGI benchmark with it and
+# without, in the order before, after, after, before (the BVH traversal is shared).
+# Expects .dev/ as tools/device/pack.sh lays it out; writes results.tgz (reports' HTML left
+# out: they inline the PNGs beside them) into $OUT. BENCH=0, COMPARE=0, PAN=0 or BEFORE=0 skip
+# a part.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 cd .dev/repo
@@ -17,6 +20,17 @@ if [ "${BENCH:-1}" = 1 ]; then
         ../irradiant bench --scene "$sponza" --size "$size" --iterations 30 \
             --ssil-start quarter,half --ssil-levels 4,5 --ssil-samples 64,256 --ssil-visibility off,on \
             --techniques none,ssil,ddgi,ssil+ddgi --json "$res/bench-$size.json" 2>&1 | tee -a "$res/bench.txt"
+    done
+fi
+if [ "${BEFORE:-1}" = 1 ] && [ -x ../before ]; then
+    i=0
+    for which in before after after before; do
+        i=$((i + 1))
+        bin=../irradiant
+        [ "$which" = before ] && bin=../before
+        echo "== run $i: $which" | tee -a "$res/before-after.txt"
+        $bin bench --scene "$sponza" --size 1920x1080 --iterations 30 --ddgi-probes scene \
+            --json "$res/rays-$i-$which.json" 2>&1 | tee -a "$res/before-after.txt"
     done
 fi
 techniques="none,ssil{visibility=false},ssil,ddgi,ssil+ddgi"
@@ -44,4 +58,4 @@ if [ "${PAN:-1}" = 1 ]; then
         find "$res/pan-$name" -name '*.png' -delete
     done
 fi
-tar -C "$res" -cf "$OUT/results.tar" .
+tar -C "$res" --exclude=report.html -czf "$OUT/results.tgz" .

@@ -212,12 +212,6 @@ fn level_groups((width, height): (u32, u32), k: u32) -> Workgroups {
     Workgroups::for_image((width >> k).max(1), (height >> k).max(1), IMAGE_TILE)
 }
 
-/// Workgroups of the voxelization at pyramid level `k` (VOXEL_SEGMENTS threads a texel).
-fn voxelize_groups((width, height): (u32, u32), k: u32) -> Workgroups {
-    let tile = (constants::VOXEL_TILE, constants::VOXEL_TILE);
-    Workgroups::for_image((width >> k).max(1), (height >> k).max(1), tile)
-}
-
 /// Workgroups of a gather at pyramid level `k` (GATHER_LANES threads a texel).
 fn gather_groups((width, height): (u32, u32), k: u32) -> Workgroups {
     let tile = (constants::GATHER_TILE, constants::GATHER_TILE);
@@ -233,7 +227,7 @@ pub fn dispatches(
     let level = |k: u32| level_groups((width, height), k);
     let gather_groups = |k: u32| gather_groups((width, height), k);
     let s = settings.start.level();
-    let mut all = vec![("ssil/voxelize", voxelize_groups((width, height), s))];
+    let mut all = vec![("ssil/voxelize", level(s))];
     for j in 1..settings.levels {
         all.push(("ssil/voxel_down", level(s + j)));
     }
@@ -345,7 +339,7 @@ impl Ssil {
                     .buffer("ssil_counters", &r.counters)
                     .texture("target_voxels", &r.voxels.levels[0]),
             )?,
-            voxelize_groups(size, s),
+            group(s),
         )];
         for j in 1..levels as usize {
             let own = ResourceTable::new()
