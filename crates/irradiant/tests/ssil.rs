@@ -417,6 +417,20 @@ fn bad_settings_are_refused_and_open_scenes_warned_about() {
         error.contains("technique.levels") && error.contains("under one pixel"),
         "{error}"
     );
+    for (key, value) in [
+        ("radius", toml::Value::Float(1.0)),
+        ("samples", toml::Value::Integer(0)),
+        ("samples", toml::Value::Integer(5000)),
+        ("levels", toml::Value::Integer(9)),
+        ("bounces", toml::Value::Integer(0)),
+        ("visibility_bias", toml::Value::Float(0.5)),
+    ] {
+        let mut spec = TechniqueSpec::new("ssil", irradiant::Preset::Balanced);
+        spec.settings.insert(key.into(), value.clone());
+        let error = spec.kind().unwrap().check(&spec).err().map(|e| e.to_string());
+        let error = error.unwrap_or_else(|| panic!("{key} = {value} must be refused"));
+        assert!(error.contains(&format!("technique.{key}")), "{error}");
+    }
     let s = session(&ctx, &scene, (32, 32), ssil_spec(&SsilSettings::balanced()));
     let warnings = s.warnings().join("\n");
     assert!(
