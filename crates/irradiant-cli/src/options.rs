@@ -94,6 +94,8 @@ pub struct TechniqueChoice {
 }
 
 impl TechniqueChoice {
+    /// Parses the text; whether the name is registered is the caller's to check (`path`, the
+    /// reference, is a technique on the command line but not in the registry).
     pub fn parse(text: &str) -> Result<Self, CliError> {
         let text = text.trim();
         let (name, overrides) = match text.split_once('{') {
@@ -111,7 +113,6 @@ impl TechniqueChoice {
             }
             None => (text, toml::Table::new()),
         };
-        irradiant::technique::find(name).map_err(|e| CliError::Usage(e.to_string()))?;
         Ok(Self {
             label: text.split_whitespace().collect(),
             name: name.to_owned(),
@@ -154,16 +155,17 @@ pub fn technique_list(lists: &[String]) -> Result<Vec<TechniqueChoice>, CliError
         texts.push(&list[start..]);
     }
     if texts.iter().any(|t| t.trim() == "all") {
-        return irradiant::technique::names()
-            .into_iter()
-            .map(TechniqueChoice::parse)
-            .collect();
+        texts = irradiant::technique::names();
     }
-    texts
+    let choices: Vec<TechniqueChoice> = texts
         .into_iter()
         .filter(|t| !t.trim().is_empty())
         .map(TechniqueChoice::parse)
-        .collect()
+        .collect::<Result<_, _>>()?;
+    for c in &choices {
+        irradiant::technique::find(&c.name).map_err(|e| CliError::Usage(e.to_string()))?;
+    }
+    Ok(choices)
 }
 
 /// `over` merged into `base`, table by table.

@@ -427,7 +427,12 @@ fn bad_settings_are_refused_and_open_scenes_warned_about() {
     ] {
         let mut spec = TechniqueSpec::new("ssil", irradiant::Preset::Balanced);
         spec.settings.insert(key.into(), value.clone());
-        let error = spec.kind().unwrap().check(&spec).err().map(|e| e.to_string());
+        let error = spec
+            .kind()
+            .unwrap()
+            .check(&spec)
+            .err()
+            .map(|e| e.to_string());
         let error = error.unwrap_or_else(|| panic!("{key} = {value} must be refused"));
         assert!(error.contains(&format!("technique.{key}")), "{error}");
     }
