@@ -120,6 +120,8 @@ impl Setup<'_> {
                 technique: spec.clone(),
                 scene: GpuSceneSettings::default(),
                 time,
+                cache_dir: Some(crate::cache::dir(self.args.cache.as_deref())),
+                progress: Some(crate::cache::bake_progress()),
             },
         )?)
     }

@@ -2,6 +2,7 @@
 
 mod atlas;
 mod bench;
+mod cache;
 mod compare;
 mod info;
 mod options;

@@ -3,7 +3,7 @@
 //! renamed into place: a half-written entry is never read.
 
 use std::hash::{Hash, Hasher};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use irradiant::frame::Image;
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
@@ -25,10 +25,7 @@ pub fn reference(
     cache: Option<&Path>,
 ) -> Result<(Image, bool), CliError> {
     let key = reference_key(scene, pose, size, settings);
-    let dir = cache
-        .map(Path::to_owned)
-        .or_else(default_cache)
-        .unwrap_or_else(|| std::env::temp_dir().join("irradiant-cache"));
+    let dir = crate::cache::dir(cache);
     let file = dir.join(format!("reference-{key:016x}.exr"));
     if let Ok(image) = Image::read_exr(&file)
         && (image.width, image.height) == size
@@ -49,13 +46,6 @@ pub fn reference(
     Ok((image, false))
 }
 
-fn default_cache() -> Option<PathBuf> {
-    std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .map(|d| d.join("irradiant"))
-}
-
 /// A hash of everything that shapes the reference: geometry, materials, textures, lights,
 /// camera, sky, size, the path tracer's settings and this program's version.
 pub fn reference_key(
@@ -69,27 +59,8 @@ pub fn reference_key(
     env!("IRRADIANT_COMMIT").hash(&mut h);
     size.hash(&mut h);
     format!("{settings:?}").hash(&mut h);
-    for mesh in &scene.meshes {
-        for p in &mesh.positions {
-            p.to_array().map(f32::to_bits).hash(&mut h);
-        }
-        for n in &mesh.normals {
-            n.to_array().map(f32::to_bits).hash(&mut h);
-        }
-        for t in &mesh.uvs {
-            t.to_array().map(f32::to_bits).hash(&mut h);
-        }
-        mesh.indices.hash(&mut h);
-        mesh.triangle_materials.hash(&mut h);
-    }
-    for t in &scene.textures {
-        t.rgba8.hash(&mut h);
-    }
-    format!(
-        "{:?}{:?}{:?}{:?}",
-        scene.instances, scene.materials, pose, scene.sky
-    )
-    .hash(&mut h);
+    scene.hash_content(&mut h);
+    format!("{pose:?}").hash(&mut h);
     h.finish()
 }
 

@@ -213,6 +213,8 @@ fn render_frames(
             technique: spec,
             scene: GpuSceneSettings::default(),
             time: frame_time(0),
+            cache_dir: Some(crate::cache::dir(None)),
+            progress: Some(crate::cache::bake_progress()),
         },
     )?;
     session.set_show_probes(args.show_probes);

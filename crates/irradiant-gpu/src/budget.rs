@@ -73,6 +73,28 @@ impl Allocation {
     }
 }
 
+impl Allocation {
+    /// A 2D texture array of `layers` layers of one level, `texel_bytes` a texel.
+    pub fn texture_array(
+        label: impl Into<String>,
+        (width, height): (u32, u32),
+        layers: u32,
+        texel_bytes: u64,
+        setting: impl Into<String>,
+    ) -> Self {
+        Self {
+            label: label.into(),
+            bytes: width as u64 * height as u64 * layers as u64 * texel_bytes,
+            kind: AllocationKind::Texture {
+                width,
+                height,
+                layers,
+            },
+            setting: setting.into(),
+        }
+    }
+}
+
 /// The limits allocations are checked against: the device's, and its memory.
 #[derive(Clone, Debug)]
 pub struct Budget {
@@ -189,6 +211,31 @@ pub fn texture_2d(
             depth_or_array_layers: 1,
         },
         mip_level_count: mip_levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// A 2D texture array of `layers` layers and one level (probe maps: a layer a probe).
+pub fn texture_2d_array(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    layers: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,

@@ -11,7 +11,7 @@ mod profiler;
 mod readback;
 mod shader;
 
-pub use budget::{Allocation, AllocationKind, Budget, bytes, texture_2d};
+pub use budget::{Allocation, AllocationKind, Budget, bytes, texture_2d, texture_2d_array};
 pub use context::{AdapterChoice, GpuContext, GpuError, GpuInfo};
 pub use layout::{Expected, StructLayoutError, check_struct_layouts};
 pub use pass::{

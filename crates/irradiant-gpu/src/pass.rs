@@ -58,6 +58,13 @@ impl Workgroups {
         Self([x, y, 1])
     }
 
+    /// A 3D dispatch over `layers` images of `width`×`height` (a probe map a layer) with
+    /// `tile`-sized workgroups: z is the layer.
+    pub fn for_layers(width: u32, height: u32, layers: u32, tile: (u32, u32)) -> Self {
+        let [x, y, _] = Self::for_image(width, height, tile).0;
+        Self([x, y, layers.clamp(1, MAX_WORKGROUPS_PER_DIMENSION)])
+    }
+
     pub fn counts(self) -> [u32; 3] {
         self.0
     }

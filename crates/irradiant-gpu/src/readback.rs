@@ -69,7 +69,7 @@ pub fn read_texture(
     read_texture_level(ctx, texture, 0, texel_bytes)
 }
 
-/// [`read_texture`] of mip level `level`.
+/// [`read_texture`] of mip level `level`; of an array texture, every layer, one after another.
 pub fn read_texture_level(
     ctx: &GpuContext,
     texture: &wgpu::Texture,
@@ -82,11 +82,12 @@ pub fn read_texture_level(
         )));
     }
     let size = texture.size().mip_level_size(level, texture.dimension());
+    let layers = size.depth_or_array_layers;
     let row = size.width * texel_bytes;
     let padded = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback/texture_staging"),
-        size: padded as u64 * size.height as u64,
+        size: padded as u64 * size.height as u64 * layers as u64,
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
@@ -113,13 +114,14 @@ pub fn read_texture_level(
         wgpu::Extent3d {
             width: size.width,
             height: size.height,
-            depth_or_array_layers: 1,
+            depth_or_array_layers: layers,
         },
     );
     ctx.queue.submit([encoder.finish()]);
     map_staging(ctx, &staging, |mapped| {
-        let mut data = Vec::with_capacity(row as usize * size.height as usize);
-        for y in 0..size.height as usize {
+        let rows = size.height as usize * layers as usize;
+        let mut data = Vec::with_capacity(row as usize * rows);
+        for y in 0..rows {
             let start = y * padded as usize;
             data.extend_from_slice(&mapped[start..start + row as usize]);
         }

@@ -33,6 +33,16 @@ impl ShaderLibrary {
         self
     }
 
+    /// Feeds every module's name and text into `h`: caches of data the shaders computed key
+    /// on it, so that a change to any shader retires their entries.
+    pub fn hash_sources<H: std::hash::Hasher>(&self, h: &mut H) {
+        use std::hash::Hash;
+        for (name, source) in &self.modules {
+            name.hash(h);
+            source.hash(h);
+        }
+    }
+
     fn get(&self, name: &str) -> Option<&str> {
         self.modules
             .iter()

@@ -22,8 +22,8 @@ pub use builtin::{BUILTIN_SCENES, builtin};
 pub use error::{Result, SceneError};
 pub use framing::camera_for_bounds;
 pub use manifest::{
-    AnimationDesc, CameraDesc, LightDesc, LightKindDesc, Manifest, MeshRef, ProbeVolumeManifest,
-    RegionDesc,
+    AnimationDesc, CameraDesc, LightDesc, LightKindDesc, Manifest, MaterialDesc, MeshRef,
+    ProbeVolumeManifest, RegionDesc,
 };
 pub use model::*;
 pub use textures::{MAX_TEXTURE_SIDE, decode_texture};

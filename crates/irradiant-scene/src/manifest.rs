@@ -63,6 +63,9 @@ pub struct Manifest {
     pub probe_volumes: Vec<ProbeVolumeManifest>,
     #[serde(default, rename = "region", skip_serializing_if = "Vec::is_empty")]
     pub regions: Vec<RegionDesc>,
+    /// Changes to the mesh file's materials, by name (glossy and mirror variants of a scene).
+    #[serde(default, rename = "material", skip_serializing_if = "Vec::is_empty")]
+    pub materials: Vec<MaterialDesc>,
     #[serde(default, rename = "animation", skip_serializing_if = "Vec::is_empty")]
     pub animations: Vec<AnimationDesc>,
     /// Renderer settings for this scene: the `[frame]` table (the frame's settings) and the
@@ -133,6 +136,26 @@ pub struct ProbeVolumeManifest {
     pub min: [f32; 3],
     pub max: [f32; 3],
     pub counts: [u32; 3],
+}
+
+/// An override of one of the mesh file's materials; the keys left out keep the file's values.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct MaterialDesc {
+    /// The material's name in the mesh file (MTL `newmtl`, glTF material name).
+    pub name: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base_color: Option<[f32; 3]>,
+    /// 0 (dielectric) … 1 (metal: the base colour tints the reflection).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metallic: Option<f32>,
+    /// Perceptual roughness, 0.05 (mirror-like) … 1 (GGX alpha = roughness²).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roughness: Option<f32>,
+    /// Scale of the dielectric specular lobe (F0 = 0.04 × specular), 0 … 25.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub specular: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub emission: Option<[f32; 3]>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -272,6 +295,9 @@ impl Manifest {
                 counts: v.counts,
             });
         }
+        for m in &self.materials {
+            apply_material(scene, m, path)?;
+        }
         for r in &self.regions {
             scene.regions.push(Region {
                 name: r.name.clone(),
@@ -355,4 +381,52 @@ fn invalid(path: &Path, problem: String, fix: &str) -> SceneError {
         problem,
         fix: fix.into(),
     }
+}
+
+/// Applies a `[[material]]` override, checking its values.
+fn apply_material(scene: &mut Scene, m: &MaterialDesc, path: &Path) -> Result<()> {
+    let Some(material) = scene.materials.iter_mut().find(|x| x.name == m.name) else {
+        let names: Vec<_> = scene.materials.iter().map(|x| x.name.as_str()).collect();
+        return Err(invalid(
+            path,
+            format!(
+                "[[material]] names '{}', which the mesh file does not have",
+                m.name
+            ),
+            &format!("Use one of: {}.", names.join(", ")),
+        ));
+    };
+    let check = |key: &str, value: f32, lo: f32, hi: f32| -> Result<f32> {
+        if value.is_finite() && (lo..=hi).contains(&value) {
+            Ok(value)
+        } else {
+            Err(invalid(
+                path,
+                format!("material '{}': {key} = {value} is out of range", m.name),
+                &format!("Use a value from {lo} to {hi}."),
+            ))
+        }
+    };
+    let check3 = |key: &str, v: [f32; 3], hi: f32| -> Result<Vec3> {
+        for c in v {
+            check(key, c, 0.0, hi)?;
+        }
+        Ok(Vec3::from(v))
+    };
+    if let Some(c) = m.base_color {
+        material.base_color = check3("base_color", c, 1.0)?.extend(material.base_color.w);
+    }
+    if let Some(v) = m.metallic {
+        material.metallic = check("metallic", v, 0.0, 1.0)?;
+    }
+    if let Some(v) = m.roughness {
+        material.roughness = check("roughness", v, 0.05, 1.0)?;
+    }
+    if let Some(v) = m.specular {
+        material.specular = check("specular", v, 0.0, 25.0)?;
+    }
+    if let Some(e) = m.emission {
+        material.emission = check3("emission", e, 1e6)?;
+    }
+    Ok(())
 }

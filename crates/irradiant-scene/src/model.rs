@@ -250,6 +250,30 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// Feeds everything that shapes what the scene looks like into `h`: geometry, materials,
+    /// textures, instances and sky (lights and transforms come with a pose). Caches of
+    /// rendered or baked data key on it, so that a changed scene never reads a stale entry.
+    pub fn hash_content<H: std::hash::Hasher>(&self, h: &mut H) {
+        use std::hash::Hash;
+        for mesh in &self.meshes {
+            for p in &mesh.positions {
+                p.to_array().map(f32::to_bits).hash(h);
+            }
+            for n in &mesh.normals {
+                n.to_array().map(f32::to_bits).hash(h);
+            }
+            for t in &mesh.uvs {
+                t.to_array().map(f32::to_bits).hash(h);
+            }
+            mesh.indices.hash(h);
+            mesh.triangle_materials.hash(h);
+        }
+        for t in &self.textures {
+            t.rgba8.hash(h);
+        }
+        format!("{:?}{:?}{:?}", self.instances, self.materials, self.sky).hash(h);
+    }
+
     pub fn triangle_count(&self) -> usize {
         self.instances
             .iter()

@@ -203,6 +203,21 @@ fn manifest_errors_name_the_manifest_and_the_fix() {
             "sky = [-1, 0, 0]\n[mesh]\npath = 'tri.obj'",
             "sky",
         ),
+        (
+            "material.toml",
+            "[mesh]\npath = 'tri.obj'\n[[material]]\nname = 'ghost'\nmetallic = 1.0",
+            "names 'ghost'",
+        ),
+        (
+            "roughness.toml",
+            "[mesh]\npath = 'tri.obj'\n[[material]]\nname = 'default'\nroughness = 0.0",
+            "roughness = 0 is out of range",
+        ),
+        (
+            "metal.toml",
+            "[mesh]\npath = 'tri.obj'\n[[material]]\nname = 'default'\nmetallic = nan",
+            "metallic = NaN is out of range",
+        ),
     ];
     for (name, text, expected) in cases {
         let path = write(&dir, name, text);

@@ -86,3 +86,29 @@ fn builtin_scenes_are_valid_and_carry_their_fixtures() {
         "four probe columns should be swallowed by the cylinders"
     );
 }
+
+/// `[[material]]` overrides reach the scene's materials; the keys left out keep the file's.
+#[test]
+fn material_overrides_change_only_what_they_name() {
+    let path = repo().join("scenes/cornell-box/mirror.toml");
+    let mirror = irradiant_scene::load(path.to_str().unwrap()).unwrap().scene;
+    let plain = irradiant_scene::load(
+        repo()
+            .join("../shared/scenes/cornell-box/CornellBox-Mirror.obj")
+            .to_str()
+            .unwrap(),
+    )
+    .unwrap()
+    .scene;
+    let find = |s: &irradiant_scene::Scene, name: &str| {
+        s.materials.iter().find(|m| m.name == name).unwrap().clone()
+    };
+    let (tall, tall_before) = (find(&mirror, "tallBox"), find(&plain, "tallBox"));
+    assert_eq!((tall.metallic, tall.roughness), (1.0, 0.05));
+    assert_ne!(tall_before.metallic, 1.0);
+    assert_eq!(tall.specular, tall_before.specular);
+    assert_eq!(
+        format!("{:?}", find(&mirror, "floor")),
+        format!("{:?}", find(&plain, "floor"))
+    );
+}

@@ -6,6 +6,7 @@ use irradiant_gpu::{Expected, gpu_layout};
 
 pub use crate::ddgi::types::*;
 pub use crate::frame::types::*;
+pub use crate::lightfield::types::*;
 pub use crate::pathtrace::types::*;
 pub use crate::raycast::types::*;
 pub use crate::scene::types::*;
@@ -233,6 +234,41 @@ pub fn all_layouts() -> Vec<Expected> {
             with_gather,
             _pad0,
             _pad1
+        }),
+        gpu_layout!(GpuLightfieldParams {
+            origin,
+            probe_count,
+            spacing,
+            resolution,
+            counts,
+            low_resolution,
+            min_thickness,
+            max_thickness,
+            thickness_distance,
+            max_probe_visits,
+            max_distance,
+            prefilter_resolution,
+            emitter_samples,
+            bounce,
+            algorithm,
+            lambert_rays,
+            glossy_rays,
+            frame,
+            lambert_hysteresis,
+            glossy_hysteresis,
+            history_valid,
+            _pad0
+        }),
+        gpu_layout!(GpuLightfieldFilterPass {
+            direction,
+            radius,
+            stride
+        }),
+        gpu_layout!(GpuLightfieldHit {
+            result,
+            t,
+            probe,
+            visits
         }),
     ]
 }

@@ -13,6 +13,7 @@ pub mod ddgi;
 mod error;
 pub mod frame;
 pub mod gpu_types;
+pub mod lightfield;
 pub mod none;
 pub mod pathtrace;
 pub mod probes;

@@ -23,6 +23,10 @@ pub struct SessionSettings {
     pub scene: GpuSceneSettings,
     /// Animation time, in seconds, of the first frame.
     pub time: f32,
+    /// Where techniques cache what they bake (light-field probes); None: bake every time.
+    pub cache_dir: Option<std::path::PathBuf>,
+    /// Told how a bake progresses (the CLI draws a bar).
+    pub progress: Option<crate::technique::Progress>,
 }
 
 impl Default for SessionSettings {
@@ -33,6 +37,8 @@ impl Default for SessionSettings {
             technique: TechniqueSpec::default(),
             scene: GpuSceneSettings::default(),
             time: 0.0,
+            cache_dir: None,
+            progress: None,
         }
     }
 }
@@ -53,6 +59,8 @@ pub struct Session {
     show_probes: bool,
     profiler: Profiler,
     warnings: Vec<String>,
+    cache_dir: Option<std::path::PathBuf>,
+    progress: Option<crate::technique::Progress>,
 }
 
 impl Session {
@@ -93,6 +101,8 @@ impl Session {
                 scene: &scene,
                 gpu_scene: &gpu_scene,
                 frame: &frame,
+                cache_dir: settings.cache_dir.as_deref(),
+                progress: settings.progress.as_ref(),
             },
             &settings.technique,
         )?;
@@ -111,6 +121,8 @@ impl Session {
             show_probes: false,
             profiler,
             warnings,
+            cache_dir: settings.cache_dir,
+            progress: settings.progress,
         })
     }
 
@@ -250,6 +262,8 @@ impl Session {
                 scene: &self.scene,
                 gpu_scene: &self.gpu_scene,
                 frame: &self.frame,
+                cache_dir: self.cache_dir.as_deref(),
+                progress: self.progress.as_ref(),
             },
             &spec,
         )?;

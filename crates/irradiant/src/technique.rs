@@ -28,6 +28,9 @@ pub static REGISTRY: &[&dyn TechniqueKind] = &[
     &crate::ddgi::DDGI,
     &crate::ssil::SSIL,
     &crate::ssil::SSIL_DDGI,
+    &crate::lightfield::LIGHTFIELD,
+    &crate::lightfield::LIGHTFIELD_TRACED,
+    &crate::lightfield::LIGHTFIELD_NAIVE,
 ];
 
 /// A registered technique by name.
@@ -103,6 +106,26 @@ pub struct TechniqueContext<'a> {
     pub scene: &'a Scene,
     pub gpu_scene: &'a GpuScene,
     pub frame: &'a Frame,
+    /// Where a technique may cache what it bakes (None: bake every time).
+    pub cache_dir: Option<&'a std::path::Path>,
+    /// Where long one-off work (a bake) reports how far it has got.
+    pub progress: Option<&'a Progress>,
+}
+
+/// A callback told how far a long step has got: (what, steps done, steps in all).
+#[derive(Clone)]
+pub struct Progress(pub std::sync::Arc<dyn Fn(&str, u32, u32) + Send + Sync>);
+
+impl Progress {
+    pub fn report(&self, what: &str, done: u32, all: u32) {
+        (self.0)(what, done, all)
+    }
+}
+
+impl std::fmt::Debug for Progress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Progress(..)")
+    }
 }
 
 /// A registered technique: its name, what it needs and how to build it.

@@ -12,6 +12,9 @@ fn rust_structs_match_wgsl() {
         include_str!("../src/ddgi/volume.wgsl"),
         include_str!("../src/ddgi/rays.wgsl"),
         include_str!("../src/ssil/common.wgsl"),
+        include_str!("../src/lightfield/lightfield.wgsl"),
+        include_str!("../src/lightfield/filter.wgsl"),
+        include_str!("../src/lightfield/trace_rays.wgsl"),
     ];
     // The structs are declared across these files; strip imports and bindings so that each
     // parses alone, and check each layout against the file that declares it.

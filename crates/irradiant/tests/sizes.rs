@@ -6,6 +6,7 @@ mod common;
 
 use irradiant::ddgi::DdgiSettings;
 use irradiant::frame::{Frame, FrameNeeds, FrameSettings};
+use irradiant::lightfield::LightfieldSettings;
 use irradiant::pathtrace::PathTracer;
 use irradiant::raycast::RayCaster;
 use irradiant::ssil::{HybridSettings, SsilSettings, StartResolution};
@@ -36,8 +37,16 @@ fn largest_spec(name: &str, probes_per_group: u32) -> TechniqueSpec {
     ssil.levels = 6;
     ssil.samples = 1024;
     ssil.bounces = 4;
+    // Light-field probes: the most probes one bake dispatch holds, the largest maps.
+    let mut lightfield = LightfieldSettings::quality();
+    lightfield.bake.probe_counts = [64, 64, 15];
+    lightfield.bake.resolution = 4096;
+    lightfield.bake.prefilter_resolution = 256;
+    lightfield.bake.irradiance_texels = 128;
+    lightfield.bake.distance_texels = 128;
     match name {
         "none" => TechniqueSpec::new(name, Preset::Quality),
+        n if n.starts_with("lightfield") => TechniqueSpec::with_settings(name, &lightfield),
         "ssil" => TechniqueSpec::with_settings(name, &ssil),
         "ssil+ddgi" => TechniqueSpec::with_settings(name, &HybridSettings { ssil, ddgi }),
         _ => TechniqueSpec::with_settings(name, &ddgi),

@@ -68,6 +68,9 @@ impl FrameBench<'_> {
                 technique: spec.clone(),
                 scene: self.scene_settings.clone(),
                 time: 0.0,
+                // Bakes are timed: never read from a cache.
+                cache_dir: None,
+                progress: Some(crate::cache::bake_progress()),
             },
         )?;
         let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();

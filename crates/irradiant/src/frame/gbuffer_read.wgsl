@@ -46,6 +46,11 @@ fn gbuffer_surface(pixel: vec2<u32>) -> Surface {
     return gbuffer_unpack(t, gbuffer_position(pixel, t.depth));
 }
 
+// The shading normal alone (filters compare it without decoding the whole surface).
+fn gbuffer_normal_at(pixel: vec2<u32>) -> vec3<f32> {
+    return oct_decode(textureLoad(gbuffer_normal, pixel, 0).xy);
+}
+
 fn gbuffer_motion_at(pixel: vec2<u32>) -> vec2<f32> {
     return textureLoad(gbuffer_motion, pixel, 0).xy;
 }

@@ -31,12 +31,15 @@ pub fn library() -> &'static ShaderLibrary {
                 include_str!("../frame/gbuffer_layout.wgsl"),
             )
             .with("gbuffer", include_str!("../frame/gbuffer_read.wgsl"))
+            .with("history", include_str!("../frame/history.wgsl"))
             .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
             .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
             .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))
             .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
             .with("ddgi_states", include_str!("../ddgi/states.wgsl"))
             .with("ssil_common", include_str!("../ssil/common.wgsl"))
+            .with("lightfield_constants", crate::lightfield::constants::wgsl())
+            .with("lightfield", include_str!("../lightfield/lightfield.wgsl"))
     })
 }
 

@@ -11,6 +11,7 @@
 // counted twice.
 #import ssil_common
 #import gbuffer
+#import history
 #import brdf
 
 @group(2) @binding(0) var<uniform> ssil: GpuSsilParams;
@@ -43,19 +44,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var specular = textureLoad(ssil_full_specular, texel, 0).rgb;
     let s = gbuffer_surface(id.xy);
     if ssil.history_valid == 1u {
-        let motion = gbuffer_motion_at(id.xy);
-        let previous = vec2<f32>(id.xy) + 0.5 + motion;
+        let previous = history_position(id.xy);
         if all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
             let p = vec2<i32>(previous);
             let old = textureLoad(ssil_history_geometry, p, 0);
-            // This surface's depth as last frame's camera saw it.
             let x = level_position(id.xy, 0u, here.w);
-            let expected = dot(x - frame.previous_camera.position, frame.previous_camera.forward);
-            let same = old.w >= 0.0
-                && abs(old.w - expected) <= ssil.depth_tolerance * max(expected, 1e-6)
-                && dot(old.xyz, here.xyz) >= ssil.normal_tolerance;
-            if same {
-                let a = ssil.hysteresis * exp(-length(motion) / ssil.motion_pixels);
+            if same_surface(old, x, here.xyz, ssil.depth_tolerance, ssil.normal_tolerance) {
+                let a = ssil.hysteresis * exp(-length(gbuffer_motion_at(id.xy)) / ssil.motion_pixels);
                 let a_specular = a * clamp(2.0 * s.roughness, 0.2, 1.0);
                 light = mix(light, textureLoad(ssil_history, p, 0), a);
                 specular = mix(specular, textureLoad(ssil_history_specular, p, 0).rgb, a_specular);

@@ -1,0 +1,46 @@
+//! Where the CLI caches what it renders and bakes (path-traced references, light-field
+//! probes), and the bar a bake draws.
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use indicatif::{ProgressBar, ProgressStyle};
+use irradiant::technique::Progress;
+
+/// `explicit` (--cache), else $XDG_CACHE_HOME/irradiant, ~/.cache/irradiant, or the temporary
+/// directory.
+pub fn dir(explicit: Option<&Path>) -> PathBuf {
+    explicit
+        .map(Path::to_owned)
+        .or_else(|| {
+            std::env::var_os("XDG_CACHE_HOME")
+                .map(PathBuf::from)
+                .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+                .map(|d| d.join("irradiant"))
+        })
+        .unwrap_or_else(|| std::env::temp_dir().join("irradiant-cache"))
+}
+
+/// A progress bar on stderr for bakes (hidden where stderr is not a terminal).
+pub fn bake_progress() -> Progress {
+    let bar: Mutex<Option<ProgressBar>> = Mutex::new(None);
+    Progress(Arc::new(move |what: &str, done: u32, all: u32| {
+        let mut bar = bar.lock().unwrap_or_else(|e| e.into_inner());
+        let b = bar.get_or_insert_with(|| {
+            let b = ProgressBar::new(all as u64);
+            b.set_style(
+                ProgressStyle::with_template(
+                    "{spinner} {msg} [{elapsed_precise} < {eta}] {wide_bar} {pos}/{len}",
+                )
+                .expect("a valid progress template"),
+            );
+            b
+        });
+        b.set_message(what.to_owned());
+        b.set_position(done as u64);
+        if done >= all {
+            b.finish_and_clear();
+            *bar = None;
+        }
+    }))
+}

@@ -1,0 +1,32 @@
+// history: whether a pixel's surface is the one last frame held where the motion vectors lead
+// (the module `history`), for the temporal filters of screen-space passes (ssil/temporal,
+// lightfield/temporal). A filter stores, beside its light, the normal and view depth the light
+// was filtered on; this frame's surface matches when that depth agrees with the surface's
+// depth seen from last frame's camera and the normals agree.
+#import gbuffer
+
+// The geometry a filter stores with its light: the shading normal and the view depth (along
+// the camera's forward axis); w < 0 where the pixel saw no surface.
+fn history_geometry(pixel: vec2<u32>) -> vec4<f32> {
+    let depth = gbuffer_depth_at(pixel);
+    if depth < 0.0 {
+        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    }
+    let p = gbuffer_position(pixel, depth);
+    return vec4<f32>(gbuffer_normal_at(pixel), dot(p - frame.camera.position, frame.camera.forward));
+}
+
+// Where last frame held this pixel's surface (continuous pixel coordinates), from the motion
+// vectors.
+fn history_position(pixel: vec2<u32>) -> vec2<f32> {
+    return vec2<f32>(pixel) + 0.5 + gbuffer_motion_at(pixel);
+}
+
+// Whether `old` (the geometry stored last frame at history_position) is this surface: world
+// position x, normal n.
+fn same_surface(old: vec4<f32>, x: vec3<f32>, n: vec3<f32>, depth_tolerance: f32, normal_tolerance: f32) -> bool {
+    let expected = dot(x - frame.previous_camera.position, frame.previous_camera.forward);
+    return old.w >= 0.0
+        && abs(old.w - expected) <= depth_tolerance * max(expected, 1e-6)
+        && dot(old.xyz, n) >= normal_tolerance;
+}
