@@ -112,9 +112,12 @@ pub struct TechniqueContext<'a> {
     pub progress: Option<&'a Progress>,
 }
 
-/// A callback told how far a long step has got: (what, steps done, steps in all).
+/// What a [`Progress`] calls: (what, steps done, steps in all).
+pub type ProgressFn = dyn Fn(&str, u32, u32) + Send + Sync;
+
+/// A callback told how far a long step has got.
 #[derive(Clone)]
-pub struct Progress(pub std::sync::Arc<dyn Fn(&str, u32, u32) + Send + Sync>);
+pub struct Progress(pub std::sync::Arc<ProgressFn>);
 
 impl Progress {
     pub fn report(&self, what: &str, done: u32, all: u32) {

@@ -52,6 +52,8 @@ pub struct FrameBench<'a> {
     pub size: (u32, u32),
     pub taa: bool,
     pub iterations: u32,
+    /// Rays of the light-field agreement test (light-field techniques; 0: none).
+    pub agreement_rays: u32,
 }
 
 impl FrameBench<'_> {
@@ -106,7 +108,28 @@ impl FrameBench<'_> {
         let labels = session.technique().passes();
         let update: f64 = labels.update.iter().map(|l| ms(l)).sum();
         let resolve: f64 = labels.resolve.iter().map(|l| ms(l)).sum();
-        let counters = session.technique().counters(session.ctx())?;
+        let mut counters = session.technique().counters(session.ctx())?;
+        if self.agreement_rays > 0
+            && session
+                .technique_as::<irradiant::lightfield::Lightfield>()
+                .is_some()
+        {
+            let a = irradiant::lightfield::agreement::measure(&session, self.agreement_rays, 1)?;
+            counters.extend(
+                [
+                    ("agreement_share", a.share()),
+                    ("agreement_rays", a.rays as f64),
+                    ("agreement_hits", a.hits as f64),
+                    ("agreement_misses", a.misses as f64),
+                    ("agreement_wrong_distance", a.wrong_distance as f64),
+                    ("agreement_false_hits", a.false_hits as f64),
+                    ("agreement_false_misses", a.false_misses as f64),
+                    ("agreement_tolerance", a.tolerance as f64),
+                    ("agreement_mean_visits", a.mean_visits),
+                ]
+                .map(|(name, value)| Counter { name, value }),
+            );
+        }
         let counter = |name: &str| {
             counters
                 .iter()
@@ -133,7 +156,10 @@ impl FrameBench<'_> {
                 d.volume().grid.counts.to_array(),
                 d.settings().volume.rays_per_probe,
             ),
-            None => ([0; 3], 0),
+            None => match session.technique_as::<irradiant::lightfield::Lightfield>() {
+                Some(lf) => (lf.grid().counts.to_array(), 0),
+                None => ([0; 3], 0),
+            },
         };
         Ok(FrameRecord {
             scene: self.scene.name.clone(),

@@ -99,6 +99,11 @@ pub struct BenchArgs {
     pub no_taa: bool,
     #[command(flatten)]
     pub ssil: ssil::SsilGridArgs,
+    /// Light-field techniques: after timing, trace this many rays from the visible surfaces
+    /// both through the light field and through the BVH, and report the share on which they
+    /// agree (counters agreement_*). 0: not measured.
+    #[arg(long, default_value_t = 0)]
+    pub lightfield_agreement: u32,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -236,6 +241,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             size,
             taa: !args.no_taa,
             iterations,
+            agreement_rays: args.lightfield_agreement,
         };
         for probes in &args.ddgi_probes {
             let counts = if probes == "scene" {

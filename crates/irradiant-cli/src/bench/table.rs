@@ -91,4 +91,19 @@ fn frame_table(records: &[FrameRecord]) {
             d.updating_probes
         );
     }
+    // What the techniques reported (bake time and memory, agreement, probe states).
+    for d in records.iter().filter(|d| !d.counters.is_empty()) {
+        let counters: Vec<String> = d
+            .counters
+            .iter()
+            .map(|(name, value)| format!("{name} {value:.4}"))
+            .collect();
+        println!(
+            "{} {} {}: {}",
+            d.scene,
+            d.technique,
+            d.variant,
+            counters.join(", ")
+        );
+    }
 }

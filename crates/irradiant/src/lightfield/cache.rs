@@ -3,7 +3,8 @@
 //! crate's version — so that a stale bake is never read. An entry is written under a
 //! temporary name and renamed into place (a half-written entry is never read; two processes
 //! baking the same key write the same bytes, and the last rename wins). An entry that does
-//! not match what is expected (truncated, another key, other sizes) is baked anew.
+//! not match what is expected (truncated, another key, other sizes) is baked anew. An entry
+//! holds the five maps (each with its sizes), then the probe states and offsets.
 
 use std::hash::{Hash, Hasher};
 use std::io::{Read, Write};
@@ -18,7 +19,7 @@ use crate::RenderError;
 use crate::probes::ProbeGrid;
 
 /// The first bytes of an entry, with the format's version.
-const MAGIC: &[u8; 8] = b"IRLF\0\0\0\x01";
+const MAGIC: &[u8; 8] = b"IRLF\0\0\0\x03";
 
 /// A hash of everything that shapes a bake.
 pub fn bake_key(scene: &Scene, grid: &ProbeGrid, bake: &LightfieldBakeSettings) -> u64 {
@@ -79,6 +80,17 @@ pub fn load(
         }
         contents.push((texture, expected, data));
     }
+    let mut buffers = Vec::new();
+    for buffer in [&maps.states, &maps.offsets] {
+        let mut data = vec![0u8; buffer.size() as usize];
+        if reader.read_exact(&mut data).is_err() {
+            return Ok(false);
+        }
+        buffers.push((buffer, data));
+    }
+    for (buffer, data) in buffers {
+        ctx.queue.write_buffer(buffer, 0, &data);
+    }
     for (texture, [w, h, layers, texel], data) in contents {
         ctx.queue.write_texture(
             texture.as_image_copy(),
@@ -109,6 +121,9 @@ pub fn store(ctx: &GpuContext, file: &Path, key: u64, maps: &ProbeMaps) -> Resul
             bytes.extend_from_slice(&v.to_le_bytes());
         }
         bytes.extend(irradiant_gpu::read_texture(ctx, texture, texel_bytes)?);
+    }
+    for buffer in [&maps.states, &maps.offsets] {
+        bytes.extend(irradiant_gpu::read_buffer(ctx, buffer, 0, buffer.size())?);
     }
     let Some(dir) = file.parent() else {
         return Ok(());

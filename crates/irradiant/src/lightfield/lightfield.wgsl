@@ -16,6 +16,7 @@
 // (it excludes emission: the frame's direct pass samples emitters, so the probes hold
 // reflected light only); normal (octahedral, 2 × 8 bits) and distance (f16) packed in another.
 #import lightfield_constants
+#import ddgi_constants
 #import probe_grid
 #import octahedral
 
@@ -48,6 +49,10 @@ struct GpuLightfieldParams {
 @group(2) @binding(21) var lightfield_radiance: texture_2d_array<u32>;
 @group(2) @binding(22) var lightfield_geometry: texture_2d_array<u32>;
 @group(2) @binding(23) var lightfield_low: texture_2d_array<f32>;
+// DDGI's probe state words (lightfield/probe_states): PROBE_OFF for probes inside geometry.
+@group(2) @binding(53) var<storage, read> lightfield_probe_states: array<u32>;
+// Where lightfield/relocate moved each probe from its grid position (DDGI's offsets).
+@group(2) @binding(54) var<storage, read> lightfield_probe_offsets: array<vec4<f32>>;
 
 struct LightfieldHit {
     // LF_HIT or LF_MISS
@@ -64,7 +69,8 @@ fn lf_far() -> f32 {
 }
 
 fn lf_probe_position(probe: u32) -> vec3<f32> {
-    return lightfield.origin + vec3<f32>(grid_coord(probe, lightfield.counts)) * lightfield.spacing;
+    let grid = lightfield.origin + vec3<f32>(grid_coord(probe, lightfield.counts)) * lightfield.spacing;
+    return grid + lightfield_probe_offsets[probe].xyz;
 }
 
 // --- packing ---------------------------------------------------------------------------
@@ -316,12 +322,19 @@ fn cage_probe(base: vec3<u32>, i: u32) -> u32 {
     return grid_index(min(base + offset, lightfield.counts - 1u), lightfield.counts);
 }
 
+fn lf_probe_off(probe: u32) -> bool {
+    return (lightfield_probe_states[probe] & PROBE_STATE_MASK) == PROBE_OFF;
+}
+
 // The cage corner whose probe lies nearest the ray's line (its projected polyline is the
-// shortest, and it likely sees the whole unoccluded ray).
+// shortest, and it likely sees the whole unoccluded ray); probes inside geometry last.
 fn nearest_to_line(base: vec3<u32>, p: vec3<f32>, d: vec3<f32>) -> u32 {
     var best = 0u;
     var best_distance = 3.0e38;
     for (var i = 0u; i < 8u; i++) {
+        if lf_probe_off(cage_probe(base, i)) {
+            continue;
+        }
         let to_probe = lf_probe_position(cage_probe(base, i)) - p;
         let off_line = to_probe - d * dot(to_probe, d);
         let distance = dot(off_line, off_line);
@@ -344,7 +357,11 @@ fn lightfield_trace(origin: vec3<f32>, d: vec3<f32>, t_max: f32) -> LightfieldHi
     for (var visit = 0u; visit < lightfield.max_probe_visits; visit++) {
         probe = cage_probe(base, corner);
         hit.visits = visit + 1u;
-        let result = trace_probe(probe, origin, d, &state);
+        // A probe inside geometry cannot tell: the next one of the cage takes over.
+        var result = LF_UNKNOWN;
+        if !lf_probe_off(probe) {
+            result = trace_probe(probe, origin, d, &state);
+        }
         if result == LF_HIT {
             hit.result = LF_HIT;
             hit.t = state.t_max;

@@ -79,9 +79,11 @@ const MAP_TILE: (u32, u32) = (8, 8);
 /// Probes a bake dispatch may cover: a dispatch's z.
 const MAX_PROBES: u32 = 65_535;
 /// The bake passes' WGSL, in BAKE's order (the cache key hashes it).
-const BAKE_SOURCES: [&str; 5] = [
+const BAKE_SOURCES: [&str; 7] = [
     include_str!("bake_geometry.wgsl"),
+    include_str!("relocate.wgsl"),
     include_str!("min_mip.wgsl"),
+    include_str!("probe_states.wgsl"),
     include_str!("bake_radiance.wgsl"),
     include_str!("reduce.wgsl"),
     include_str!("prefilter.wgsl"),
@@ -91,9 +93,11 @@ const TRACE: &str = "lightfield/trace";
 const FILTER: &str = "lightfield/filter";
 const TEMPORAL: &str = "lightfield/temporal";
 const RESOLVE: &str = "lightfield/resolve";
-const BAKE: [&str; 5] = [
+const BAKE: [&str; 7] = [
     "lightfield/bake_geometry",
+    "lightfield/relocate",
     "lightfield/min_mip",
+    "lightfield/probe_states",
     "lightfield/bake_radiance",
     "lightfield/reduce",
     "lightfield/prefilter",
@@ -118,19 +122,21 @@ impl LightfieldKind {
 }
 
 /// The probe grid the settings ask for: the scene's first probe volume (or the default one
-/// over its bounds), with the bake's probe counts when they are set.
+/// over its bounds); with the bake's own probe counts, that many probes at the centres of as
+/// many equal cells of the volume's box (or the scene's bounds), so that a coarse grid keeps
+/// its probes off the walls the box touches.
 pub fn grid_of(scene: &Scene, settings: &LightfieldSettings) -> Result<ProbeGrid, RenderError> {
     let mut desc = crate::probes::volumes_of(scene).remove(0);
     let counts = settings.bake.probe_counts;
     if counts != [0, 0, 0] {
-        if scene.probe_volumes.is_empty() {
-            // Inset half a cell of the asked-for grid from the scene's bounds.
-            let (lo, hi) = scene.bounds();
-            let extent = (hi - lo).max(Vec3::splat(1e-3));
-            let inset = extent / glam::UVec3::from(counts).as_vec3() * 0.5;
-            desc.min = lo + inset;
-            desc.max = hi - inset;
-        }
+        let (lo, hi) = match scene.probe_volumes.first() {
+            Some(v) => (v.min, v.max),
+            None => scene.bounds(),
+        };
+        let extent = (hi - lo).max(Vec3::splat(1e-3));
+        let inset = extent / glam::UVec3::from(counts).as_vec3() * 0.5;
+        desc.min = lo + inset;
+        desc.max = hi - inset;
         desc.counts = counts;
     }
     let grid = ProbeGrid::new(&desc);
@@ -152,15 +158,21 @@ fn bake_dispatches(grid: &ProbeGrid, s: &LightfieldSettings) -> Vec<(&'static st
     let b = &s.bake;
     let probes = grid.probe_count;
     let tile = b.irradiance_texels.max(b.distance_texels) + 2;
-    let mut all = vec![
-        (BAKE[0], map_groups(b.resolution, probes)),
-        (BAKE[1], map_groups(b.resolution / MIN_MIP_FACTOR, probes)),
-    ];
+    let geometry = (BAKE[0], map_groups(b.resolution, probes));
+    let per_probe = Workgroups::linear(probes as u64);
+    let mut all = vec![geometry];
+    for _ in 0..b.relocation_steps {
+        all.extend([(BAKE[1], per_probe), geometry]);
+    }
+    all.extend([
+        (BAKE[2], map_groups(b.resolution / MIN_MIP_FACTOR, probes)),
+        (BAKE[3], per_probe),
+    ]);
     for _ in 0..=b.bounces {
         all.extend([
-            (BAKE[2], map_groups(b.resolution, probes)),
-            (BAKE[3], map_groups(s.prefilter_side(), probes)),
-            (BAKE[4], map_groups(tile, probes)),
+            (BAKE[4], map_groups(b.resolution, probes)),
+            (BAKE[5], map_groups(s.prefilter_side(), probes)),
+            (BAKE[6], map_groups(tile, probes)),
         ]);
     }
     all
@@ -254,7 +266,9 @@ impl TechniqueKind for LightfieldKind {
 /// The compiled passes.
 struct Pipelines {
     bake_geometry: Arc<ComputePass>,
+    relocate: Arc<ComputePass>,
     min_mip: Arc<ComputePass>,
+    probe_states: Arc<ComputePass>,
     bake_radiance: Arc<ComputePass>,
     reduce: Arc<ComputePass>,
     prefilter: Arc<ComputePass>,
@@ -283,10 +297,12 @@ impl Pipelines {
         };
         Ok(Self {
             bake_geometry: compile(BAKE[0], BAKE_SOURCES[0], true, false)?,
-            min_mip: compile(BAKE[1], BAKE_SOURCES[1], false, false)?,
-            bake_radiance: compile(BAKE[2], BAKE_SOURCES[2], true, true)?,
-            reduce: compile(BAKE[3], BAKE_SOURCES[3], false, false)?,
-            prefilter: compile(BAKE[4], BAKE_SOURCES[4], false, false)?,
+            relocate: compile(BAKE[1], BAKE_SOURCES[1], false, false)?,
+            min_mip: compile(BAKE[2], BAKE_SOURCES[2], false, false)?,
+            probe_states: compile(BAKE[3], BAKE_SOURCES[3], false, false)?,
+            bake_radiance: compile(BAKE[4], BAKE_SOURCES[4], true, true)?,
+            reduce: compile(BAKE[5], BAKE_SOURCES[5], false, false)?,
+            prefilter: compile(BAKE[6], BAKE_SOURCES[6], false, false)?,
             trace: compile(TRACE, include_str!("trace.wgsl"), false, false)?,
             filter: compile(FILTER, include_str!("filter.wgsl"), false, false)?,
             temporal: compile(TEMPORAL, include_str!("temporal.wgsl"), false, false)?,
@@ -539,15 +555,31 @@ impl Lightfield {
 
     /// Bytes of the baked data.
     fn baked_bytes(&self) -> u64 {
-        self.resources
-            .maps
+        let maps = &self.resources.maps;
+        let textures: u64 = maps
             .in_cache_order()
             .iter()
             .map(|(t, texel)| {
                 let s = t.size();
                 s.width as u64 * s.height as u64 * s.depth_or_array_layers as u64 * *texel as u64
             })
-            .sum()
+            .sum();
+        textures + maps.states.size()
+    }
+
+    /// Every probe's position: its grid position moved by lightfield/relocate.
+    pub fn probe_positions(&self, ctx: &GpuContext) -> Result<Vec<Vec3>, RenderError> {
+        let offsets: Vec<[f32; 4]> = read_buffer_as(ctx, &self.resources.maps.offsets)?;
+        Ok((0..self.grid.probe_count)
+            .map(|p| self.grid.probe_position(p) + Vec3::from_slice(&offsets[p as usize][..3]))
+            .collect())
+    }
+
+    /// Every probe's state word (ddgi::constants: PROBE_OFF for probes inside geometry).
+    pub fn read_probe_states(&self, ctx: &GpuContext) -> Result<Vec<u32>, RenderError> {
+        let mut states: Vec<u32> = read_buffer_as(ctx, &self.resources.maps.states)?;
+        states.truncate(self.grid.probe_count as usize);
+        Ok(states)
     }
 
     fn bake_or_load(&mut self, cx: &TechniqueContext) -> Result<BakeReport, RenderError> {
@@ -601,9 +633,17 @@ impl Lightfield {
             &p.bake_geometry,
             ResourceTable::new().texture("target_geometry", &r.maps.geometry.view),
         )?;
+        let relocate = bind(
+            &p.relocate,
+            ResourceTable::new().buffer("target_probe_offsets", &r.maps.offsets),
+        )?;
         let min_mip = bind(
             &p.min_mip,
             ResourceTable::new().texture("target_low", &r.maps.low.view),
+        )?;
+        let states = bind(
+            &p.probe_states,
+            ResourceTable::new().buffer("target_probe_states", &r.maps.states),
         )?;
         let radiance = bind(
             &p.bake_radiance,
@@ -623,8 +663,12 @@ impl Lightfield {
                 .texture("target_irradiance", &r.maps.irradiance.view)
                 .texture("target_distance", &r.maps.distance.view),
         )?;
-        let passes = [&geometry, &min_mip, &radiance, &reduce, &prefilter];
         let dispatches = bake_dispatches(&self.grid, &self.settings);
+        let passes = [
+            &geometry, &relocate, &min_mip, &states, &radiance, &reduce, &prefilter,
+        ];
+        // Bounce n's radiance, reduce and prefilter come after everything else.
+        let first_bounce_step = dispatches.len() - 3 * (self.settings.bake.bounces as usize + 1);
         let steps = dispatches.len() as u32;
         let progress = cx.progress;
         let report = |done: u32| {
@@ -634,8 +678,7 @@ impl Lightfield {
         };
         report(0);
         for (step, (label, groups)) in dispatches.iter().enumerate() {
-            // Bounce n's radiance, reduce and prefilter follow the geometry's two passes.
-            let bounce = (step as u32).saturating_sub(2) / 3;
+            let bounce = (step.saturating_sub(first_bounce_step) / 3) as u32;
             ctx.queue
                 .write_buffer(&r.params, 0, bytemuck::bytes_of(&self.params(bounce)));
             let pass = passes[BAKE.iter().position(|b| b == label).expect("a bake pass")];
@@ -718,6 +761,12 @@ impl Lightfield {
             .zip(words(&geometry))
             .map(|(r, g)| ProbeTexel::unpack(r, g))
             .collect())
+    }
+
+    /// Every probe's min-mip, layer after layer: the nearest distance of each 16×16 block.
+    pub fn read_min_mip(&self, ctx: &GpuContext) -> Result<Vec<f32>, RenderError> {
+        let bytes = irradiant_gpu::read_texture(ctx, &self.resources.maps.low.texture, 4)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
     fn record_frame(

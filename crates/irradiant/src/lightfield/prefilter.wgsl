@@ -40,7 +40,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             continue;
         }
         // A border texel repeats the interior texel across the octahedral fold.
-        let source = border_source(id.x, id.y, texels);
+        let interior = all(id.xy >= vec2<u32>(1u)) && all(id.xy <= vec2<u32>(texels));
+        let source = select(border_source(id.x, id.y, texels), id.xy, interior);
         let n = texel_direction(source - 1u, texels);
         var sum = vec3<f32>(0.0);
         var weight_sum = 0.0;

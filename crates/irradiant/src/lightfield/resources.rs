@@ -155,6 +155,10 @@ pub struct ProbeMaps {
     /// in DDGI's atlas layout.
     pub irradiance: Texture,
     pub distance: Texture,
+    /// DDGI's state word a probe (lightfield/probe_states): PROBE_OFF inside geometry.
+    pub states: wgpu::Buffer,
+    /// A vec4 a probe: where lightfield/relocate moved it from its grid position.
+    pub offsets: wgpu::Buffer,
 }
 
 impl ProbeMaps {
@@ -176,11 +180,8 @@ pub struct LightfieldResources {
     /// The maps averaged down for the prefilters (bake only).
     pub small_radiance: Texture,
     pub small_moments: Texture,
-    /// DDGI's volume uniform describing the prefiltered atlases, and the query's per-probe
-    /// buffers: no relocation offsets, every probe live (zeros).
+    /// DDGI's volume uniform describing the prefiltered atlases.
     pub volume: wgpu::Buffer,
-    pub probe_offsets: wgpu::Buffer,
-    pub probe_states: wgpu::Buffer,
     bilinear: wgpu::Sampler,
     gather: wgpu::Sampler,
     /// This frame's traced light.
@@ -240,7 +241,9 @@ impl LightfieldResources {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: bytes.max(16),
-                usage: wgpu::BufferUsages::STORAGE,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
@@ -281,6 +284,8 @@ impl LightfieldResources {
                     atlas.size(b.distance_texels),
                     wgpu::TextureFormat::Rg32Float,
                 ),
+                states: zeros("lightfield/probe_states", probes as u64 * 4),
+                offsets: zeros("lightfield/probe_offsets", probes as u64 * 16),
             },
             small_radiance: array(
                 "lightfield/small_radiance",
@@ -293,8 +298,6 @@ impl LightfieldResources {
                 wgpu::TextureFormat::Rg32Float,
             ),
             volume: uniform("lightfield/volume", size_of::<GpuDdgiVolume>() as u64),
-            probe_offsets: zeros("lightfield/probe_offsets", probes as u64 * 16),
-            probe_states: zeros("lightfield/probe_states", probes as u64 * 4),
             bilinear: sampler("lightfield/atlas_bilinear", wgpu::FilterMode::Linear),
             gather: sampler("lightfield/atlas_gather", wgpu::FilterMode::Nearest),
             lambert: frame("lightfield/lambert"),
@@ -340,8 +343,10 @@ impl LightfieldResources {
             .texture("lightfield_geometry", &self.maps.geometry.view)
             .texture("lightfield_low", &self.maps.low.view)
             .buffer("volume", &self.volume)
-            .buffer("probe_offsets", &self.probe_offsets)
-            .buffer("probe_states", &self.probe_states)
+            .buffer("probe_offsets", &self.maps.offsets)
+            .buffer("lightfield_probe_offsets", &self.maps.offsets)
+            .buffer("probe_states", &self.maps.states)
+            .buffer("lightfield_probe_states", &self.maps.states)
             .texture("irradiance_texture", &self.maps.irradiance.view)
             .texture("distance_texture", &self.maps.distance.view)
             .sampler("atlas_bilinear", &self.bilinear)

@@ -18,7 +18,8 @@ pub struct LightfieldSettings {
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LightfieldBakeSettings {
-    /// Probes per axis; [0, 0, 0] takes the scene's first probe volume (or one over its bounds).
+    /// Probes per axis; [0, 0, 0] takes the scene's first probe volume (or one over its bounds);
+    /// other counts place that many probes at the centres of equal cells of that volume's box.
     /// More probes: shorter projected rays (faster traces) and fewer regions no probe sees, at
     /// a linear cost in memory and bake time.
     pub probe_counts: [u32; 3],
@@ -36,6 +37,10 @@ pub struct LightfieldBakeSettings {
     /// the cosine lobes are wide, so 64 loses nothing the tiles can show and keeps the bake
     /// fast. At most `resolution`.
     pub prefilter_resolution: u32,
+    /// Steps that move probes out of geometry before the bake (each re-traces the maps' geometry:
+    /// a geometry pass's cost). 0: probes stay on the grid, and those inside solids are only
+    /// switched off — leaving dark regions where a solid swallows a whole cage.
+    pub relocation_steps: u32,
     /// Bounces of indirect light in the radiance maps: each re-shades every probe texel with the
     /// previous bounce's irradiance (the paper's iteration). 0: direct light only.
     pub bounces: u32,
@@ -128,6 +133,7 @@ impl LightfieldSettings {
                 irradiance_texels: 32,
                 distance_texels: 32,
                 prefilter_resolution: 64,
+                relocation_steps: 2,
                 bounces: 3,
                 emitter_samples: 16,
                 distance_exponent: 50.0,
@@ -217,6 +223,7 @@ impl LightfieldSettings {
             ));
         }
         check_range("technique.bake.bounces", b.bounces, 0, 16)?;
+        check_range("technique.bake.relocation_steps", b.relocation_steps, 0, 8)?;
         check_range("technique.bake.emitter_samples", b.emitter_samples, 1, 1024)?;
         check_range(
             "technique.bake.distance_exponent",
