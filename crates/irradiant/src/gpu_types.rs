@@ -257,7 +257,7 @@ pub fn all_layouts() -> Vec<Expected> {
             lambert_hysteresis,
             glossy_hysteresis,
             history_valid,
-            _pad0
+            half_irradiance
         }),
         gpu_layout!(GpuLightfieldFilterPass {
             direction,

@@ -87,7 +87,12 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         }
         w *= trilinear.x * trilinear.y * trilinear.z;
         let encoded = sample_irradiance_encoded(probe, n);
-        sum += w * pow(max(encoded, vec3<f32>(0.0)), vec3<f32>(half_gamma));
+        // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
+        var blendable = max(encoded, vec3<f32>(0.0));
+        if half_gamma != 1.0 {
+            blendable = pow(blendable, vec3<f32>(half_gamma));
+        }
+        sum += w * blendable;
         weight_sum += w;
     }
     let blended = sum / max(weight_sum, 1e-9);

@@ -42,7 +42,7 @@ struct GpuLightfieldParams {
     lambert_hysteresis: f32,
     glossy_hysteresis: f32,
     history_valid: u32,
-    _pad0: u32,
+    half_irradiance: u32,
 }
 
 @group(2) @binding(20) var<uniform> lightfield: GpuLightfieldParams;

@@ -72,8 +72,10 @@ pub static LIGHTFIELD_NAIVE: LightfieldKind = LightfieldKind {
     algorithm: ShadingAlgorithm::Naive,
 };
 
-/// The distance moments' gamma, as DDGI stores irradiance (value^(1/gamma)).
-const IRRADIANCE_GAMMA: f32 = 5.0;
+/// The prefiltered irradiance's encoding (value^(1/gamma), as DDGI stores it). DDGI's 5 serves
+/// its hysteresis, which blends in the encoded space; a baked atlas never blends over time, and
+/// at 2 the query blends probes in the same gamma-2 space as DDGI's without decoding each one.
+const IRRADIANCE_GAMMA: f32 = 2.0;
 /// The map passes' workgroup (8×8 texels of one probe's map).
 const MAP_TILE: (u32, u32) = (8, 8);
 /// Probes a bake dispatch may cover: a dispatch's z.
@@ -93,6 +95,7 @@ const TRACE: &str = "lightfield/trace";
 const FILTER: &str = "lightfield/filter";
 const TEMPORAL: &str = "lightfield/temporal";
 const RESOLVE: &str = "lightfield/resolve";
+const IRRADIANCE: &str = "lightfield/irradiance";
 const BAKE: [&str; 7] = [
     "lightfield/bake_geometry",
     "lightfield/relocate",
@@ -178,6 +181,11 @@ fn bake_dispatches(grid: &ProbeGrid, s: &LightfieldSettings) -> Vec<(&'static st
     all
 }
 
+/// A thread a texel of the half-resolution irradiance.
+fn half_image((width, height): (u32, u32)) -> Workgroups {
+    Workgroups::for_image(width.div_ceil(2), height.div_ceil(2), IMAGE_TILE)
+}
+
 /// The frame's dispatches, each with its label, in order.
 fn frame_dispatches(s: &LightfieldSettings, size: (u32, u32)) -> Vec<(&'static str, Workgroups)> {
     let image = Workgroups::for_image(size.0, size.1, IMAGE_TILE);
@@ -196,6 +204,9 @@ fn frame_dispatches(s: &LightfieldSettings, size: (u32, u32)) -> Vec<(&'static s
             all.push((TEMPORAL, image));
         }
         ShadingAlgorithm::Prefiltered => {}
+    }
+    if s.shade.algorithm == ShadingAlgorithm::Prefiltered && s.shade.half_irradiance {
+        all.push((IRRADIANCE, half_image(size)));
     }
     all.push((RESOLVE, image));
     all
@@ -276,6 +287,7 @@ struct Pipelines {
     filter: Arc<ComputePass>,
     temporal: Arc<ComputePass>,
     resolve: Arc<ComputePass>,
+    irradiance: Arc<ComputePass>,
     view: Arc<ComputePass>,
     trace_rays: Arc<ComputePass>,
 }
@@ -307,6 +319,7 @@ impl Pipelines {
             filter: compile(FILTER, include_str!("filter.wgsl"), false, false)?,
             temporal: compile(TEMPORAL, include_str!("temporal.wgsl"), false, false)?,
             resolve: compile(RESOLVE, include_str!("resolve.wgsl"), false, true)?,
+            irradiance: compile(IRRADIANCE, include_str!("irradiance.wgsl"), false, true)?,
             view: compile("lightfield/view", include_str!("view.wgsl"), false, false)?,
             trace_rays: compile(
                 "lightfield/trace_rays",
@@ -342,6 +355,8 @@ pub struct Lightfield {
     filters: Vec<(BoundPass, Workgroups)>,
     temporal: [(BoundPass, Workgroups); 2],
     resolve: [(BoundPass, Workgroups); 2],
+    /// The half-resolution irradiance query (the fast path).
+    irradiance: (BoundPass, Workgroups),
     view: (BoundPass, Workgroups),
     /// Longest distance the moments count: the scene's diagonal.
     max_distance: f32,
@@ -431,11 +446,22 @@ impl Lightfield {
                 &pipelines.resolve,
                 ResourceTable::new()
                     .texture("lambert_light", lambert)
-                    .texture("glossy_light", glossy),
+                    .texture("glossy_light", glossy)
+                    .texture("half_irradiance", &r.half_irradiance.view)
+                    .texture("half_normal", &r.half_normal.view),
             )
             .map(|p| (p, image))
         };
         let view = (bind(&pipelines.view, ResourceTable::new())?, image);
+        let irradiance = (
+            bind(
+                &pipelines.irradiance,
+                ResourceTable::new()
+                    .texture("target_half_irradiance", &r.half_irradiance.view)
+                    .texture("target_half_normal", &r.half_normal.view),
+            )?,
+            half_image(size),
+        );
         let mut lightfield = Self {
             name,
             settings: settings.clone(),
@@ -444,6 +470,7 @@ impl Lightfield {
             filters,
             temporal: [temporal(0)?, temporal(1)?],
             resolve: [resolve(0)?, resolve(1)?],
+            irradiance,
             view,
             max_distance,
             frames: 0,
@@ -507,7 +534,7 @@ impl Lightfield {
             lambert_hysteresis: if valid { s.lambert_hysteresis } else { 0.0 },
             glossy_hysteresis: if valid { s.glossy_hysteresis } else { 0.0 },
             history_valid: valid as u32,
-            _pad0: 0,
+            half_irradiance: s.half_irradiance as u32,
         }
     }
 
@@ -788,6 +815,10 @@ impl Lightfield {
                 pass.dispatch(encoder, profiler.as_deref_mut(), *groups);
             }
         }
+        if s.algorithm == ShadingAlgorithm::Prefiltered && s.half_irradiance {
+            let (pass, groups) = &self.irradiance;
+            pass.dispatch(encoder, profiler.as_deref_mut(), *groups);
+        }
         let (pass, groups) = &self.resolve[now];
         pass.dispatch(encoder, profiler, *groups);
         self.frames += 1;
@@ -831,7 +862,7 @@ impl Technique for Lightfield {
     fn passes(&self) -> TechniquePasses {
         TechniquePasses {
             update: Vec::new(),
-            resolve: vec![TRACE, FILTER, TEMPORAL, RESOLVE],
+            resolve: vec![TRACE, FILTER, TEMPORAL, IRRADIANCE, RESOLVE],
         }
     }
     fn prepare(&mut self, ctx: &GpuContext, _camera: &Camera) {

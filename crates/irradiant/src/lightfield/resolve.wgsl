@@ -10,6 +10,39 @@
 @group(2) @binding(46) var lambert_light: texture_2d<f32>;
 @group(2) @binding(47) var glossy_light: texture_2d<f32>;
 @group(2) @binding(48) var indirect: texture_storage_2d<rgba32float, read_write>;
+// lightfield/irradiance's half-resolution queries (when half_irradiance is on).
+@group(2) @binding(58) var half_irradiance: texture_2d<f32>;
+@group(2) @binding(59) var half_normal: texture_2d<f32>;
+
+// The half-resolution irradiance at this pixel: the four nearest queries, bilinearly weighted
+// and each by how well its surface matches this one (view depth within 5 %, normals alike);
+// the exact query where none matches (silhouettes, thin objects).
+fn upsampled_irradiance(pixel: vec2<u32>, s: Surface, depth: f32) -> vec3<f32> {
+    let last = vec2<i32>((vec2<u32>(frame_size()) + 1u) / 2u) - 1;
+    let c = (vec2<f32>(pixel) + 0.5) * 0.5 - 0.5;
+    let base = vec2<i32>(floor(c));
+    let f = c - floor(c);
+    var sum = vec3<f32>(0.0);
+    var weight_sum = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let offset = vec2<u32>(k & 1u, k >> 1u);
+        let t = clamp(base + vec2<i32>(offset), vec2<i32>(0), last);
+        let v = textureLoad(half_irradiance, t, 0);
+        if v.w < 0.0 {
+            continue;
+        }
+        let bilinear = mix(1.0 - f, f, vec2<f32>(offset));
+        let depth_agreement = max(1.0 - abs(v.w - depth) / (0.05 * depth), 0.0);
+        let normal_agreement = pow(max(dot(textureLoad(half_normal, t, 0).xyz, s.normal), 0.0), 8.0);
+        let w = bilinear.x * bilinear.y * depth_agreement * normal_agreement;
+        sum += w * v.rgb;
+        weight_sum += w;
+    }
+    if weight_sum < 0.1 {
+        return ddgi_irradiance(s.position, s.normal, view_dir(s.position));
+    }
+    return sum / weight_sum;
+}
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -23,7 +56,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let s = gbuffer_surface(id.xy);
     var lambert: vec3<f32>;
-    if lightfield.algorithm == ALGORITHM_PREFILTERED {
+    if lightfield.algorithm == ALGORITHM_PREFILTERED && lightfield.half_irradiance == 1u {
+        lambert = upsampled_irradiance(id.xy, s, gbuffer_depth_at(id.xy));
+    } else if lightfield.algorithm == ALGORITHM_PREFILTERED {
         lambert = ddgi_irradiance(s.position, s.normal, view_dir(s.position));
     } else {
         lambert = textureLoad(lambert_light, pixel, 0).rgb;

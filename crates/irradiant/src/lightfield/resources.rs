@@ -195,6 +195,9 @@ pub struct LightfieldResources {
     pub lambert_history: [Texture; 2],
     pub glossy_history: [Texture; 2],
     pub geometry_history: [Texture; 2],
+    /// The half-resolution irradiance (rgb, view depth) and the normals it was queried at.
+    pub half_irradiance: Texture,
+    pub half_normal: Texture,
     /// The filter's four passes: Lambertian horizontal, vertical; glossy horizontal, vertical.
     pub filter_passes: [wgpu::Buffer; 4],
 }
@@ -325,6 +328,16 @@ impl LightfieldResources {
                     wgpu::TextureFormat::Rgba32Float,
                 ),
             ],
+            half_irradiance: image(
+                "lightfield/half_irradiance",
+                (size.0.div_ceil(2), size.1.div_ceil(2)),
+                wgpu::TextureFormat::Rgba16Float,
+            ),
+            half_normal: image(
+                "lightfield/half_normal",
+                (size.0.div_ceil(2), size.1.div_ceil(2)),
+                wgpu::TextureFormat::Rgba16Float,
+            ),
             filter_passes: [
                 filter_pass("lightfield/filter_lambert_x"),
                 filter_pass("lightfield/filter_lambert_y"),

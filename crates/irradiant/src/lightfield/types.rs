@@ -39,7 +39,8 @@ pub struct GpuLightfieldParams {
     pub lambert_hysteresis: f32,
     pub glossy_hysteresis: f32,
     pub history_valid: u32,
-    pub _pad0: u32,
+    /// 1: the fast path's irradiance is queried at half resolution and upsampled.
+    pub half_irradiance: u32,
 }
 const _: () = assert!(size_of::<GpuLightfieldParams>() == 112);
 
