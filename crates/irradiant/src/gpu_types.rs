@@ -257,7 +257,11 @@ pub fn all_layouts() -> Vec<Expected> {
             lambert_hysteresis,
             glossy_hysteresis,
             history_valid,
-            half_irradiance
+            half_irradiance,
+            glossy_max_roughness,
+            _pad0,
+            _pad1,
+            _pad2
         }),
         gpu_layout!(GpuLightfieldFilterPass {
             direction,

@@ -43,6 +43,10 @@ struct GpuLightfieldParams {
     glossy_hysteresis: f32,
     history_valid: u32,
     half_irradiance: u32,
+    glossy_max_roughness: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 @group(2) @binding(20) var<uniform> lightfield: GpuLightfieldParams;

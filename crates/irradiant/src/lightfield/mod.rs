@@ -296,9 +296,11 @@ struct Pipelines {
 const UNFILTERABLE: &[&str] = &["distance_texture"];
 
 impl Pipelines {
-    fn new(cx: &TechniqueContext) -> Result<Self, RenderError> {
+    fn new(cx: &TechniqueContext, settings: &LightfieldSettings) -> Result<Self, RenderError> {
+        let exact = !settings.shade.half_irradiance as u32;
         let compile = |label: &'static str, source: &str, tracing: bool, query: bool| {
-            let mut desc = PassDesc::new(label, source);
+            let mut desc =
+                PassDesc::new(label, source).constants([("EXACT_IRRADIANCE", format!("{exact}u"))]);
             if tracing {
                 desc = desc.constants(cx.gpu_scene.shader_constants());
             }
@@ -376,7 +378,7 @@ impl Lightfield {
         let grid = grid_of(cx.scene, settings)?;
         let atlas = AtlasLayout::new(grid.probe_count, &resources::tile_sides(settings));
         let resources = LightfieldResources::new(ctx, &grid, settings, size)?;
-        let pipelines = Pipelines::new(cx)?;
+        let pipelines = Pipelines::new(cx, settings)?;
         let (lo, hi) = cx.scene.bounds();
         let max_distance = (hi - lo).length().max(grid.spacing.length()).max(1e-3);
         let scene_table = cx.gpu_scene.resources();
@@ -535,6 +537,10 @@ impl Lightfield {
             glossy_hysteresis: if valid { s.glossy_hysteresis } else { 0.0 },
             history_valid: valid as u32,
             half_irradiance: s.half_irradiance as u32,
+            glossy_max_roughness: s.glossy_max_roughness,
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         }
     }
 
@@ -893,11 +899,13 @@ impl Technique for Lightfield {
             ShadingAlgorithm::Naive => &LIGHTFIELD_NAIVE,
         };
         let settings = kind.settings(spec, &mut Vec::new())?;
-        // The bake and the passes' shapes (algorithm, glossy) need a rebuild; the shading
+        // The bake and the passes' shapes (algorithm, glossy, half-resolution irradiance) need
+        // a rebuild; the shading
         // numbers change live.
         let same_shape = settings.bake == self.settings.bake
             && settings.shade.algorithm == self.settings.shade.algorithm
-            && settings.shade.glossy == self.settings.shade.glossy;
+            && settings.shade.glossy == self.settings.shade.glossy
+            && settings.shade.half_irradiance == self.settings.shade.half_irradiance;
         if !same_shape {
             return Ok(false);
         }

@@ -16,7 +16,9 @@
 
 // The half-resolution irradiance at this pixel: the four nearest queries, bilinearly weighted
 // and each by how well its surface matches this one (view depth within 5 %, normals alike);
-// the exact query where none matches (silhouettes, thin objects).
+// where none matches (silhouettes, thin objects), the one that matches best. No exact query
+// here: its registers would slow the whole pass (EXACT_IRRADIANCE, a shader constant, keeps
+// it out when the irradiance is upsampled).
 fn upsampled_irradiance(pixel: vec2<u32>, s: Surface, depth: f32) -> vec3<f32> {
     let last = vec2<i32>((vec2<u32>(frame_size()) + 1u) / 2u) - 1;
     let c = (vec2<f32>(pixel) + 0.5) * 0.5 - 0.5;
@@ -24,6 +26,7 @@ fn upsampled_irradiance(pixel: vec2<u32>, s: Surface, depth: f32) -> vec3<f32> {
     let f = c - floor(c);
     var sum = vec3<f32>(0.0);
     var weight_sum = 0.0;
+    var best = vec4<f32>(0.0, 0.0, 0.0, -1.0);
     for (var k = 0u; k < 4u; k++) {
         let offset = vec2<u32>(k & 1u, k >> 1u);
         let t = clamp(base + vec2<i32>(offset), vec2<i32>(0), last);
@@ -34,12 +37,16 @@ fn upsampled_irradiance(pixel: vec2<u32>, s: Surface, depth: f32) -> vec3<f32> {
         let bilinear = mix(1.0 - f, f, vec2<f32>(offset));
         let depth_agreement = max(1.0 - abs(v.w - depth) / (0.05 * depth), 0.0);
         let normal_agreement = pow(max(dot(textureLoad(half_normal, t, 0).xyz, s.normal), 0.0), 8.0);
+        let agreement = (depth_agreement + 1e-3) * (normal_agreement + 1e-3);
+        if agreement > best.w {
+            best = vec4<f32>(v.rgb, agreement);
+        }
         let w = bilinear.x * bilinear.y * depth_agreement * normal_agreement;
         sum += w * v.rgb;
         weight_sum += w;
     }
-    if weight_sum < 0.1 {
-        return ddgi_irradiance(s.position, s.normal, view_dir(s.position));
+    if weight_sum < 1e-3 {
+        return best.rgb;
     }
     return sum / weight_sum;
 }
@@ -56,13 +63,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let s = gbuffer_surface(id.xy);
     var lambert: vec3<f32>;
-    if lightfield.algorithm == ALGORITHM_PREFILTERED && lightfield.half_irradiance == 1u {
+    if lightfield.algorithm == ALGORITHM_PREFILTERED && EXACT_IRRADIANCE == 0u {
         lambert = upsampled_irradiance(id.xy, s, gbuffer_depth_at(id.xy));
     } else if lightfield.algorithm == ALGORITHM_PREFILTERED {
         lambert = ddgi_irradiance(s.position, s.normal, view_dir(s.position));
     } else {
         lambert = textureLoad(lambert_light, pixel, 0).rgb;
     }
-    let out = diffuse_weight(s) * lambert + textureLoad(glossy_light, pixel, 0).rgb;
+    var out = diffuse_weight(s) * lambert + textureLoad(glossy_light, pixel, 0).rgb;
+    // A specular surface too rough for a glossy ray: its wide lobe reflects about the
+    // irradiance, F0 of it.
+    if has_specular(s) && s.roughness > lightfield.glossy_max_roughness {
+        out += f0_of(s) * lambert;
+    }
     textureStore(indirect, pixel, vec4<f32>(out, 1.0));
 }

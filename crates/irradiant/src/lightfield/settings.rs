@@ -81,6 +81,11 @@ pub struct LightfieldShadeSettings {
     /// Trace glossy rays at all. Off: the Lambertian term alone (the probe cost stays at the
     /// irradiance query for the fast path).
     pub glossy: bool,
+    /// Surfaces rougher than this (perceptual roughness) trace no glossy ray: their wide lobe
+    /// reflects about what the irradiance holds, so their specular light is F0 × the
+    /// irradiance. 1: every specular surface traces (the paper); lower: faster where most
+    /// surfaces are rough (Sponza's plaster), and rough reflections lose their shape.
+    pub glossy_max_roughness: f32,
     /// Probes a ray may try before it takes the last point a probe saw as its hit (the paper
     /// tries the cage's 8, then moves to the next cage). More: fewer wrong hits behind complex
     /// occluders, at the cost of the worst rays.
@@ -146,6 +151,7 @@ impl LightfieldSettings {
                 algorithm: ShadingAlgorithm::Prefiltered,
                 naive_rays: 16,
                 glossy: true,
+                glossy_max_roughness: 0.6,
                 max_probe_visits: 16,
                 min_thickness: 0.01,
                 max_thickness: 0.15,
@@ -168,6 +174,7 @@ impl LightfieldSettings {
         s.bake.emitter_samples = 64;
         s.shade.naive_rays = 64;
         s.shade.half_irradiance = false;
+        s.shade.glossy_max_roughness = 1.0;
         s
     }
 

@@ -9,6 +9,11 @@
 #import brdf
 #import random
 
+// Rougher surfaces take F0 × the irradiance instead (lightfield/resolve).
+fn traces_glossy(s: Surface) -> bool {
+    return has_specular(s) && s.roughness <= lightfield.glossy_max_roughness;
+}
+
 @group(2) @binding(33) var target_lambert: texture_storage_2d<rgba16float, write>;
 @group(2) @binding(34) var target_glossy: texture_storage_2d<rgba16float, write>;
 
@@ -38,7 +43,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     lambert /= f32(max(lightfield.lambert_rays, 1u));
     var glossy = vec3<f32>(0.0);
-    if has_specular(s) && lightfield.glossy_rays > 0u {
+    if traces_glossy(s) && lightfield.glossy_rays > 0u {
         let alpha = s.roughness * s.roughness;
         let n_dot_v = max(dot(s.normal, wo), 1e-4);
         let v_local = transpose(frame_basis) * wo;

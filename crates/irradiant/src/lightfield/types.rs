@@ -41,8 +41,13 @@ pub struct GpuLightfieldParams {
     pub history_valid: u32,
     /// 1: the fast path's irradiance is queried at half resolution and upsampled.
     pub half_irradiance: u32,
+    /// Rougher surfaces trace no glossy ray (their specular light comes from the irradiance).
+    pub glossy_max_roughness: f32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
-const _: () = assert!(size_of::<GpuLightfieldParams>() == 112);
+const _: () = assert!(size_of::<GpuLightfieldParams>() == 128);
 
 /// One pass of the separable cross-bilateral filter.
 #[repr(C)]
