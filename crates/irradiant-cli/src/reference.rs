@@ -27,9 +27,7 @@ pub fn reference(
     let key = reference_key(scene, pose, size, settings);
     let dir = crate::cache::dir(cache);
     let file = dir.join(format!("reference-{key:016x}.exr"));
-    if let Ok(image) = Image::read_exr(&file)
-        && (image.width, image.height) == size
-    {
+    if let Ok(image) = Image::read_exr(&file, Some(size)) {
         return Ok((image, true));
     }
     eprintln!(

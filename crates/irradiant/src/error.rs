@@ -18,6 +18,10 @@ pub enum RenderError {
     Scene(String),
     #[error("{0}: cannot write the image: {1}. Check that the folder exists and is writable.")]
     Output(PathBuf, String),
+    #[error(
+        "{0}: cannot read the image: {1}. Delete it to have it made again, or name an OpenEXR file."
+    )]
+    Input(PathBuf, String),
     #[error("{0}")]
     Settings(String),
     #[error(transparent)]

@@ -263,8 +263,8 @@ fn two_rooms_light_field_visibility_stops_the_leak() {
     );
     let mut lf = small();
     lf.bake.probe_counts = [0, 0, 0];
-    // The dark room is lit through the door after several bounces: bake four.
-    lf.bake.bounces = 4;
+    // The dark room is lit through the door after several bounces: bake eight.
+    lf.bake.bounces = 8;
     let (l, _) = dark(spec("lightfield", &lf), 2);
     eprintln!(
         "two-rooms dark room, mean indirect: path tracer {pt:.5}, classic probes {c:.5} (error {:.5}), light field {l:.5} (error {:.5})",

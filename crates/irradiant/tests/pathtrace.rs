@@ -149,6 +149,7 @@ fn cornell_box_matches_mitsuba() {
         .scene;
     let reference = Image::read_exr(
         &common::repo_root().join("tests/golden/cornell-box/mitsuba-original-64.exr"),
+        Some((64, 64)),
     )
     .unwrap();
     let ours = render(&ctx, &scene, 64, 256, 3);

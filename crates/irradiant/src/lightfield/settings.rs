@@ -42,7 +42,9 @@ pub struct LightfieldBakeSettings {
     /// switched off — leaving dark regions where a solid swallows a whole cage.
     pub relocation_steps: u32,
     /// Bounces of indirect light in the radiance maps: each re-shades every probe texel with the
-    /// previous bounce's irradiance (the paper's iteration). 0: direct light only.
+    /// previous bounce's irradiance (the paper's iteration). 0: direct light only. Each costs
+    /// one radiance pass of the bake; closed bright rooms need many (two-rooms: 3 bounces left
+    /// the dark room at 59 % of the path tracer's light, 8 at 91 %).
     pub bounces: u32,
     /// Emitter samples per probe texel for area lights (punctual lights are exact). More: less
     /// noise in the maps of scenes lit by emissive surfaces, at a linear cost in bake time.
@@ -128,7 +130,7 @@ impl LightfieldSettings {
         let mut s = Self::balanced();
         s.bake.resolution = 256;
         s.bake.irradiance_texels = 16;
-        s.bake.bounces = 1;
+        s.bake.bounces = 4;
         s.bake.emitter_samples = 4;
         s.shade.naive_rays = 4;
         s
@@ -143,7 +145,7 @@ impl LightfieldSettings {
                 distance_texels: 32,
                 prefilter_resolution: 64,
                 relocation_steps: 2,
-                bounces: 3,
+                bounces: 8,
                 emitter_samples: 16,
                 distance_exponent: 50.0,
             },
@@ -170,7 +172,7 @@ impl LightfieldSettings {
         let mut s = Self::balanced();
         s.bake.resolution = 1024;
         s.bake.irradiance_texels = 64;
-        s.bake.bounces = 4;
+        s.bake.bounces = 16;
         s.bake.emitter_samples = 64;
         s.shade.naive_rays = 64;
         s.shade.half_irradiance = false;
