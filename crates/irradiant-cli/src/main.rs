@@ -9,6 +9,7 @@ mod options;
 mod over_time;
 mod reference;
 mod render;
+mod soak;
 
 use std::process::ExitCode;
 
@@ -36,6 +37,8 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Render one view with each technique and the path tracer; report the differences.
     Compare(compare::CompareArgs),
+    /// Run many frames of each technique and check them for NaN, memory growth and drift.
+    Soak(soak::SoakArgs),
 }
 
 fn main() -> ExitCode {
@@ -58,6 +61,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(&args, &adapter),
         Command::Bench(args) => bench::run(&args, &adapter),
         Command::Compare(args) => compare::run(&args, &adapter),
+        Command::Soak(args) => soak::run(&args, &adapter),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

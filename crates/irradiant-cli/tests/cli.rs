@@ -729,3 +729,130 @@ fn compare_pans_the_camera_against_one_bounce_references() {
         "panning {panning}, at rest {resting}"
     );
 }
+
+/// Needs the test adapter: the soak's short version. Every technique kind's frames over the
+/// animated two-rooms come out finite with flat GPU memory; held still with no drift allowed,
+/// DDGI (still converging after a few frames) is caught drifting — the check can fail.
+#[test]
+fn soak_checks_frames_for_non_finite_values_memory_and_drift() {
+    let techniques =
+        "ddgi,ssil,lightfield{bake.probe_counts=[2,2,2],bake.resolution=32,bake.bounces=1}";
+    let (ok, stdout, stderr) = irradiant(&[
+        "soak",
+        "--size",
+        "32x24",
+        "--frames",
+        "12",
+        "--every",
+        "4",
+        "--settle",
+        "4",
+        "--techniques",
+        techniques,
+    ]);
+    assert!(ok, "{stdout}\n{stderr}");
+    assert!(stdout.contains("every check passed"), "{stdout}");
+    assert_eq!(
+        stdout.matches(" ok").count(),
+        9,
+        "three checks a technique: {stdout}"
+    );
+    let (ok, stdout, stderr) = irradiant(&[
+        "soak",
+        "--still",
+        "--drift",
+        "0",
+        "--size",
+        "32x24",
+        "--frames",
+        "12",
+        "--every",
+        "4",
+        "--settle",
+        "4",
+        "--techniques",
+        "ddgi",
+    ]);
+    assert!(!ok, "{stdout}");
+    assert!(
+        stderr.contains("drifted by") && stderr.contains("since frame 4"),
+        "{stderr}"
+    );
+    fails_with(&["soak", "--frames", "0"], "must be positive");
+}
+
+/// Needs the test adapter: two processes comparing at once, sharing one cache folder, each
+/// render the path-traced reference and bake the light field and store both. Neither reads a
+/// half-written entry (both succeed with the same figures), the folder ends with one complete
+/// entry of each and no temporaries, and a third run reads both.
+#[test]
+fn two_processes_sharing_a_cache_never_corrupt_it() {
+    let dir = scratch("shared-cache");
+    let cache = dir.join("cache").to_string_lossy().into_owned();
+    let run = |out: &str| {
+        let out = dir.join(out).to_string_lossy().into_owned();
+        let args = [
+            "compare",
+            "--scene",
+            "cornell",
+            "--size",
+            "24x24",
+            "--reference-spp",
+            "8",
+            "--frames",
+            "2",
+            "--techniques",
+            "lightfield{bake.probe_counts=[2,2,2],bake.resolution=32,bake.bounces=1}",
+            "--cache",
+            &cache,
+            "--out",
+            &out,
+        ]
+        .map(str::to_owned);
+        Command::new(env!("CARGO_BIN_EXE_irradiant"))
+            .args(args)
+            .env("XDG_RUNTIME_DIR", "/tmp")
+            .output()
+            .unwrap()
+    };
+    let json = |out: &str| -> serde_json::Value {
+        serde_json::from_str(
+            &std::fs::read_to_string(dir.join(out).join("comparison.json")).unwrap(),
+        )
+        .unwrap()
+    };
+    let (a, b) = std::thread::scope(|s| {
+        let a = s.spawn(|| run("a"));
+        let b = s.spawn(|| run("b"));
+        (a.join().unwrap(), b.join().unwrap())
+    });
+    for out in [&a, &b] {
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    assert_eq!(
+        json("a")["results"][0]["flip_mean"],
+        json("b")["results"][0]["flip_mean"]
+    );
+    let entries: Vec<String> = std::fs::read_dir(&cache)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    let count = |prefix: &str| entries.iter().filter(|n| n.starts_with(prefix)).count();
+    assert_eq!(
+        (count("reference-"), count("lightfield-"), count(".")),
+        (1, 1, 0),
+        "one entry of each, no temporaries: {entries:?}"
+    );
+    let third = run("c");
+    assert!(third.status.success());
+    assert_eq!(json("c")["reference_cached"], true);
+    assert_eq!(
+        json("c")["results"][0]["flip_mean"],
+        json("a")["results"][0]["flip_mean"]
+    );
+}

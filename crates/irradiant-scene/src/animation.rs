@@ -13,6 +13,21 @@ pub struct Pose {
 }
 
 impl Scene {
+    /// The time of the last animation key (0 for a still scene): where every track has ended.
+    pub fn animation_end(&self) -> f32 {
+        self.animations
+            .iter()
+            .flat_map(|a| {
+                let t = &a.tracks;
+                t.translation
+                    .iter()
+                    .map(|k| k.0)
+                    .chain(t.intensity_scale.iter().map(|k| k.0))
+                    .chain(t.rotation_y_degrees.iter().map(|k| k.0))
+            })
+            .fold(0.0, f32::max)
+    }
+
     /// The scene's lights and instance transforms at `time` seconds. Tracks are linearly
     /// interpolated and clamped at their first and last keys.
     pub fn pose_at(&self, time: f32) -> Pose {

@@ -313,6 +313,10 @@ impl Session {
             p.resolve(&mut encoder);
         }
         self.ctx.queue.submit([encoder.finish()]);
+        // Without a poll, wgpu keeps every finished frame's command buffers and staging
+        // memory until something waits on the device: a frame loop that never reads back
+        // grew by megabytes a frame (found by `irradiant soak`). Non-blocking.
+        let _ = self.ctx.device.poll(wgpu::PollType::Poll);
         self.frame.finish();
         Ok(())
     }

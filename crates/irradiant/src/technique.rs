@@ -213,6 +213,11 @@ pub trait Technique: Any {
     ) -> Result<bool, RenderError> {
         Ok(false)
     }
+    /// Non-finite values in what the technique carries from frame to frame (probe atlases,
+    /// histories), read back from the GPU: one line per place holding any. For soak runs.
+    fn check_state(&self, _ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
+        Ok(Vec::new())
+    }
     /// Figures about the last frame, read back from the GPU where needed.
     fn counters(&self, _ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         Ok(Vec::new())
@@ -240,4 +245,14 @@ mod tests {
         let e = find("magic").err().unwrap().to_string();
         assert!(e.contains("'magic'") && e.contains("ddgi"), "{e}");
     }
+}
+
+/// "label: n of m values are not finite" when some are (for [`Technique::check_state`]).
+pub fn non_finite(label: &str, values: impl Iterator<Item = f32>) -> Option<String> {
+    let (mut bad, mut all) = (0usize, 0usize);
+    for v in values {
+        all += 1;
+        bad += !v.is_finite() as usize;
+    }
+    (bad > 0).then(|| format!("{label}: {bad} of {all} values are not finite"))
 }

@@ -167,7 +167,7 @@ fn the_three_algorithms_approach_the_path_tracer() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let size = (64, 64);
-    let reference = path_trace(&ctx, &scene, size, 512);
+    let reference = path_trace(&ctx, &scene, size, 256);
     let none = flip(
         &reference,
         &render(
@@ -184,7 +184,7 @@ fn the_three_algorithms_approach_the_path_tracer() {
     for name in ["lightfield", "lightfield-traced", "lightfield-naive"] {
         let f = flip(
             &reference,
-            &render(&ctx, &scene, size, spec(name, &small()), 30)
+            &render(&ctx, &scene, size, spec(name, &small()), 20)
                 .image()
                 .unwrap(),
         );
@@ -208,18 +208,18 @@ fn the_glossy_ray_reflects_indirect_light() {
     let path = repo_root().join("scenes/cornell-box/glossy.toml");
     let scene = irradiant_scene::load(path.to_str().unwrap()).unwrap().scene;
     let size = (64, 64);
-    let reference = path_trace(&ctx, &scene, size, 512);
+    let reference = path_trace(&ctx, &scene, size, 256);
     let mut settings = small();
     let glossy = flip(
         &reference,
-        &render(&ctx, &scene, size, spec("lightfield", &settings), 30)
+        &render(&ctx, &scene, size, spec("lightfield", &settings), 20)
             .image()
             .unwrap(),
     );
     settings.shade.glossy = false;
     let lambertian = flip(
         &reference,
-        &render(&ctx, &scene, size, spec("lightfield", &settings), 30)
+        &render(&ctx, &scene, size, spec("lightfield", &settings), 20)
             .image()
             .unwrap(),
     );
@@ -239,7 +239,7 @@ fn two_rooms_light_field_visibility_stops_the_leak() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("two-rooms").unwrap().scene;
     let size = (64, 48);
-    let reference = path_trace(&ctx, &scene, size, 1024);
+    let reference = path_trace(&ctx, &scene, size, 512);
     let mut classic = irradiant::ddgi::DdgiSettings::balanced();
     classic.update.weights = irradiant::ddgi::ProbeWeights::Classic;
     classic.update.hysteresis = 0.9;
@@ -257,10 +257,7 @@ fn two_rooms_light_field_visibility_stops_the_leak() {
             masked_mean(&path_traced_indirect(&reference, &result), &mask),
         )
     };
-    let (c, pt) = dark(
-        TechniqueSpec::with_settings("classic-probes", &classic),
-        120,
-    );
+    let (c, pt) = dark(TechniqueSpec::with_settings("classic-probes", &classic), 60);
     let mut lf = small();
     lf.bake.probe_counts = [0, 0, 0];
     // The dark room is lit through the door after several bounces: bake eight.
@@ -287,7 +284,7 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("box-cylinders").unwrap().scene;
     let size = (64, 48);
-    let reference = path_trace(&ctx, &scene, size, 1024);
+    let reference = path_trace(&ctx, &scene, size, 512);
     let tiles = |spec: TechniqueSpec, frames: u32| {
         let s = render(&ctx, &scene, size, spec, frames);
         let result = FrameResult {
@@ -309,10 +306,7 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
     let mut classic = irradiant::ddgi::DdgiSettings::balanced();
     classic.update.weights = irradiant::ddgi::ProbeWeights::Classic;
     classic.update.hysteresis = 0.9;
-    let classic = tiles(
-        TechniqueSpec::with_settings("classic-probes", &classic),
-        120,
-    );
+    let classic = tiles(TechniqueSpec::with_settings("classic-probes", &classic), 60);
     let mut lf = small();
     lf.bake.probe_counts = [0, 0, 0];
     let light_field = tiles(spec("lightfield", &lf), 2);

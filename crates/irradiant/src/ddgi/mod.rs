@@ -287,6 +287,13 @@ impl Technique for Ddgi {
         self.settings = settings;
         Ok(true)
     }
+    fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
+        let mut all = Vec::new();
+        for volume in &self.volumes {
+            all.extend(volume.check_state(ctx)?);
+        }
+        Ok(all)
+    }
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let probes: u32 = self.volumes.iter().map(|v| v.grid.probe_count).sum();
         let rays = self.settings.volume.rays_per_probe as f64;

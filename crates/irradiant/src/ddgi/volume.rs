@@ -17,6 +17,7 @@ use super::types::GpuDdgiVolume;
 use crate::RenderError;
 use crate::frame::{IMAGE_TILE, LightingChange, SceneChange};
 use crate::probes::{AtlasLayout, ProbeGrid, atlas::copy_atlas_to_texture, rays::random_rotation};
+use crate::technique::non_finite;
 
 /// Probes in each state (003 §6; see ddgi::constants).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -510,6 +511,22 @@ impl DdgiVolume {
 
     /// The atlases, decoded: irradiance as cosine-weighted mean radiance (rgb), distance as
     /// (mean, mean²); each with its width and height in texels.
+    /// Non-finite texels of the atlases as the blends wrote them (soak checks).
+    pub fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
+        let irradiance: Vec<half::f16> = read_buffer_as(ctx, &self.resources.irradiance)?;
+        let distance: Vec<f32> = read_buffer_as(ctx, &self.resources.distance)?;
+        Ok([
+            non_finite(
+                "ddgi irradiance atlas",
+                irradiance.iter().map(|h| h.to_f32()),
+            ),
+            non_finite("ddgi distance atlas", distance.into_iter()),
+        ]
+        .into_iter()
+        .flatten()
+        .collect())
+    }
+
     pub fn read_atlases(&self, ctx: &GpuContext) -> Result<Atlases, RenderError> {
         let packed: Vec<[half::f16; 4]> = read_buffer_as(ctx, &self.resources.irradiance)?;
         let distance: Vec<[f32; 2]> = read_buffer_as(ctx, &self.resources.distance)?;

@@ -11,7 +11,7 @@ mod settings;
 pub mod types;
 
 pub use change::{LightingChange, SceneChange};
-pub use image_io::{Image, write_png};
+pub use image_io::{Image, write_atomically, write_png};
 pub use resources::{FrameNeeds, FrameResources};
 pub use settings::{FrameSettings, PyramidSettings, TaaSettings, ToneSettings};
 

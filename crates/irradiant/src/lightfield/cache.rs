@@ -131,19 +131,11 @@ pub fn store(ctx: &GpuContext, file: &Path, key: u64, maps: &ProbeMaps) -> Resul
     if std::fs::create_dir_all(dir).is_err() {
         return Ok(());
     }
-    // A name no other process uses, renamed into place once complete.
-    let temporary = dir.join(format!(
-        ".{}.{}.tmp",
-        file.file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or("lightfield"),
-        std::process::id()
-    ));
-    let written = std::fs::File::create(&temporary)
-        .and_then(|mut f| f.write_all(&bytes).and_then(|()| f.sync_all()))
-        .and_then(|()| std::fs::rename(&temporary, file));
-    if written.is_err() {
-        let _ = std::fs::remove_file(&temporary);
-    }
+    // A temporary name of this process's, renamed into place once complete.
+    let _ = crate::frame::write_atomically(file, |temporary| {
+        std::fs::File::create(temporary)
+            .and_then(|mut f| f.write_all(&bytes).and_then(|()| f.sync_all()))
+            .map_err(|e| e.to_string())
+    });
     Ok(())
 }

@@ -53,7 +53,7 @@ use crate::frame::IMAGE_TILE;
 use crate::probes::{AtlasLayout, ProbeGrid};
 use crate::raycast::types::GpuRay;
 use crate::technique::{
-    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec,
+    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec, non_finite,
 };
 use constants::{ALGORITHM_FILTERED, ALGORITHM_NAIVE, ALGORITHM_PREFILTERED, MIN_MIP_FACTOR};
 use resources::LightfieldResources;
@@ -912,6 +912,24 @@ impl Technique for Lightfield {
         self.settings = settings;
         self.write_filter_passes(ctx);
         Ok(true)
+    }
+    fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
+        // The set the last frame wrote: its filtered light is next frame's history.
+        let last = (self.frames + 1) as usize % 2;
+        let r = &self.resources;
+        let mut all = Vec::new();
+        for (label, texture) in [
+            (
+                "lightfield lambertian history",
+                &r.lambert_history[last].texture,
+            ),
+            ("lightfield glossy history", &r.glossy_history[last].texture),
+        ] {
+            let bytes = irradiant_gpu::read_texture(ctx, texture, 8)?;
+            let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
+            all.extend(non_finite(label, halves.iter().map(|h| h.to_f32())));
+        }
+        Ok(all)
     }
     fn counters(&self, _ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         Ok(vec![

@@ -38,7 +38,7 @@ use crate::RenderError;
 use crate::ddgi::{Ddgi, DdgiSettings};
 use crate::frame::{FrameNeeds, IMAGE_TILE, SceneChange};
 use crate::technique::{
-    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec,
+    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec, non_finite,
 };
 use resources::SsilResources;
 use types::{GpuSsilParams, GpuSsilPass};
@@ -657,6 +657,14 @@ impl Technique for Ssil {
         self.settings = settings;
         Ok(true)
     }
+    fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
+        let light = self.read_light(ctx)?;
+        Ok(
+            non_finite("ssil filtered light", light.iter().flatten().copied())
+                .into_iter()
+                .collect(),
+        )
+    }
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let (open, total) = self.read_open_rays(ctx)?;
         Ok(vec![
@@ -729,6 +737,11 @@ impl Technique for SsilDdgi {
     }
     fn scene_changed(&mut self, change: &SceneChange) {
         self.ddgi.scene_changed(change);
+    }
+    fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
+        let mut all = self.ddgi.check_state(ctx)?;
+        all.extend(self.ssil.check_state(ctx)?);
+        Ok(all)
     }
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let mut all = self.ddgi.counters(ctx)?;
