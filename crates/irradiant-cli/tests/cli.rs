@@ -737,8 +737,14 @@ fn compare_pans_the_camera_against_one_bounce_references() {
 fn soak_checks_frames_for_non_finite_values_memory_and_drift() {
     let techniques =
         "ddgi,ssil,lightfield{bake.probe_counts=[2,2,2],bake.resolution=32,bake.bounces=1}";
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/two-rooms/switch.toml"
+    );
     let (ok, stdout, stderr) = irradiant(&[
         "soak",
+        "--scene",
+        scene,
         "--size",
         "32x24",
         "--frames",
@@ -759,6 +765,8 @@ fn soak_checks_frames_for_non_finite_values_memory_and_drift() {
     );
     let (ok, stdout, stderr) = irradiant(&[
         "soak",
+        "--scene",
+        scene,
         "--still",
         "--drift",
         "0",

@@ -191,7 +191,7 @@ fn the_three_algorithms_approach_the_path_tracer() {
         figures.push((name, f));
     }
     eprintln!("Cornell box, FLIP against the path tracer: {figures:?}");
-    // Seen at 96×96 on lavapipe: none 0.50, lightfield 0.15, traced 0.11, naive 0.09.
+    // Seen on lavapipe: none 0.50, lightfield 0.15, traced 0.12, naive 0.12.
     for (name, f) in &figures[1..] {
         assert!(
             *f < 0.5 * none,
@@ -268,7 +268,7 @@ fn two_rooms_light_field_visibility_stops_the_leak() {
         (c - pt).abs(),
         (l - pt).abs()
     );
-    // Seen on lavapipe: path tracer 0.071, classic probes 0.159, light field 0.048 (3.8×
+    // Seen on lavapipe: path tracer 0.071, classic probes 0.135, light field 0.064 (9.2×
     // closer). Bound: 3× closer.
     assert!(
         (l - pt).abs() * 3.0 <= (c - pt).abs(),
@@ -329,7 +329,7 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
         light_field.0 >= 0.5 * light_field.1,
         "a dark halo: {light_field:.2?}"
     );
-    // Seen on lavapipe: classic probes (0.28, 0.40), light field with relocation (0.25, 0.48);
+    // Seen on lavapipe: classic probes (0.24, 0.37), light field with relocation (0.27, 0.51);
     // without relocation the light field's worst tile was 0.14, black between the cylinders.
     assert!(
         (1.0 - light_field.1).abs() < (1.0 - classic.1).abs(),
