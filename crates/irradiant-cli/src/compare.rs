@@ -383,17 +383,11 @@ fn compare_into(
         over_time,
     };
     let json = serde_json::to_string_pretty(&comparison).expect("comparisons serialise");
-    std::fs::write(dir.join("comparison.json"), json).map_err(|e| CliError::Io {
-        path: dir.join("comparison.json"),
-        message: e.to_string(),
-    })?;
+    crate::write_file(&dir.join("comparison.json"), json)?;
     let page = irradiant_eval::report::html(&comparison, &|file| {
         std::fs::read(dir.join(file)).unwrap_or_default()
     });
-    std::fs::write(dir.join("report.html"), page).map_err(|e| CliError::Io {
-        path: dir.join("report.html"),
-        message: e.to_string(),
-    })?;
+    crate::write_file(&dir.join("report.html"), page)?;
     Ok(comparison)
 }
 

@@ -91,3 +91,15 @@ pub enum CliError {
         message: String,
     },
 }
+
+/// Writes a whole file under a temporary name and renames it into place: a report, a JSON
+/// record or a soak log is never seen half-written.
+pub fn write_file(path: &std::path::Path, contents: impl AsRef<[u8]>) -> Result<(), CliError> {
+    irradiant::frame::write_atomically(path, |temporary| {
+        std::fs::write(temporary, contents.as_ref()).map_err(|e| e.to_string())
+    })
+    .map_err(|e| CliError::Io {
+        path: path.to_owned(),
+        message: e.to_string(),
+    })
+}

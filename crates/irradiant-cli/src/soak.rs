@@ -213,10 +213,7 @@ pub fn run(args: &SoakArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&checks).expect("soak checks serialise");
-        std::fs::write(path, text).map_err(|e| CliError::Io {
-            path: path.clone(),
-            message: e.to_string(),
-        })?;
+        crate::write_file(path, text)?;
     }
     if failures.is_empty() {
         println!("soak: every check passed");

@@ -80,6 +80,8 @@ impl Session {
         settings: SessionSettings,
     ) -> Result<Self, RenderError> {
         let kind = settings.technique.kind()?;
+        // A lost device fails here, named, rather than inside wgpu's buffer creation.
+        ctx.check("starting a session")?;
         let mut warnings = kind.check(&settings.technique)?;
         warnings.extend(kind.scene_warnings(&settings.technique, &scene));
         settings.frame.validate()?;

@@ -304,10 +304,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     table::print_table(&record);
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&record).expect("bench records serialise");
-        std::fs::write(path, text).map_err(|e| CliError::Io {
-            path: path.clone(),
-            message: e.to_string(),
-        })?;
+        crate::write_file(path, text)?;
         println!("wrote {}", path.display());
     }
     Ok(())
