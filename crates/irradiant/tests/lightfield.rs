@@ -245,12 +245,7 @@ fn two_rooms_light_field_visibility_stops_the_leak() {
     classic.update.hysteresis = 0.9;
     let dark = |spec: TechniqueSpec, frames: u32| {
         let s = render(&ctx, &scene, size, spec, frames);
-        let result = FrameResult {
-            total: s.image().unwrap(),
-            direct: s.direct().unwrap(),
-            indirect: s.indirect().unwrap(),
-            gbuffer: s.gbuffer().unwrap(),
-        };
+        let result = frame_result(&s);
         let mask = region_mask(&result.gbuffer, scene.region("dark-room").unwrap());
         (
             masked_mean(&result.indirect, &mask),
@@ -287,12 +282,7 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
     let reference = path_trace(&ctx, &scene, size, 512);
     let tiles = |spec: TechniqueSpec, frames: u32| {
         let s = render(&ctx, &scene, size, spec, frames);
-        let result = FrameResult {
-            total: s.image().unwrap(),
-            direct: s.direct().unwrap(),
-            indirect: s.indirect().unwrap(),
-            gbuffer: s.gbuffer().unwrap(),
-        };
+        let result = frame_result(&s);
         let mask = region_mask(&result.gbuffer, scene.region("around-cylinders").unwrap());
         let mut ratios = block_ratios(
             &result.indirect,

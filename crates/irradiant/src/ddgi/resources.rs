@@ -181,21 +181,14 @@ impl DdgiResources {
             atlas_layout.size(v.distance_texels),
             wgpu::TextureFormat::Rg32Float,
         );
-        let sampler = |label, filter| {
-            device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some(label),
-                mag_filter: filter,
-                min_filter: filter,
-                ..Default::default()
-            })
-        };
+        let (bilinear, gather) = atlas::atlas_samplers(device, "ddgi");
         Ok(Self {
             irradiance_view: irradiance_texture.create_view(&Default::default()),
             distance_view: distance_texture.create_view(&Default::default()),
             irradiance_texture,
             distance_texture,
-            bilinear: sampler("ddgi/atlas_bilinear", wgpu::FilterMode::Linear),
-            gather: sampler("ddgi/atlas_gather", wgpu::FilterMode::Nearest),
+            bilinear,
+            gather,
             ray_set: ray_set_buffer,
             volume: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ddgi/volume"),

@@ -250,14 +250,7 @@ impl LightfieldResources {
                 mapped_at_creation: false,
             })
         };
-        let sampler = |label, filter| {
-            device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some(label),
-                mag_filter: filter,
-                min_filter: filter,
-                ..Default::default()
-            })
-        };
+        let (bilinear, gather) = crate::probes::atlas::atlas_samplers(device, "lightfield");
         let filter_pass = |label| uniform(label, size_of::<GpuLightfieldFilterPass>() as u64);
         Ok(Self {
             params: uniform("lightfield/params", size_of::<GpuLightfieldParams>() as u64),
@@ -301,8 +294,8 @@ impl LightfieldResources {
                 wgpu::TextureFormat::Rg32Float,
             ),
             volume: uniform("lightfield/volume", size_of::<GpuDdgiVolume>() as u64),
-            bilinear: sampler("lightfield/atlas_bilinear", wgpu::FilterMode::Linear),
-            gather: sampler("lightfield/atlas_gather", wgpu::FilterMode::Nearest),
+            bilinear,
+            gather,
             lambert: frame("lightfield/lambert"),
             glossy: frame("lightfield/glossy"),
             filter_scratch: frame("lightfield/filter_scratch"),

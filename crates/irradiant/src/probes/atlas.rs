@@ -82,6 +82,23 @@ pub fn copy_atlas_to_texture(
     );
 }
 
+/// The two samplers DDGI's query reads the atlases with: bilinear for irradiance, nearest for
+/// the distance moments' gathers. Labelled `<technique>/atlas_bilinear` and `…/atlas_gather`.
+pub fn atlas_samplers(device: &wgpu::Device, technique: &str) -> (wgpu::Sampler, wgpu::Sampler) {
+    let sampler = |name: &str, filter| {
+        device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some(&format!("{technique}/{name}")),
+            mag_filter: filter,
+            min_filter: filter,
+            ..Default::default()
+        })
+    };
+    (
+        sampler("atlas_bilinear", wgpu::FilterMode::Linear),
+        sampler("atlas_gather", wgpu::FilterMode::Nearest),
+    )
+}
+
 /// A texture for an atlas of `size` texels that buffers are copied into and queries sample.
 pub fn atlas_texture(
     device: &wgpu::Device,

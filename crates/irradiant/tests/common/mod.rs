@@ -103,6 +103,11 @@ pub fn render_frames(
     for _ in 0..frames {
         session.render().unwrap();
     }
+    frame_result(&session)
+}
+
+/// The last frame's images and G-buffer.
+pub fn frame_result(session: &Session) -> FrameResult {
     FrameResult {
         total: session.image().unwrap(),
         direct: session.direct().unwrap(),
