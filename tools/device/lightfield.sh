@@ -2,7 +2,7 @@
 # Runs on the lent NVIDIA machine: light-field probes measured (issue 11). The rows of the
 # paper's Table 1 we can reproduce at 1920×1080 — the Cornell box with 2×2×2 probes at 1024²,
 # Sponza with 8×2×4 probes at 512² and 1024² — each with the fast path (prefiltered
-# Lambertian + a filtered glossy ray; also with a glossy ray on every specular surface), the Lambertian term alone (half and full resolution) and the traced algorithm; the
+# Lambertian + a filtered glossy ray; also with a glossy ray on every specular surface), the Lambertian term alone (irradiance a 4×4 block, a 2×2 block, every pixel) and the traced algorithm; the
 # glossy-floor Sponza; bake time and memory (counters bake_ms, bake_bytes) and the agreement of
 # light-field rays with the BVH (counters agreement_*). Then docs/reports/ regenerated
 # (tools/reports.sh) unless REPORTS=0. Writes results.tgz and reports.tar into $OUT.
@@ -13,7 +13,7 @@ res=$(mktemp -d)
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$res/nvidia-smi.txt" 2>&1 || true
 variants() {
     local base=$1
-    echo "lightfield{$base},lightfield{$base,shade.glossy_max_roughness=1.0},lightfield{$base,shade.glossy=false},lightfield{$base,shade.glossy=false,shade.half_irradiance=false},lightfield-traced{$base}"
+    echo "lightfield{$base},lightfield{$base,shade.glossy_max_roughness=1.0},lightfield{$base,shade.glossy=false},lightfield{$base,shade.glossy=false,shade.irradiance_block=2},lightfield{$base,shade.glossy=false,shade.irradiance_block=1},lightfield-traced{$base}"
 }
 if [ "${BENCH:-1}" = 1 ]; then
     ../irradiant bench --scene cornell --size 1920x1080 --iterations 30 --lightfield-agreement 1000000 \

@@ -257,7 +257,7 @@ pub fn all_layouts() -> Vec<Expected> {
             lambert_hysteresis,
             glossy_hysteresis,
             history_valid,
-            half_irradiance,
+            irradiance_block,
             glossy_max_roughness,
             _pad0,
             _pad1,

@@ -42,7 +42,7 @@ struct GpuLightfieldParams {
     lambert_hysteresis: f32,
     glossy_hysteresis: f32,
     history_valid: u32,
-    half_irradiance: u32,
+    irradiance_block: u32,
     glossy_max_roughness: f32,
     _pad0: u32,
     _pad1: u32,

@@ -181,9 +181,9 @@ fn bake_dispatches(grid: &ProbeGrid, s: &LightfieldSettings) -> Vec<(&'static st
     all
 }
 
-/// A thread a texel of the half-resolution irradiance.
-fn half_image((width, height): (u32, u32)) -> Workgroups {
-    Workgroups::for_image(width.div_ceil(2), height.div_ceil(2), IMAGE_TILE)
+/// A thread a block of the fast path's irradiance.
+fn block_image((width, height): (u32, u32), block: u32) -> Workgroups {
+    Workgroups::for_image(width.div_ceil(block), height.div_ceil(block), IMAGE_TILE)
 }
 
 /// The frame's dispatches, each with its label, in order.
@@ -205,8 +205,8 @@ fn frame_dispatches(s: &LightfieldSettings, size: (u32, u32)) -> Vec<(&'static s
         }
         ShadingAlgorithm::Prefiltered => {}
     }
-    if s.shade.algorithm == ShadingAlgorithm::Prefiltered && s.shade.half_irradiance {
-        all.push((IRRADIANCE, half_image(size)));
+    if s.shade.algorithm == ShadingAlgorithm::Prefiltered && s.shade.irradiance_block > 1 {
+        all.push((IRRADIANCE, block_image(size, s.shade.irradiance_block)));
     }
     all.push((RESOLVE, image));
     all
@@ -297,7 +297,7 @@ const UNFILTERABLE: &[&str] = &["distance_texture"];
 
 impl Pipelines {
     fn new(cx: &TechniqueContext, settings: &LightfieldSettings) -> Result<Self, RenderError> {
-        let exact = !settings.shade.half_irradiance as u32;
+        let exact = (settings.shade.irradiance_block == 1) as u32;
         let compile = |label: &'static str, source: &str, tracing: bool, query: bool| {
             let mut desc =
                 PassDesc::new(label, source).constants([("EXACT_IRRADIANCE", format!("{exact}u"))]);
@@ -449,8 +449,8 @@ impl Lightfield {
                 ResourceTable::new()
                     .texture("lambert_light", lambert)
                     .texture("glossy_light", glossy)
-                    .texture("half_irradiance", &r.half_irradiance.view)
-                    .texture("half_normal", &r.half_normal.view),
+                    .texture("coarse_irradiance", &r.coarse_irradiance.view)
+                    .texture("coarse_normal", &r.coarse_normal.view),
             )
             .map(|p| (p, image))
         };
@@ -459,10 +459,10 @@ impl Lightfield {
             bind(
                 &pipelines.irradiance,
                 ResourceTable::new()
-                    .texture("target_half_irradiance", &r.half_irradiance.view)
-                    .texture("target_half_normal", &r.half_normal.view),
+                    .texture("target_coarse_irradiance", &r.coarse_irradiance.view)
+                    .texture("target_coarse_normal", &r.coarse_normal.view),
             )?,
-            half_image(size),
+            block_image(size, settings.shade.irradiance_block.max(1)),
         );
         let mut lightfield = Self {
             name,
@@ -536,7 +536,7 @@ impl Lightfield {
             lambert_hysteresis: if valid { s.lambert_hysteresis } else { 0.0 },
             glossy_hysteresis: if valid { s.glossy_hysteresis } else { 0.0 },
             history_valid: valid as u32,
-            half_irradiance: s.half_irradiance as u32,
+            irradiance_block: s.irradiance_block,
             glossy_max_roughness: s.glossy_max_roughness,
             _pad0: 0,
             _pad1: 0,
@@ -821,7 +821,7 @@ impl Lightfield {
                 pass.dispatch(encoder, profiler.as_deref_mut(), *groups);
             }
         }
-        if s.algorithm == ShadingAlgorithm::Prefiltered && s.half_irradiance {
+        if s.algorithm == ShadingAlgorithm::Prefiltered && s.irradiance_block > 1 {
             let (pass, groups) = &self.irradiance;
             pass.dispatch(encoder, profiler.as_deref_mut(), *groups);
         }
@@ -899,13 +899,13 @@ impl Technique for Lightfield {
             ShadingAlgorithm::Naive => &LIGHTFIELD_NAIVE,
         };
         let settings = kind.settings(spec, &mut Vec::new())?;
-        // The bake and the passes' shapes (algorithm, glossy, half-resolution irradiance) need
+        // The bake and the passes' shapes (algorithm, glossy, irradiance blocks) need
         // a rebuild; the shading
         // numbers change live.
         let same_shape = settings.bake == self.settings.bake
             && settings.shade.algorithm == self.settings.shade.algorithm
             && settings.shade.glossy == self.settings.shade.glossy
-            && settings.shade.half_irradiance == self.settings.shade.half_irradiance;
+            && settings.shade.irradiance_block == self.settings.shade.irradiance_block;
         if !same_shape {
             return Ok(false);
         }

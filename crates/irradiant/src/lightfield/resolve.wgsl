@@ -10,18 +10,19 @@
 @group(2) @binding(46) var lambert_light: texture_2d<f32>;
 @group(2) @binding(47) var glossy_light: texture_2d<f32>;
 @group(2) @binding(48) var indirect: texture_storage_2d<rgba32float, read_write>;
-// lightfield/irradiance's half-resolution queries (when half_irradiance is on).
-@group(2) @binding(58) var half_irradiance: texture_2d<f32>;
-@group(2) @binding(59) var half_normal: texture_2d<f32>;
+// lightfield/irradiance's block queries (irradiance_block > 1).
+@group(2) @binding(58) var coarse_irradiance: texture_2d<f32>;
+@group(2) @binding(59) var coarse_normal: texture_2d<f32>;
 
-// The half-resolution irradiance at this pixel: the four nearest queries, bilinearly weighted
+// The block irradiance at this pixel: the four nearest queries, bilinearly weighted
 // and each by how well its surface matches this one (view depth within 5 %, normals alike);
 // where none matches (silhouettes, thin objects), the one that matches best. No exact query
 // here: its registers would slow the whole pass (EXACT_IRRADIANCE, a shader constant, keeps
 // it out when the irradiance is upsampled).
 fn upsampled_irradiance(pixel: vec2<u32>, s: Surface, depth: f32) -> vec3<f32> {
-    let last = vec2<i32>((vec2<u32>(frame_size()) + 1u) / 2u) - 1;
-    let c = (vec2<f32>(pixel) + 0.5) * 0.5 - 0.5;
+    let block = lightfield.irradiance_block;
+    let last = vec2<i32>((vec2<u32>(frame_size()) + block - 1u) / block) - 1;
+    let c = (vec2<f32>(pixel) + 0.5) / f32(block) - 0.5;
     let base = vec2<i32>(floor(c));
     let f = c - floor(c);
     var sum = vec3<f32>(0.0);
@@ -30,13 +31,13 @@ fn upsampled_irradiance(pixel: vec2<u32>, s: Surface, depth: f32) -> vec3<f32> {
     for (var k = 0u; k < 4u; k++) {
         let offset = vec2<u32>(k & 1u, k >> 1u);
         let t = clamp(base + vec2<i32>(offset), vec2<i32>(0), last);
-        let v = textureLoad(half_irradiance, t, 0);
+        let v = textureLoad(coarse_irradiance, t, 0);
         if v.w < 0.0 {
             continue;
         }
         let bilinear = mix(1.0 - f, f, vec2<f32>(offset));
         let depth_agreement = max(1.0 - abs(v.w - depth) / (0.05 * depth), 0.0);
-        let normal_agreement = pow(max(dot(textureLoad(half_normal, t, 0).xyz, s.normal), 0.0), 8.0);
+        let normal_agreement = pow(max(dot(textureLoad(coarse_normal, t, 0).xyz, s.normal), 0.0), 8.0);
         let agreement = (depth_agreement + 1e-3) * (normal_agreement + 1e-3);
         if agreement > best.w {
             best = vec4<f32>(v.rgb, agreement);

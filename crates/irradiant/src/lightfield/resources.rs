@@ -93,6 +93,11 @@ pub fn plan(grid: &ProbeGrid, settings: &LightfieldSettings, size: (u32, u32)) -
     for label in FRAME_TEXTURES {
         all.push(Allocation::texture(label, size, 8, 1, FRAME_SETTING));
     }
+    // At the finest block the settings allow (2: the exact query needs none).
+    let coarse = (size.0.div_ceil(2), size.1.div_ceil(2));
+    for label in ["lightfield/coarse_irradiance", "lightfield/coarse_normal"] {
+        all.push(Allocation::texture(label, coarse, 8, 1, FRAME_SETTING));
+    }
     for label in [
         "lightfield/geometry_history_0",
         "lightfield/geometry_history_1",
@@ -195,9 +200,10 @@ pub struct LightfieldResources {
     pub lambert_history: [Texture; 2],
     pub glossy_history: [Texture; 2],
     pub geometry_history: [Texture; 2],
-    /// The half-resolution irradiance (rgb, view depth) and the normals it was queried at.
-    pub half_irradiance: Texture,
-    pub half_normal: Texture,
+    /// The block irradiance (rgb, view depth) and the normals it was queried at, sized for the
+    /// finest block (2); coarser blocks use its top-left part.
+    pub coarse_irradiance: Texture,
+    pub coarse_normal: Texture,
     /// The filter's four passes: Lambertian horizontal, vertical; glossy horizontal, vertical.
     pub filter_passes: [wgpu::Buffer; 4],
 }
@@ -321,13 +327,13 @@ impl LightfieldResources {
                     wgpu::TextureFormat::Rgba32Float,
                 ),
             ],
-            half_irradiance: image(
-                "lightfield/half_irradiance",
+            coarse_irradiance: image(
+                "lightfield/coarse_irradiance",
                 (size.0.div_ceil(2), size.1.div_ceil(2)),
                 wgpu::TextureFormat::Rgba16Float,
             ),
-            half_normal: image(
-                "lightfield/half_normal",
+            coarse_normal: image(
+                "lightfield/coarse_normal",
                 (size.0.div_ceil(2), size.1.div_ceil(2)),
                 wgpu::TextureFormat::Rgba16Float,
             ),

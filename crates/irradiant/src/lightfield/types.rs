@@ -39,8 +39,8 @@ pub struct GpuLightfieldParams {
     pub lambert_hysteresis: f32,
     pub glossy_hysteresis: f32,
     pub history_valid: u32,
-    /// 1: the fast path's irradiance is queried at half resolution and upsampled.
-    pub half_irradiance: u32,
+    /// Pixels a side of the fast path's irradiance blocks (1: every pixel queried).
+    pub irradiance_block: u32,
     /// Rougher surfaces trace no glossy ray (their specular light comes from the irradiance).
     pub glossy_max_roughness: f32,
     pub _pad0: u32,
