@@ -482,3 +482,63 @@ fn bad_settings_are_refused_naming_the_key() {
         "{message}"
     );
 }
+
+/// Dynamic objects receive indirect light from the baked probes: a block that slides across
+/// the Cornell box after the bake is lit at its new place about as a bake made with it there
+/// lights it (the bake itself never sees it move).
+#[test]
+fn a_moving_object_is_lit_by_the_baked_probes() {
+    use glam::Vec3;
+    use irradiant_scene::{Animation, AnimationTarget, Tracks};
+    let Some(ctx) = gpu() else { return };
+    let size = (48, 48);
+    let there = Vec3::new(0.5, 0.6, 0.2);
+    let mut moving = cornell_with_block(Vec3::new(-0.5, 0.6, 0.2));
+    moving.animations.push(Animation {
+        target: AnimationTarget::Instance("block".into()),
+        tracks: Tracks {
+            translation: vec![(0.0, Vec3::ZERO), (1.0, Vec3::new(1.0, 0.0, 0.0))],
+            ..Default::default()
+        },
+    });
+    // Mean indirect light over the pixels that see the block at `there`.
+    let on_block = |s: &Session| {
+        let result = frame_result(s);
+        let (lo, hi) = (there - 0.26, there + 0.26);
+        let mask: Vec<bool> = result
+            .gbuffer
+            .iter()
+            .map(|g| {
+                let p = Vec3::from(g.position);
+                g.depth >= 0.0 && p.cmpge(lo).all() && p.cmple(hi).all()
+            })
+            .collect();
+        assert!(
+            mask.iter().filter(|&&m| m).count() > 20,
+            "the block is in view"
+        );
+        masked_mean(&result.indirect, &mask)
+    };
+    let mut s = session(&ctx, &moving, size, spec("lightfield", &small()));
+    s.render().unwrap();
+    s.seek(1.0);
+    for _ in 0..4 {
+        s.render().unwrap();
+    }
+    let moved = on_block(&s);
+    let placed = cornell_with_block(there);
+    let baked = on_block(&render(
+        &ctx,
+        &placed,
+        size,
+        spec("lightfield", &small()),
+        4,
+    ));
+    eprintln!(
+        "indirect light on the moved block {moved:.5}, baked with the block there {baked:.5}"
+    );
+    assert!(
+        moved > 0.5 * baked && moved < 2.0 * baked,
+        "{moved} against {baked}"
+    );
+}
