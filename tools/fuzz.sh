@@ -12,7 +12,7 @@ seconds=${1:-1800}
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(obj gltf manifest texture reference_cache settings)
+    targets=(obj gltf manifest texture reference_cache bake_cache settings)
 fi
 mkdir -p logs
 # No sanitizer: the code is safe Rust, so what fuzzing can find is a panic, a hang or a

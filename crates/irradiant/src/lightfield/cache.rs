@@ -7,7 +7,7 @@
 //! holds the five maps (each with its sizes), then the probe states and offsets.
 
 use std::hash::{Hash, Hasher};
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use irradiant_gpu::{GpuContext, wgpu};
@@ -46,55 +46,96 @@ fn layout(texture: &wgpu::Texture, texel_bytes: u32) -> [u32; 4] {
     [s.width, s.height, s.depth_or_array_layers, texel_bytes]
 }
 
-/// Uploads the entry at `file` into `maps` if it is there and matches; false otherwise.
+/// What an entry must hold after its header: each map's [width, height, layers, bytes a
+/// texel] with its texels, then each buffer's bytes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EntryLayout {
+    pub maps: Vec<[u32; 4]>,
+    pub buffers: Vec<u64>,
+}
+
+impl EntryLayout {
+    fn of(maps: &ProbeMaps) -> Self {
+        Self {
+            maps: maps
+                .in_cache_order()
+                .iter()
+                .map(|(texture, texel)| layout(texture, *texel))
+                .collect(),
+            buffers: vec![maps.states.size(), maps.offsets.size()],
+        }
+    }
+
+    fn map_bytes([w, h, layers, texel]: [u32; 4]) -> u64 {
+        w as u64 * h as u64 * layers as u64 * texel as u64
+    }
+
+    /// The whole entry's length in bytes.
+    pub fn entry_bytes(&self) -> u64 {
+        16 + self
+            .maps
+            .iter()
+            .map(|&m| 16 + Self::map_bytes(m))
+            .sum::<u64>()
+            + self.buffers.iter().sum::<u64>()
+    }
+}
+
+/// The chunks of an entry — each map's texels, then each buffer's bytes — when `bytes` is the
+/// entry for `key` of exactly `layout`; None for anything else (truncated, foreign, of other
+/// sizes, with bytes left over). Fuzzed by `fuzz/fuzz_targets/bake_cache.rs`.
+pub fn parse_entry<'a>(bytes: &'a [u8], key: u64, layout: &EntryLayout) -> Option<Vec<&'a [u8]>> {
+    if bytes.len() as u64 != layout.entry_bytes()
+        || &bytes[..8] != MAGIC
+        || bytes[8..16] != key.to_le_bytes()
+    {
+        return None;
+    }
+    let mut rest = &bytes[16..];
+    let mut chunks = Vec::new();
+    for &map in &layout.maps {
+        let (stored, after) = rest.split_at(16);
+        let stored: [u8; 16] = stored.try_into().ok()?;
+        if bytemuck::cast::<[u8; 16], [u32; 4]>(stored).map(u32::from_le) != map {
+            return None;
+        }
+        let (texels, after) = after.split_at(EntryLayout::map_bytes(map) as usize);
+        chunks.push(texels);
+        rest = after;
+    }
+    for &size in &layout.buffers {
+        let (data, after) = rest.split_at(size as usize);
+        chunks.push(data);
+        rest = after;
+    }
+    rest.is_empty().then_some(chunks)
+}
+
+/// Uploads the entry at `file` into `maps` if it is there and matches; false otherwise. A file
+/// of any other length is passed over before it is read.
 pub fn load(
     ctx: &GpuContext,
     file: &Path,
     key: u64,
     maps: &ProbeMaps,
 ) -> Result<bool, RenderError> {
-    let Ok(mut reader) = std::fs::File::open(file).map(std::io::BufReader::new) else {
+    let layout = EntryLayout::of(maps);
+    if std::fs::metadata(file).map(|m| m.len()).ok() != Some(layout.entry_bytes()) {
+        return Ok(false);
+    }
+    let Ok(bytes) = std::fs::read(file) else {
         return Ok(false);
     };
-    let mut header = [0u8; 16];
-    if reader.read_exact(&mut header).is_err()
-        || &header[..8] != MAGIC
-        || header[8..] != key.to_le_bytes()
-    {
+    let Some(chunks) = parse_entry(&bytes, key, &layout) else {
         return Ok(false);
-    }
-    // Read everything before uploading anything: a short entry leaves the textures alone.
-    let mut contents = Vec::new();
-    for (texture, texel_bytes) in maps.in_cache_order() {
-        let expected = layout(texture, texel_bytes);
-        let mut stored = [0u8; 16];
-        if reader.read_exact(&mut stored).is_err()
-            || bytemuck::cast::<[u8; 16], [u32; 4]>(stored).map(u32::from_le) != expected
-        {
-            return Ok(false);
-        }
-        let [w, h, layers, texel] = expected;
-        let mut data = vec![0u8; w as usize * h as usize * layers as usize * texel as usize];
-        if reader.read_exact(&mut data).is_err() {
-            return Ok(false);
-        }
-        contents.push((texture, expected, data));
-    }
-    let mut buffers = Vec::new();
-    for buffer in [&maps.states, &maps.offsets] {
-        let mut data = vec![0u8; buffer.size() as usize];
-        if reader.read_exact(&mut data).is_err() {
-            return Ok(false);
-        }
-        buffers.push((buffer, data));
-    }
-    for (buffer, data) in buffers {
-        ctx.queue.write_buffer(buffer, 0, &data);
-    }
-    for (texture, [w, h, layers, texel], data) in contents {
+    };
+    let textures = maps.in_cache_order();
+    for ((texture, _), (data, &[w, h, layers, texel])) in
+        textures.iter().zip(chunks.iter().zip(&layout.maps))
+    {
         ctx.queue.write_texture(
             texture.as_image_copy(),
-            &data,
+            data,
             wgpu::TexelCopyBufferLayout {
                 offset: 0,
                 bytes_per_row: Some(w * texel),
@@ -106,6 +147,12 @@ pub fn load(
                 depth_or_array_layers: layers,
             },
         );
+    }
+    for (buffer, data) in [&maps.states, &maps.offsets]
+        .into_iter()
+        .zip(&chunks[layout.maps.len()..])
+    {
+        ctx.queue.write_buffer(buffer, 0, data);
     }
     Ok(true)
 }

@@ -22,13 +22,13 @@
 //! `lightfield-naive` (Monte Carlo through the light field). See docs/lightfield.md.
 
 pub mod agreement;
-mod cache;
+pub mod cache;
 pub mod constants;
 mod resources;
 mod settings;
 pub mod types;
 
-pub use cache::bake_key;
+pub use cache::{EntryLayout, bake_key, parse_entry};
 pub use resources::plan as plan_resources;
 pub use settings::{
     LightfieldBakeSettings, LightfieldSettings, LightfieldShadeSettings, ShadingAlgorithm,
