@@ -203,7 +203,12 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
                             if frame == 0 {
                                 slot.push(encoded)
                             } else {
-                                slot[index] = encoded.lerp(slot[index], hysteresis)
+                                // Blended in linear light, stored encoded.
+                                let before = slot[index].max(Vec3::ZERO).powf(gamma);
+                                slot[index] = value
+                                    .lerp(before, hysteresis)
+                                    .max(Vec3::ZERO)
+                                    .powf(1.0 / gamma)
                             }
                         } else {
                             let slot = &mut expected_distance[probe];
