@@ -7,24 +7,6 @@ use common::*;
 use irradiant::ddgi::{Ddgi, DdgiSettings};
 use irradiant::frame::{Frame, FrameNeeds, FrameSettings};
 use irradiant::{GpuScene, TechniqueSpec};
-use irradiant_gpu::{read_texture_level, wgpu};
-
-fn read_level(ctx: &irradiant::GpuContext, frame: &Frame, name: &str, level: u32) -> Vec<[f32; 4]> {
-    let texture = frame.resources.texture(name);
-    match texture.format() {
-        wgpu::TextureFormat::Rgba32Float => {
-            bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 16).unwrap())
-        }
-        _ => {
-            let halves: Vec<half::f16> =
-                bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 8).unwrap());
-            halves
-                .chunks_exact(4)
-                .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
-                .collect()
-        }
-    }
-}
 
 /// Each level of the pyramid takes the voted normal and depth (Soler et al. eq. 5) and the mean
 /// radiance and albedo of the 2×2 texels under it that see a surface.

@@ -6,11 +6,9 @@ mod common;
 
 use common::*;
 use glam::{Vec2, Vec3};
-use irradiant::frame::Frame;
 use irradiant::gpu_types::GpuCamera;
 use irradiant::ssil::{HybridSettings, Ssil, SsilDdgi, SsilSettings, StartResolution};
 use irradiant::{Session, TechniqueSpec};
-use irradiant_gpu::read_texture_level;
 
 fn ssil_spec(settings: &SsilSettings) -> TechniqueSpec {
     TechniqueSpec::with_settings("ssil", settings)
@@ -30,19 +28,6 @@ fn rng_seed(a: u32, b: u32, c: u32) -> u32 {
 fn rand(state: &mut u32) -> f32 {
     *state = pcg_hash(*state);
     (*state >> 8) as f32 * (1.0 / 16_777_216.0)
-}
-
-fn read_level(ctx: &irradiant::GpuContext, frame: &Frame, name: &str, level: u32) -> Vec<[f32; 4]> {
-    let texture = frame.resources.texture(name);
-    if texture.format() == irradiant_gpu::wgpu::TextureFormat::Rgba32Float {
-        return bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 16).unwrap());
-    }
-    let halves: Vec<half::f16> =
-        bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 8).unwrap());
-    halves
-        .chunks_exact(4)
-        .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
-        .collect()
 }
 
 /// One level's gather (no visibility, diffuse) against the same sum on the CPU, over the

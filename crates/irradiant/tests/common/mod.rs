@@ -245,3 +245,23 @@ pub fn cornell_with_block(at: glam::Vec3) -> Scene {
     });
     scene
 }
+
+/// One mip level of a frame texture (rgba32float or rgba16float) as rgba f32 texels.
+pub fn read_level(
+    ctx: &GpuContext,
+    frame: &irradiant::frame::Frame,
+    name: &str,
+    level: u32,
+) -> Vec<[f32; 4]> {
+    use irradiant_gpu::read_texture_level;
+    let texture = frame.resources.texture(name);
+    if texture.format() == irradiant_gpu::wgpu::TextureFormat::Rgba32Float {
+        return bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 16).unwrap());
+    }
+    let halves: Vec<half::f16> =
+        bytemuck::pod_collect_to_vec(&read_texture_level(ctx, texture, level, 8).unwrap());
+    halves
+        .chunks_exact(4)
+        .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
+        .collect()
+}
