@@ -226,6 +226,16 @@ pub trait Technique: Any {
     fn as_any_mut(&mut self) -> &mut dyn Any;
 }
 
+/// "label: n of m values are not finite" when some are (for [`Technique::check_state`]).
+pub fn non_finite(label: &str, values: impl Iterator<Item = f32>) -> Option<String> {
+    let (mut bad, mut all) = (0usize, 0usize);
+    for v in values {
+        all += 1;
+        bad += !v.is_finite() as usize;
+    }
+    (bad > 0).then(|| format!("{label}: {bad} of {all} values are not finite"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -245,14 +255,4 @@ mod tests {
         let e = find("magic").err().unwrap().to_string();
         assert!(e.contains("'magic'") && e.contains("ddgi"), "{e}");
     }
-}
-
-/// "label: n of m values are not finite" when some are (for [`Technique::check_state`]).
-pub fn non_finite(label: &str, values: impl Iterator<Item = f32>) -> Option<String> {
-    let (mut bad, mut all) = (0usize, 0usize);
-    for v in values {
-        all += 1;
-        bad += !v.is_finite() as usize;
-    }
-    (bad > 0).then(|| format!("{label}: {bad} of {all} values are not finite"))
 }
