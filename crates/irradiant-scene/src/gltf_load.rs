@@ -144,6 +144,15 @@ fn convert_mesh(
             warnings.push(format!("{}: mesh '{name}' has a primitive drawn as {:?}; only triangles are traced, it is skipped", path.display(), primitive.mode()));
             continue;
         }
+        // The reader assumes each accessor has the type the spec requires (and asserts it in
+        // debug builds; found by the gltf fuzz target): check before reading.
+        if let Err(problem) = accessor_types_ok(&primitive) {
+            warnings.push(format!(
+                "{}: mesh '{name}' has a primitive whose {problem}: it is skipped",
+                path.display()
+            ));
+            continue;
+        }
         let reader = primitive.reader(|b| Some(&buffers[b.index()]));
         let Some(positions) = reader.read_positions() else {
             continue;
@@ -258,4 +267,51 @@ fn convert_image(
         height: image.height,
         rgba8,
     }
+}
+
+/// Whether a primitive's accessors have the types glTF 2.0 requires of them: POSITION and
+/// NORMAL float VEC3, TEXCOORD_0 VEC2 of floats or normalized bytes or shorts, indices scalar
+/// unsigned integers. A description of the first that does not.
+fn accessor_types_ok(primitive: &gltf::Primitive) -> std::result::Result<(), String> {
+    use gltf::accessor::{DataType, Dimensions};
+    let check = |what: &str,
+                 accessor: Option<gltf::Accessor>,
+                 dimensions: Dimensions,
+                 types: &[DataType]|
+     -> std::result::Result<(), String> {
+        match accessor {
+            Some(a) if a.dimensions() != dimensions || !types.contains(&a.data_type()) => {
+                Err(format!(
+                    "{what} accessor is {:?} of {:?}, where glTF requires {dimensions:?} of {types:?}",
+                    a.dimensions(),
+                    a.data_type()
+                ))
+            }
+            _ => Ok(()),
+        }
+    };
+    check(
+        "POSITION",
+        primitive.get(&gltf::Semantic::Positions),
+        Dimensions::Vec3,
+        &[DataType::F32],
+    )?;
+    check(
+        "NORMAL",
+        primitive.get(&gltf::Semantic::Normals),
+        Dimensions::Vec3,
+        &[DataType::F32],
+    )?;
+    check(
+        "TEXCOORD_0",
+        primitive.get(&gltf::Semantic::TexCoords(0)),
+        Dimensions::Vec2,
+        &[DataType::F32, DataType::U8, DataType::U16],
+    )?;
+    check(
+        "indices",
+        primitive.indices(),
+        Dimensions::Scalar,
+        &[DataType::U8, DataType::U16, DataType::U32],
+    )
 }
