@@ -56,24 +56,14 @@ impl Allocation {
         mip_levels: u32,
         setting: impl Into<String>,
     ) -> Self {
-        let mut bytes = 0;
-        for level in 0..mip_levels.max(1) {
-            bytes += (width >> level).max(1) as u64 * (height >> level).max(1) as u64 * texel_bytes;
-        }
-        Self {
-            label: label.into(),
-            bytes,
-            kind: AllocationKind::Texture {
-                width,
-                height,
-                layers: 1,
-            },
-            setting: setting.into(),
-        }
+        let mut texture = Self::texture_array(label, (width, height), 1, texel_bytes, setting);
+        texture.bytes = (0..mip_levels.max(1))
+            .map(|level| {
+                (width >> level).max(1) as u64 * (height >> level).max(1) as u64 * texel_bytes
+            })
+            .sum();
+        texture
     }
-}
-
-impl Allocation {
     /// A 2D texture array of `layers` layers of one level, `texel_bytes` a texel.
     pub fn texture_array(
         label: impl Into<String>,
