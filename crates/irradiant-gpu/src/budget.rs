@@ -64,6 +64,7 @@ impl Allocation {
             .sum();
         texture
     }
+
     /// A 2D texture array of `layers` layers of one level, `texel_bytes` a texel.
     pub fn texture_array(
         label: impl Into<String>,
