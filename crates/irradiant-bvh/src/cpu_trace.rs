@@ -100,10 +100,16 @@ pub fn traverse_packed(
     best
 }
 
+/// Widens each box's exit distance by the rounding error its computation can carry (Ize 2013,
+/// "Robust BVH Ray Traversal": 1 + 2γ₃), so that a ray through a tiny box — a dense cluster of
+/// small triangles — is never culled by rounding while it hits the triangle inside.
+pub const SLAB_FAR_SCALE: f32 =
+    1.0 + 2.0 * (3.0 * f32::EPSILON / 2.0) / (1.0 - 3.0 * f32::EPSILON / 2.0);
+
 fn slab(origin: Vec3, inv_dir: Vec3, lo: Vec3, hi: Vec3, t_max: f32) -> bool {
     let t0 = (lo - origin) * inv_dir;
     let t1 = (hi - origin) * inv_dir;
     let near = t0.min(t1).max_element().max(0.0);
-    let far = t0.max(t1).min_element().min(t_max);
-    near <= far
+    let far = t0.max(t1).min_element() * SLAB_FAR_SCALE;
+    near <= far.min(t_max)
 }

@@ -18,8 +18,11 @@ use glam::{Mat4, Vec3, Vec3A};
 use obvhs::{BvhBuildParams, aabb::Aabb, bvh2::Bvh2, triangle::Triangle};
 
 mod cpu_trace;
+mod depth;
 mod wide;
-pub use cpu_trace::{CpuHit, brute_force_closest_hit, intersect_triangle, traverse_packed};
+pub use cpu_trace::{
+    CpuHit, SLAB_FAR_SCALE, brute_force_closest_hit, intersect_triangle, traverse_packed,
+};
 pub use wide::{GpuWideBvhNode, WideBlas, build_wide_blas};
 
 /// One inner node of a BVH2, holding the bounds of its two children.
@@ -94,11 +97,12 @@ fn obvhs_triangles(triangles: &[[Vec3; 3]]) -> Vec<Triangle> {
 }
 
 pub fn build_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> Blas {
-    let bvh = obvhs::bvh2::builder::build_bvh2_from_tris(
+    let mut bvh = obvhs::bvh2::builder::build_bvh2_from_tris(
         &obvhs_triangles(triangles),
         quality.params(),
         &mut Duration::default(),
     );
+    depth::bound_height(&mut bvh, MAX_BLAS_DEPTH);
     let (nodes, triangle_order, depth) = pack(&bvh);
     let root = bvh.nodes[0].aabb;
     Blas {
@@ -109,6 +113,21 @@ pub fn build_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> Blas {
     }
 }
 
+/// Deepest bottom-level tree the builders make, in inner levels. SAH trees of real meshes stay
+/// far below it (Sponza's and Sibenik's are at most 29 deep); a degenerate mesh (thousands of
+/// triangles on one point) would otherwise make trees hundreds deep, and every ray's stack as
+/// large. Traversal stacks are sized to the deepest tree of the scene, so never more than this.
+pub const MAX_BLAS_DEPTH: u32 = 40;
+
+/// The least depth bound [`build_tlas`] accepts for `instances` instances: room for a balanced
+/// tree with a margin for SAH's imbalance, so that bounding rarely changes the tree.
+pub fn tlas_depth_bound(instances: usize) -> u32 {
+    let balanced = (instances.max(2) as u32)
+        .next_power_of_two()
+        .trailing_zeros();
+    (2 * balanced + 4).min(instances as u32 + 2)
+}
+
 /// The top-level BVH over instance boxes. Leaf `first` indexes the returned `instance_order`.
 #[derive(Clone, Debug)]
 pub struct Tlas {
@@ -117,7 +136,9 @@ pub struct Tlas {
     pub depth: u32,
 }
 
-pub fn build_tlas(instance_bounds: &[(Vec3, Vec3)]) -> Tlas {
+/// The top-level BVH over instance boxes, no deeper than `max_depth` (at least
+/// [`tlas_depth_bound`] of the instance count).
+pub fn build_tlas(instance_bounds: &[(Vec3, Vec3)], max_depth: u32) -> Tlas {
     let boxes: Vec<Aabb> = instance_bounds
         .iter()
         .map(|(lo, hi)| Aabb::new(Vec3A::from(*lo), Vec3A::from(*hi)))
@@ -125,7 +146,11 @@ pub fn build_tlas(instance_bounds: &[(Vec3, Vec3)]) -> Tlas {
     let mut params = BvhBuildParams::medium_build();
     // One instance a leaf: instances overlap much more than triangles do.
     params.max_prims_per_leaf = 1;
-    let bvh = obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut Duration::default());
+    let mut bvh = obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut Duration::default());
+    depth::bound_height(
+        &mut bvh,
+        max_depth.max(tlas_depth_bound(instance_bounds.len())),
+    );
     let (nodes, instance_order, depth) = pack(&bvh);
     Tlas {
         nodes,

@@ -138,7 +138,7 @@ fn tlas_covers_every_instance() {
     let boxes: Vec<(Vec3, Vec3)> = (0..37)
         .map(|i| (Vec3::splat(i as f32), Vec3::splat(i as f32 + 0.5)))
         .collect();
-    let tlas = build_tlas(&boxes);
+    let tlas = build_tlas(&boxes, tlas_depth_bound(boxes.len()));
     let mut order = tlas.instance_order.clone();
     order.sort();
     assert_eq!(order, (0..37).collect::<Vec<_>>());
@@ -189,4 +189,88 @@ fn wide_tree_leaves_cover_every_triangle_and_contain_it() {
         }
         assert!(blas.depth >= 3 && blas.depth < 20, "depth {}", blas.depth);
     }
+}
+
+/// Triangles shrinking by a tenth towards one corner, each inside the last: SAH peels them off
+/// one a level, so the unbounded tree is as deep as there are triangles.
+fn nested_shrinking_triangles(count: usize) -> Vec<[Vec3; 3]> {
+    (0..count)
+        .map(|k| {
+            let s = 0.9f32.powi(k as i32);
+            [Vec3::ZERO, Vec3::new(s, 0.0, 0.0), Vec3::new(0.0, s, s)]
+        })
+        .collect()
+}
+
+#[test]
+fn degenerate_meshes_are_bounded_in_depth_and_lose_no_hit() {
+    let mut rng = StdRng::seed_from_u64(11);
+    let mut cluster = random_soup(&mut rng, 2000);
+    // A dense cluster of tiny triangles inside an ordinary mesh.
+    for t in cluster.iter_mut().take(1500) {
+        for v in t.iter_mut() {
+            *v = Vec3::splat(1.0) + (*v - Vec3::splat(1.0)) * 1e-6;
+        }
+    }
+    // (name, triangles, whether the unbounded tree is deeper than the bound)
+    for (name, tris, too_deep) in [
+        ("nested", nested_shrinking_triangles(240), true),
+        ("cluster", cluster, false),
+    ] {
+        // Without the bound, the nested mesh's tree reaches past it: the bound does the work.
+        let unbounded = obvhs::bvh2::builder::build_bvh2_from_tris(
+            &obvhs_triangles(&tris),
+            BuildQuality::Balanced.params(),
+            &mut Duration::default(),
+        );
+        let unbounded_depth = depth::tree_height(&unbounded);
+        let blas = build_blas(&tris, BuildQuality::Balanced);
+        let wide = build_wide_blas(&tris, BuildQuality::Balanced);
+        println!(
+            "{name}: unbounded {unbounded_depth}, bounded binary {} wide {}",
+            blas.depth, wide.depth
+        );
+        assert_eq!(
+            unbounded_depth > MAX_BLAS_DEPTH,
+            too_deep,
+            "{name}: {unbounded_depth}"
+        );
+        assert!(blas.depth <= MAX_BLAS_DEPTH && wide.depth <= MAX_BLAS_DEPTH);
+        assert_eq!(
+            wide.leaves().len(),
+            tris.len(),
+            "{name}: a triangle no leaf holds"
+        );
+        for _ in 0..400 {
+            let o = Vec3::new(
+                rng.random_range(-1.0..2.0),
+                rng.random_range(-1.0..2.0),
+                rng.random_range(-1.0..2.0),
+            );
+            let [a, b, c] = tris[rng.random_range(0..tris.len())];
+            let target = (a + b + c) / 3.0;
+            let d = (target - o).normalize();
+            let expected = brute_force_closest_hit(o, d, &tris, f32::INFINITY);
+            let got = traverse_packed(&blas.nodes, &blas.triangle_order, o, d, &tris);
+            // Triangles share a plane here: another one may be hit at the same point.
+            match (expected, got) {
+                (Some(e), Some(g)) => assert!((e.t - g.t).abs() <= 1e-5 * e.t, "{name}"),
+                (e, g) => assert_eq!(e.is_some(), g.is_some(), "{name}: a hit lost"),
+            }
+        }
+    }
+}
+
+#[test]
+fn a_top_level_tree_never_outgrows_its_bound() {
+    // Instances in a geometric series of sizes: the same shape as the nested triangles.
+    let boxes: Vec<(Vec3, Vec3)> = (0..300)
+        .map(|k| (Vec3::ZERO, Vec3::splat(0.9f32.powi(k))))
+        .collect();
+    let bound = tlas_depth_bound(boxes.len());
+    let tlas = build_tlas(&boxes, bound);
+    assert!(tlas.depth <= bound, "{} > {bound}", tlas.depth);
+    let mut order = tlas.instance_order.clone();
+    order.sort();
+    assert_eq!(order, (0..300).collect::<Vec<_>>());
 }

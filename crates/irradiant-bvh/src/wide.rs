@@ -5,11 +5,17 @@
 //! the ray's octant picks a near-to-far visit order with one XOR. On incoherent rays this
 //! traverses in far fewer, cheaper steps than the binary tree of [`crate::GpuBvhNode`].
 
-use std::time::Duration;
-
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::{
+    BvhBuildParams,
+    aabb::Aabb,
+    bvh2::{Bvh2, reinsertion::ReinsertionOptimizer},
+    cwbvh::{bvh2_to_cwbvh::bvh2_to_cwbvh, node::CwBvhNode},
+    ploc::PlocBuilder,
+    splits::split_aabbs_preset,
+    triangle::Triangle,
+};
 
 use crate::BuildQuality;
 
@@ -72,19 +78,43 @@ pub struct WideBlas {
 }
 
 pub fn build_wide_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> WideBlas {
-    let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(
-        &crate::obvhs_triangles(triangles),
-        quality.params(),
-        &mut Duration::default(),
-    );
+    let params = quality.params();
+    let triangles = crate::obvhs_triangles(triangles);
+    let mut bvh2 = ploc_tree(&triangles, params);
+    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
+    crate::depth::bound_height(&mut bvh2, crate::MAX_BLAS_DEPTH);
+    let bvh = bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), true, false);
     let nodes: Vec<GpuWideBvhNode> = bvh.nodes.iter().map(|n| bytemuck::cast(*n)).collect();
     let depth = tree_depth(&nodes);
     WideBlas {
         nodes,
-        triangle_order: bvh.primitive_indices.clone(),
+        triangle_order: bvh.primitive_indices,
         bounds: (bvh.total_aabb.min.into(), bvh.total_aabb.max.into()),
         depth,
     }
+}
+
+/// The binary tree obvhs turns into a wide one: PLOC over the triangles' boxes, after
+/// splitting the largest of them first when `params.pre_split` asks for it (as obvhs'
+/// `build_cwbvh_from_tris` does; rewritten here so that the depth bound comes before the
+/// conversion).
+fn ploc_tree(triangles: &[Triangle], params: BvhBuildParams) -> Bvh2 {
+    let mut aabbs: Vec<Aabb> = triangles.iter().map(|t| t.aabb()).collect();
+    let mut indices: Vec<u32> = (0..triangles.len() as u32).collect();
+    if params.pre_split && !triangles.is_empty() {
+        let largest = aabbs.iter().map(Aabb::half_area).fold(0.0, f32::max);
+        let average = aabbs.iter().map(Aabb::half_area).sum::<f32>() / aabbs.len() as f32;
+        split_aabbs_preset(&mut aabbs, &mut indices, triangles, average, largest);
+    }
+    let mut bvh2 = PlocBuilder::with_capacity(aabbs.len()).build(
+        params.ploc_search_distance,
+        &aabbs,
+        indices,
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    bvh2.uses_spatial_splits = params.pre_split;
+    bvh2
 }
 
 fn tree_depth(nodes: &[GpuWideBvhNode]) -> u32 {

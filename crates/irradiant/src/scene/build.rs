@@ -4,16 +4,14 @@
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
-use irradiant_bvh::{GpuBvhNode, GpuWideBvhNode, build_blas, build_wide_blas};
-use irradiant_scene::{AlphaMode, Scene};
+use irradiant_bvh::{Blas, GpuBvhNode, GpuWideBvhNode, WideBlas, build_blas, build_wide_blas};
+use irradiant_scene::{AlphaMode, Mesh, Scene};
+use rayon::prelude::*;
 
 use super::constants::TRIANGLE_ALPHA_TESTED;
 use super::types::{GpuTriangle, GpuTriangleShading};
 use super::{BlasLayout, GpuSceneSettings, TriangleSource};
 use crate::RenderError;
-
-/// Deepest tree traversal supports: deeper means a degenerate mesh.
-const MAX_STACK: u32 = 128;
 
 /// Every mesh's tree and triangles, ready to upload.
 pub(super) struct SceneBuild {
@@ -34,6 +32,30 @@ pub(super) struct SceneBuild {
     pub duration: Duration,
 }
 
+/// One mesh's triangles and bottom-level tree (none for an empty mesh).
+struct MeshTree {
+    tris: Vec<[Vec3; 3]>,
+    tree: Option<Tree>,
+}
+
+enum Tree {
+    Binary(Blas),
+    Wide(WideBlas),
+}
+
+impl MeshTree {
+    fn build(mesh: &Mesh, settings: &GpuSceneSettings) -> Self {
+        let tris: Vec<[Vec3; 3]> = (0..mesh.triangle_count())
+            .map(|t| mesh.triangle(t))
+            .collect();
+        let tree = (!tris.is_empty()).then(|| match settings.blas_layout {
+            BlasLayout::Binary => Tree::Binary(build_blas(&tris, settings.bvh_quality)),
+            BlasLayout::Wide => Tree::Wide(build_wide_blas(&tris, settings.bvh_quality)),
+        });
+        Self { tris, tree }
+    }
+}
+
 impl SceneBuild {
     pub fn new(scene: &Scene, settings: &GpuSceneSettings) -> Result<Self, RenderError> {
         let start = Instant::now();
@@ -51,27 +73,29 @@ impl SceneBuild {
             .iter()
             .map(|m| matches!(m.alpha_mode, AlphaMode::Mask { .. }))
             .collect();
-        for (mesh_index, mesh) in scene.meshes.iter().enumerate() {
-            let tris: Vec<[Vec3; 3]> = (0..mesh.triangle_count())
-                .map(|t| mesh.triangle(t))
-                .collect();
-            if tris.is_empty() {
+        // Every mesh's tree at once (each build is parallel inside too), then laid end to end.
+        let trees: Vec<MeshTree> = scene
+            .meshes
+            .par_iter()
+            .map(|mesh| MeshTree::build(mesh, settings))
+            .collect();
+        for (mesh_index, (mesh, tree)) in scene.meshes.iter().zip(trees).enumerate() {
+            let MeshTree { tris, tree } = tree;
+            let Some(tree) = tree else {
                 blas_roots.push((0, (Vec3::ZERO, Vec3::ZERO)));
                 mesh_emitters.push(Vec::new());
                 continue;
-            }
+            };
             let slot_base = triangles.len() as u32;
             // (root node, object-space bounds, depth, leaf triangle order) of the mesh's tree.
-            let (root, bounds, depth, triangle_order) = match settings.blas_layout {
-                BlasLayout::Binary => {
-                    let mut blas = build_blas(&tris, settings.bvh_quality);
+            let (root, bounds, depth, triangle_order) = match tree {
+                Tree::Binary(mut blas) => {
                     let root = nodes.len() as u32;
                     blas.offset(root, slot_base);
                     nodes.extend_from_slice(&blas.nodes);
                     (root, blas.bounds, blas.depth, blas.triangle_order)
                 }
-                BlasLayout::Wide => {
-                    let mut blas = build_wide_blas(&tris, settings.bvh_quality);
+                Tree::Wide(mut blas) => {
                     let root = wide_nodes.len() as u32;
                     blas.offset(root, slot_base);
                     wide_nodes.extend_from_slice(&blas.nodes);
@@ -106,16 +130,9 @@ impl SceneBuild {
             }
             mesh_emitters.push(emissive);
         }
-        if max_depth > MAX_STACK {
-            return Err(RenderError::Scene(format!(
-                "a mesh's BVH is {max_depth} levels deep, more than traversal supports ({MAX_STACK}); the mesh is degenerate (e.g. thousands of triangles on one point)"
-            )));
-        }
-        if max_depth > MAX_STACK {
-            return Err(RenderError::Scene(format!(
-                "a mesh's BVH is {max_depth} levels deep, more than traversal supports ({MAX_STACK}); the mesh is degenerate (e.g. thousands of triangles on one point)"
-            )));
-        }
+        // The builders bound every tree's depth, so traversal stacks sized to the deepest
+        // never overflow.
+        debug_assert!(max_depth <= irradiant_bvh::MAX_BLAS_DEPTH);
         let tlas_base = nodes.len() as u32;
         // Room for the top level: a binary tree over n leaves has fewer than n inner nodes.
         nodes.extend(std::iter::repeat_n(

@@ -14,4 +14,7 @@ irradiant_gpu::wgsl_constants! {
     /// Surfaces `trace_crossings` records along one ray (SSIL's voxelization; Sponza's deepest
     /// rays cross about 20). Past this it counts them but keeps no distance.
     MAX_CROSSINGS: u32 = 48;
+    /// Box exit distances are widened by this factor so that rounding never culls a tiny box
+    /// whose triangle the ray hits (defined with the CPU traversal, in irradiant-bvh).
+    SLAB_FAR_SCALE: f32 = irradiant_bvh::SLAB_FAR_SCALE;
 }

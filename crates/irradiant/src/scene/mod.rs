@@ -265,8 +265,7 @@ impl GpuScene {
             instance_bounds: Vec::new(),
             stack_in_workgroup: settings.stack_in_workgroup,
             blas_layout: settings.blas_layout,
-            tlas_stack: (2 * (scene.instances.len().max(2) as f32).log2().ceil() as u32 + 4)
-                .min(scene.instances.len() as u32 + 2),
+            tlas_stack: irradiant_bvh::tlas_depth_bound(scene.instances.len()),
             stats: GpuSceneStats {
                 triangles: built.triangles.len(),
                 bvh_nodes: built.nodes.len() + built.wide_nodes.len(),
@@ -332,14 +331,9 @@ impl GpuScene {
             instances.push(gpu_instance(transform, previous, root));
             boxes.push(transform_bounds(bounds, transform));
         }
-        let tlas = build_tlas(&boxes);
-        if tlas.depth > self.tlas_stack {
-            tracing::warn!(
-                "top-level BVH depth {} exceeds its traversal stack ({}): some instances may be missed this frame",
-                tlas.depth,
-                self.tlas_stack
-            );
-        }
+        // Built no deeper than its traversal stack: a full stack never drops an instance.
+        let tlas = build_tlas(&boxes, self.tlas_stack);
+        debug_assert!(tlas.depth <= self.tlas_stack);
         // The top level's leaves index instances in TLAS order: reorder instances to match.
         let ordered: Vec<GpuInstance> = tlas
             .instance_order

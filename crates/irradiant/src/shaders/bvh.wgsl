@@ -60,7 +60,7 @@ fn slab(origin: vec3<f32>, inv_dir: vec3<f32>, lo: vec3<f32>, hi: vec3<f32>, t_m
     let t0 = (lo - origin) * inv_dir;
     let t1 = (hi - origin) * inv_dir;
     let near = max(max(min(t0.x, t1.x), min(t0.y, t1.y)), max(min(t0.z, t1.z), 0.0));
-    let far = min(min(max(t0.x, t1.x), max(t0.y, t1.y)), min(max(t0.z, t1.z), t_max));
+    let far = min(min(min(max(t0.x, t1.x), max(t0.y, t1.y)), max(t0.z, t1.z)) * SLAB_FAR_SCALE, t_max);
     return select(NO_HIT, near, near <= far);
 }
 
@@ -180,7 +180,7 @@ fn wide_hits4(meta4: u32, oct_inv4: u32, lo_x: u32, hi_x: u32, lo_y: u32, hi_y: 
         let lo = vec3<f32>(f32((lo_x >> s) & 0xffu), f32((lo_y >> s) & 0xffu), f32((lo_z >> s) & 0xffu)) * scale_dir + shift;
         let hi = vec3<f32>(f32((hi_x >> s) & 0xffu), f32((hi_y >> s) & 0xffu), f32((hi_z >> s) & 0xffu)) * scale_dir + shift;
         let near = max(max(lo.x, lo.y), max(lo.z, 0.0));
-        let far = min(min(hi.x, hi.y), min(hi.z, t_max));
+        let far = min(min(min(hi.x, hi.y), hi.z) * SLAB_FAR_SCALE, t_max);
         if near <= far {
             hits |= ((child_bits4 >> s) & 0xffu) << ((bit_index4 >> s) & 0xffu);
         }
