@@ -24,6 +24,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "furnace",
         "a white diffuse sphere under a uniform white sky: the white-furnace test",
     ),
+    (
+        "dense-cluster",
+        "a room with 330 000 tiny triangles packed into 4 cm on a table: the deep-tree bench",
+    ),
 ];
 
 pub fn builtin(name: &str) -> Option<Scene> {
@@ -32,6 +36,7 @@ pub fn builtin(name: &str) -> Option<Scene> {
         "two-rooms" => Some(two_rooms()),
         "box-cylinders" => Some(box_cylinders()),
         "furnace" => Some(furnace()),
+        "dense-cluster" => Some(dense_cluster()),
         _ => None,
     }
 }
@@ -372,5 +377,65 @@ pub fn furnace() -> Scene {
         counts: [4, 4, 4],
     });
     scene.materials[0].base_color = Vec4::ONE;
+    scene
+}
+
+/// A room whose table carries a dense cluster of tiny triangles, most of the scene's triangles
+/// in a few centimetres (as scanned or sculpted detail often is): its tree is deep and
+/// unbalanced, which is what made ray timings depend on what ran before (issue 13).
+pub fn dense_cluster() -> Scene {
+    const CLUSTER_TRIANGLES: u32 = 330_000;
+    let mut b = Builder::new("dense-cluster");
+    let white = b.material("white", Vec3::splat(0.7), Vec3::ZERO);
+    let wood = b.material("wood", Vec3::new(0.55, 0.4, 0.25), Vec3::ZERO);
+    let clay = b.material("clay", Vec3::new(0.8, 0.35, 0.25), Vec3::ZERO);
+    let v = Vec3::new;
+    b.closed_room(v(-3.0, 0.0, -3.0), v(3.0, 3.0, 3.0), 0.1, white, white);
+    b.cuboid(v(-0.6, 0.7, -0.4), v(0.6, 0.75, 0.4), wood);
+    b.cuboid(v(-0.55, 0.0, -0.35), v(-0.5, 0.7, -0.3), wood);
+    b.cuboid(v(0.5, 0.0, 0.3), v(0.55, 0.7, 0.35), wood);
+    // Triangles of about 0.3 mm, uniformly in a 4 cm cube: a fixed sequence (xorshift), so
+    // every run builds the same scene.
+    let mut state = 0x9e37_79b9_u32;
+    let mut random = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32
+    };
+    let centre = v(0.0, 0.77, 0.0);
+    for _ in 0..CLUSTER_TRIANGLES {
+        let p = centre + (v(random(), random(), random()) - 0.5) * 0.04;
+        let mut corner = || p + (v(random(), random(), random()) - 0.5) * 0.0003;
+        let (a, b_, c) = (corner(), corner(), corner());
+        if (b_ - a).cross(c - a).length_squared() > 0.0 {
+            let base = b.mesh.positions.len() as u32;
+            b.mesh.positions.extend([a, b_, c]);
+            b.mesh.indices.extend([base, base + 1, base + 2]);
+            b.mesh.triangle_materials.push(clay);
+        }
+    }
+    let camera = Camera {
+        position: v(0.0, 1.2, 1.4),
+        target: v(0.0, 0.75, 0.0),
+        up: Vec3::Y,
+        fov_y_degrees: 50.0,
+    };
+    let mut scene = b.into_scene("dense-cluster", camera);
+    scene.lights.push(Light {
+        name: "lamp".into(),
+        kind: LightKind::Point,
+        position: v(0.5, 2.5, 0.5),
+        direction: -Vec3::Y,
+        color: Vec3::ONE,
+        intensity: 10.0,
+        enabled: true,
+    });
+    scene.probe_volumes.push(ProbeVolumeDesc {
+        name: "room".into(),
+        min: v(-2.5, 0.4, -2.5),
+        max: v(2.5, 2.6, 2.5),
+        counts: [6, 4, 6],
+    });
     scene
 }

@@ -33,12 +33,13 @@
 
 use std::path::{Path, PathBuf};
 
-use glam::{Mat4, Vec3};
+use glam::{Mat3, Mat4, UVec3, Vec3};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, SceneError};
 use crate::model::{
-    Animation, AnimationTarget, Camera, Light, LightKind, ProbeVolumeDesc, Region, Scene, Tracks,
+    Animation, AnimationTarget, Camera, Instance, Light, LightKind, Mesh, ProbeVolumeDesc, Region,
+    Scene, Tracks,
 };
 
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -88,7 +89,23 @@ pub struct MeshRef {
     pub rotation_y_degrees: Option<f32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub translation: Option<[f32; 3]>,
+    /// Copies of the whole mesh on a grid, `[x, y, z]` counts (default `[1, 1, 1]`), placed
+    /// `repeat_spacing` apart: large scenes made from the shipped ones. Copies are instances
+    /// that share the mesh's bottom-level trees (memory grows with the instance count only)
+    /// unless `flatten` is set.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub repeat: Option<[u32; 3]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub repeat_spacing: Option<[f32; 3]>,
+    /// Merges every instance into one mesh in world space: one bottom-level tree over all the
+    /// triangles (the slowest build and the most memory, the best-behaved traversal).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flatten: Option<bool>,
 }
+
+/// Most copies `repeat` makes: past it the top-level tree, rebuilt every frame, costs more than
+/// it is worth, and a flattened mesh would pass 4 billion vertex indices sooner or later.
+pub const MAX_REPEAT_COPIES: u32 = 4096;
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CameraDesc {
@@ -217,6 +234,48 @@ impl Manifest {
         base.join(&self.mesh.path)
     }
 
+    /// Copies the scene's instances on `repeat`'s grid.
+    fn repeat(&self, scene: &mut Scene, path: &Path) -> Result<()> {
+        let counts = self.mesh.repeat.unwrap_or([1, 1, 1]);
+        let spacing = Vec3::from(self.mesh.repeat_spacing.unwrap_or([0.0; 3]));
+        let copies = counts.iter().try_fold(1u32, |n, &c| n.checked_mul(c));
+        if counts.contains(&0) || copies.is_none_or(|n| n > MAX_REPEAT_COPIES) {
+            return Err(invalid(
+                path,
+                format!("mesh.repeat = {counts:?} makes no copy or too many"),
+                format!(
+                    "Give three counts of at least 1 whose product is at most {MAX_REPEAT_COPIES}."
+                ),
+            ));
+        }
+        if !spacing.is_finite() {
+            return Err(invalid(
+                path,
+                "mesh.repeat_spacing is not finite".into(),
+                "Give three finite distances.",
+            ));
+        }
+        let originals = std::mem::take(&mut scene.instances);
+        for z in 0..counts[2] {
+            for y in 0..counts[1] {
+                for x in 0..counts[0] {
+                    let cell = UVec3::new(x, y, z);
+                    let offset = Mat4::from_translation(spacing * cell.as_vec3());
+                    for instance in &originals {
+                        let mut copy = instance.clone();
+                        copy.transform = offset * instance.transform;
+                        if cell != UVec3::ZERO {
+                            // Animations address instances by name: they move the first copy.
+                            copy.name = format!("{}@{x},{y},{z}", instance.name);
+                        }
+                        scene.instances.push(copy);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Applies everything but the mesh to a loaded scene.
     pub fn apply(&self, scene: &mut Scene, path: &Path) -> Result<()> {
         if let Some(name) = &self.name {
@@ -228,6 +287,10 @@ impl Manifest {
                 * Mat4::from_scale(Vec3::splat(self.mesh.scale.unwrap_or(1.0)));
         for instance in &mut scene.instances {
             instance.transform = placement * instance.transform;
+        }
+        self.repeat(scene, path)?;
+        if self.mesh.flatten == Some(true) {
+            flatten(scene, path)?;
         }
         if let Some(c) = &self.camera {
             scene.camera = Camera {
@@ -375,12 +438,70 @@ impl Manifest {
     }
 }
 
-fn invalid(path: &Path, problem: String, fix: &str) -> SceneError {
+fn invalid(path: &Path, problem: String, fix: impl Into<String>) -> SceneError {
     SceneError::Invalid {
         path: path.to_owned(),
         problem,
         fix: fix.into(),
     }
+}
+
+/// Replaces every instance by one mesh holding all their triangles in world space.
+fn flatten(scene: &mut Scene, path: &Path) -> Result<()> {
+    let vertices: u64 = scene
+        .instances
+        .iter()
+        .map(|i| scene.meshes[i.mesh as usize].positions.len() as u64)
+        .sum();
+    if vertices > u32::MAX as u64 {
+        return Err(invalid(
+            path,
+            format!("mesh.flatten would make one mesh of {vertices} vertices, past 32-bit indices"),
+            "Flatten fewer copies, or leave them as instances (flatten = false).",
+        ));
+    }
+    let mut merged = Mesh {
+        name: format!("{} (flattened)", scene.name),
+        ..Mesh::default()
+    };
+    for instance in &scene.instances {
+        let mesh = &scene.meshes[instance.mesh as usize];
+        let base = merged.positions.len() as u32;
+        let normal_matrix = Mat3::from_mat4(instance.transform).inverse().transpose();
+        merged.positions.extend(
+            mesh.positions
+                .iter()
+                .map(|&p| instance.transform.transform_point3(p)),
+        );
+        // Every vertex keeps a normal and a texture coordinate once any mesh has them.
+        merged.normals.extend((0..mesh.positions.len()).map(|v| {
+            mesh.normals
+                .get(v)
+                .map_or(Vec3::ZERO, |&n| (normal_matrix * n).normalize_or_zero())
+        }));
+        merged.uvs.extend(
+            (0..mesh.positions.len()).map(|v| mesh.uvs.get(v).copied().unwrap_or_default()),
+        );
+        merged
+            .indices
+            .extend(mesh.indices.iter().map(|&i| base + i));
+        merged
+            .triangle_materials
+            .extend_from_slice(&mesh.triangle_materials);
+    }
+    if scene.meshes.iter().all(|m| m.normals.is_empty()) {
+        merged.normals.clear();
+    }
+    if scene.meshes.iter().all(|m| m.uvs.is_empty()) {
+        merged.uvs.clear();
+    }
+    scene.meshes = vec![merged];
+    scene.instances = vec![Instance {
+        name: scene.name.clone(),
+        mesh: 0,
+        transform: Mat4::IDENTITY,
+    }];
+    Ok(())
 }
 
 /// Applies a `[[material]]` override, checking its values.

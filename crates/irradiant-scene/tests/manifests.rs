@@ -40,6 +40,17 @@ fn every_shipped_manifest_round_trips() {
 #[test]
 fn every_shipped_manifest_loads() {
     for path in shipped_manifests() {
+        // The scenes at scale (millions of triangles) are for the lent GPU's bench; what they
+        // use is `repeat_copies_instances_and_flatten_merges_them`'s.
+        let text = std::fs::read_to_string(&path).unwrap();
+        if Manifest::parse(&text, &path, &mut Vec::new())
+            .unwrap()
+            .mesh
+            .repeat
+            .is_some()
+        {
+            continue;
+        }
         let loaded =
             irradiant_scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
         assert!(loaded.scene.triangle_count() > 0);
@@ -111,4 +122,69 @@ fn material_overrides_change_only_what_they_name() {
         format!("{:?}", find(&mirror, "floor")),
         format!("{:?}", find(&plain, "floor"))
     );
+}
+
+#[test]
+fn repeat_copies_instances_and_flatten_merges_them() {
+    let dir = std::env::temp_dir().join(format!("irradiant-repeat-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let load = |extra: &str| {
+        let path = dir.join("grid.toml");
+        std::fs::write(&path, format!("[mesh]\npath = \"two-rooms\"\n{extra}")).unwrap();
+        irradiant_scene::load(path.to_str().unwrap()).map(|l| l.scene)
+    };
+    let one = load("").unwrap();
+    let spacing = glam::Vec3::new(20.0, 0.0, 30.0);
+    let grid = load("repeat = [2, 1, 3]\nrepeat_spacing = [20.0, 0.0, 30.0]").unwrap();
+    assert_eq!(grid.instances.len(), 6 * one.instances.len());
+    assert_eq!(grid.triangle_count(), 6 * one.triangle_count());
+    assert_eq!(
+        grid.meshes.len(),
+        one.meshes.len(),
+        "copies share their meshes"
+    );
+    let last = grid.instances.last().unwrap();
+    let original = one.instances.last().unwrap();
+    assert_eq!(
+        last.transform.w_axis.truncate(),
+        original.transform.w_axis.truncate() + spacing * glam::Vec3::new(1.0, 0.0, 2.0)
+    );
+    let flat =
+        load("repeat = [2, 1, 3]\nrepeat_spacing = [20.0, 0.0, 30.0]\nflatten = true").unwrap();
+    assert_eq!((flat.meshes.len(), flat.instances.len()), (1, 1));
+    assert_eq!(flat.triangle_count(), grid.triangle_count());
+    // The flattened mesh is the instances in world space: the same bounds.
+    let bounds = |s: &irradiant_scene::Scene| {
+        s.instances
+            .iter()
+            .fold((glam::Vec3::MAX, glam::Vec3::MIN), |(lo, hi), i| {
+                s.meshes[i.mesh as usize]
+                    .positions
+                    .iter()
+                    .fold((lo, hi), |(lo, hi), &p| {
+                        let w = i.transform.transform_point3(p);
+                        (lo.min(w), hi.max(w))
+                    })
+            })
+    };
+    let (a, b) = (bounds(&grid), bounds(&flat));
+    assert!(
+        a.0.abs_diff_eq(b.0, 1e-3) && a.1.abs_diff_eq(b.1, 1e-3),
+        "{a:?} {b:?}"
+    );
+    for (extra, key) in [
+        ("repeat = [0, 1, 1]", "mesh.repeat"),
+        ("repeat = [100, 100, 1]", "mesh.repeat"),
+        (
+            "repeat = [2, 1, 1]\nrepeat_spacing = [1e39, 0.0, 0.0]",
+            "mesh.repeat_spacing",
+        ),
+    ] {
+        let message = load(extra).unwrap_err().to_string();
+        assert!(
+            message.contains(key) && message.contains("grid.toml"),
+            "{message}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }
