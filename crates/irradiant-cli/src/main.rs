@@ -5,6 +5,7 @@ mod bench;
 mod cache;
 mod compare;
 mod info;
+mod memory;
 mod options;
 mod over_time;
 mod reference;

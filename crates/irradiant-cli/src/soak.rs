@@ -11,8 +11,8 @@ use clap::Args;
 use irradiant::{AdapterChoice, GpuContext, Session, SessionSettings};
 use serde::Serialize;
 
-use crate::CliError;
 use crate::options::{RunSettings, SettingsArgs, parse_size};
+use crate::{CliError, memory};
 
 #[derive(Args)]
 pub struct SoakArgs {
@@ -73,18 +73,6 @@ struct Check {
     /// Resident host memory of this process, MiB.
     host_mib: Option<f64>,
     problems: Vec<String>,
-}
-
-fn resident_host_mib() -> Option<f64> {
-    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
-    let pages: f64 = statm.split_whitespace().nth(1)?.parse().ok()?;
-    Some(pages * 4096.0 / (1024.0 * 1024.0))
-}
-
-fn gpu_mib(ctx: &GpuContext) -> Option<f64> {
-    ctx.device
-        .generate_allocator_report()
-        .map(|r| r.total_allocated_bytes as f64 / (1024.0 * 1024.0))
 }
 
 pub fn run(args: &SoakArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -148,7 +136,7 @@ pub fn run(args: &SoakArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             .collect();
             problems.extend(session.technique().check_state(session.ctx())?);
             let mean = image.mean();
-            let (gpu, host) = (gpu_mib(&ctx), resident_host_mib());
+            let (gpu, host) = (memory::gpu_mib(&ctx), memory::resident_host_mib());
             match first {
                 None if frame >= args.settle.min(args.frames) => {
                     first = Some((mean, gpu, host, frame))

@@ -260,6 +260,58 @@ fn renders_every_technique_and_output_and_runs_the_smoke_bench() {
     assert!(ddgi["passes"].as_array().unwrap().len() >= 9, "{ddgi}");
 }
 
+/// `bench --check-order` runs the scenes forward and reversed in one call and compares every
+/// pass; the figures themselves are lavapipe's, so only the mechanism is tested here (the H100
+/// figures are in BENCHMARKS.md, session 7).
+#[test]
+fn bench_runs_the_scenes_in_both_orders_and_compares_them() {
+    let dir = scratch("bench-order");
+    let json = dir.join("order.json").to_string_lossy().into_owned();
+    let args = |tolerance: &'static str| {
+        [
+            "bench",
+            "--smoke",
+            "--scene",
+            "cornell,two-rooms",
+            "--techniques",
+            "none",
+            "--check-order",
+            "--order-tolerance",
+            tolerance,
+            "--json",
+            &json,
+        ]
+        .map(String::from)
+    };
+    let owned = args("1e9");
+    let (ok, stdout, stderr) = irradiant(&owned.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(ok, "{stderr}");
+    assert!(stdout.contains("order check"), "{stdout}");
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let orders: Vec<(String, String)> = record["passes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p["scene"].to_string(), p["order"].to_string()))
+        .collect();
+    for scene in ["\"cornell\"", "\"two-rooms\""] {
+        for order in ["\"forward\"", "\"reverse\""] {
+            assert!(
+                orders.iter().any(|(s, o)| s == scene && o == order),
+                "{scene} {order}: {orders:?}"
+            );
+        }
+    }
+    // Reversed: the last scene forward is the first one reversed.
+    assert_eq!(record["scenes"][1]["scene"], record["scenes"][2]["scene"]);
+    let owned = args("-1");
+    fails_with(
+        &owned.iter().map(String::as_str).collect::<Vec<_>>(),
+        "--order-tolerance",
+    );
+}
+
 #[test]
 fn compare_refuses_bad_input_and_leaves_nothing_half_written() {
     let dir = scratch("compare");

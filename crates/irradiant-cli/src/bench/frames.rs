@@ -2,16 +2,20 @@
 //! technique's, grouped by the labels the technique reports (update, resolve).
 
 use std::sync::Arc;
+use std::time::Instant;
 
 use irradiant::technique::Counter;
 use irradiant::{GpuContext, GpuSceneSettings, Session, SessionSettings, TechniqueSpec};
 use serde::Serialize;
 
+use super::Warmup;
 use crate::CliError;
 
 #[derive(Serialize)]
 pub struct FrameRecord {
     pub scene: String,
+    /// Which run over the scene list: "forward", or "reverse" under --check-order.
+    pub order: &'static str,
     pub technique: String,
     /// Probes per axis of the first volume (probe techniques; zeros otherwise).
     pub probes: [u32; 3],
@@ -54,11 +58,14 @@ pub struct FrameBench<'a> {
     pub iterations: u32,
     /// Rays of the light-field agreement test (light-field techniques; 0: none).
     pub agreement_rays: u32,
+    /// Which run over the scene list this is (`bench --check-order`).
+    pub order: &'static str,
 }
 
 impl FrameBench<'_> {
-    /// Times `warmup + iterations` frames of a technique and keeps the median of each pass.
-    pub fn time(&self, spec: &TechniqueSpec, warmup: u32) -> Result<FrameRecord, CliError> {
+    /// Times `iterations` frames of a technique after `warmup` and keeps the median of each
+    /// pass.
+    pub fn time(&self, spec: &TechniqueSpec, warmup: Warmup) -> Result<FrameRecord, CliError> {
         let mut frame = irradiant::frame::FrameSettings::balanced();
         frame.taa.enabled = self.taa;
         let mut session = Session::new(
@@ -76,11 +83,14 @@ impl FrameBench<'_> {
             },
         )?;
         let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
-        for i in 0..warmup + self.iterations {
+        let (warm_start, mut warm_runs, mut timed) = (Instant::now(), 0, 0);
+        while timed < self.iterations {
             let timings = session.render_profiled()?;
-            if i < warmup {
+            if !warmup.done(warm_runs, warm_start) {
+                warm_runs += 1;
                 continue;
             }
+            timed += 1;
             // A label recorded several times in a frame (a pass per probe volume or per
             // level) counts once, as the sum of its dispatches.
             let mut frame: Vec<(String, f64)> = Vec::new();
@@ -163,6 +173,7 @@ impl FrameBench<'_> {
         };
         Ok(FrameRecord {
             scene: self.scene.name.clone(),
+            order: self.order,
             technique: spec.name.clone(),
             probes,
             rays_per_probe,

@@ -9,7 +9,7 @@ mod ssil;
 mod table;
 
 use std::path::PathBuf;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use clap::Args;
 use irradiant::ddgi::DdgiSettings;
@@ -34,9 +34,22 @@ pub struct BenchArgs {
     /// Timed runs per pass (after the warm-up); the median is reported.
     #[arg(long, default_value = "20")]
     pub iterations: u32,
-    /// Warm-up runs per pass, not timed.
+    /// Warm-up runs per pass, not timed (at least; see --warmup-ms).
     #[arg(long, default_value = "3")]
     pub warmup: u32,
+    /// Each pass and frame also runs untimed for at least this long before it is timed. GPU
+    /// clocks fall while the GPU waits for the CPU (loading a scene, building its tree,
+    /// making rays) and climb back only under steady work: a few runs after such a wait were
+    /// timed at a sixth of the clock (BENCHMARKS.md, session 7). Longer costs bench time only.
+    #[arg(long, default_value = "500")]
+    pub warmup_ms: u64,
+    /// Runs the scenes again in reverse order in the same call and compares every pass and
+    /// frame between the two orders; fails if any differs by more than --order-tolerance.
+    #[arg(long)]
+    pub check_order: bool,
+    /// Largest difference between the two orders --check-order accepts, percent.
+    #[arg(long, default_value = "3", allow_negative_numbers = true)]
+    pub order_tolerance: f64,
     /// Also write every figure as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -119,12 +132,29 @@ pub enum BvhQuality {
     Quality,
 }
 
+/// How long a timed configuration runs untimed first: at least `runs` runs and `time`.
+#[derive(Clone, Copy, Debug)]
+pub struct Warmup {
+    pub runs: u32,
+    pub time: Duration,
+}
+
+impl Warmup {
+    /// Whether `runs_done` runs since `start` have warmed the GPU up.
+    pub fn done(&self, runs_done: u32, start: Instant) -> bool {
+        runs_done >= self.runs && start.elapsed() >= self.time
+    }
+}
+
 #[derive(Serialize)]
 struct PassRecord {
     scene: String,
+    /// Which run over the scene list: "forward", or "reverse" under --check-order.
+    order: &'static str,
     label: String,
     median_ms: f64,
     min_ms: f64,
+    max_ms: f64,
     rays: Option<u64>,
     mrays_per_s: Option<f64>,
 }
@@ -132,11 +162,21 @@ struct PassRecord {
 #[derive(Serialize)]
 struct SceneRecord {
     scene: String,
+    /// Triangles the bottom-level trees hold (each mesh once).
     triangles: usize,
+    instances: usize,
+    /// Triangles in the world: each instance's mesh counted once an instance.
+    world_triangles: usize,
     bvh_nodes: usize,
     bvh_build_ms: f64,
     max_blas_depth: u32,
     scene_load_ms: f64,
+    /// What the scene's buffers and textures take on the GPU.
+    gpu_scene_mib: f64,
+    /// Everything wgpu's allocator holds after the scene's upload (where reported).
+    gpu_allocated_mib: Option<f64>,
+    /// The process's peak resident host memory after loading and building this scene.
+    peak_host_mib: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -162,10 +202,31 @@ pub struct BenchRecord {
 
 pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let (size, iterations, warmup) = if args.smoke {
-        ((64, 64), 2, 0)
+        (
+            (64, 64),
+            2,
+            Warmup {
+                runs: 0,
+                time: Duration::ZERO,
+            },
+        )
     } else {
-        (args.size, args.iterations.max(1), args.warmup)
+        let time = Duration::from_millis(args.warmup_ms);
+        (
+            args.size,
+            args.iterations.max(1),
+            Warmup {
+                runs: args.warmup,
+                time,
+            },
+        )
     };
+    if !(args.order_tolerance >= 0.0) {
+        return Err(CliError::Usage(format!(
+            "--order-tolerance {} is not a percentage; give 0 or more (3 is the default)",
+            args.order_tolerance
+        )));
+    }
     let techniques = crate::options::technique_list(&args.techniques)?;
     let ddgi_variants = ddgi_variants(args)?;
     let ssil_variants = ssil::variants(&args.ssil);
@@ -211,103 +272,186 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         },
         ..GpuSceneSettings::default()
     };
-    for name in &args.scene {
-        let start = Instant::now();
-        let scene = irradiant_scene::load(name)?.scene;
-        let load_ms = start.elapsed().as_secs_f64() * 1e3;
-        let gpu_scene = GpuScene::new(&ctx, &scene, &scene_settings)?;
-        record.scenes.push(SceneRecord {
-            scene: scene.name.clone(),
-            triangles: gpu_scene.stats.triangles,
-            bvh_nodes: gpu_scene.stats.bvh_nodes,
-            bvh_build_ms: gpu_scene.stats.bvh_build.as_secs_f64() * 1e3,
-            max_blas_depth: gpu_scene.stats.max_blas_depth,
-            scene_load_ms: load_ms,
-        });
-        time_rays(
-            &ctx,
-            &scene,
-            &gpu_scene,
-            size,
-            warmup,
-            iterations,
-            &mut record,
-        )?;
-        drop(gpu_scene);
-        let frames = frames::FrameBench {
-            ctx: ctx.clone(),
-            scene: &scene,
-            scene_settings: &scene_settings,
-            size,
-            taa: !args.no_taa,
-            iterations,
-            agreement_rays: args.lightfield_agreement,
-        };
-        for probes in &args.ddgi_probes {
-            let counts = if probes == "scene" {
-                scene
-                    .probe_volumes
-                    .first()
-                    .map(|v| v.counts)
-                    .ok_or_else(|| {
-                        CliError::Usage(format!(
-                            "{}: the scene has no probe volume; pass counts such as 16x8x16",
-                            scene.name
-                        ))
-                    })?
-            } else {
-                crate::options::parse_counts(probes).map_err(CliError::Usage)?
+    let mut orders = vec![("forward", args.scene.clone())];
+    if args.check_order {
+        orders.push(("reverse", args.scene.iter().rev().cloned().collect()));
+    }
+    let mut order_boundaries = Vec::new();
+    for (order, scenes) in &orders {
+        order_boundaries.push(RecordLengths::of(&record));
+        for name in scenes {
+            let start = Instant::now();
+            let scene = irradiant_scene::load(name)?.scene;
+            let load_ms = start.elapsed().as_secs_f64() * 1e3;
+            let gpu_scene = GpuScene::new(&ctx, &scene, &scene_settings)?;
+            record.scenes.push(SceneRecord {
+                scene: scene.name.clone(),
+                triangles: gpu_scene.stats.triangles,
+                instances: scene.instances.len(),
+                world_triangles: scene
+                    .instances
+                    .iter()
+                    .map(|i| scene.meshes[i.mesh as usize].triangle_count())
+                    .sum(),
+                bvh_nodes: gpu_scene.stats.bvh_nodes,
+                bvh_build_ms: gpu_scene.stats.bvh_build.as_secs_f64() * 1e3,
+                max_blas_depth: gpu_scene.stats.max_blas_depth,
+                scene_load_ms: load_ms,
+                gpu_scene_mib: gpu_scene.stats.gpu_bytes as f64 / (1024.0 * 1024.0),
+                gpu_allocated_mib: crate::memory::gpu_mib(&ctx),
+                peak_host_mib: crate::memory::peak_host_mib(),
+            });
+            time_rays(
+                &ctx,
+                &scene,
+                &gpu_scene,
+                size,
+                warmup,
+                iterations,
+                order,
+                &mut record,
+            )?;
+            drop(gpu_scene);
+            let frames = frames::FrameBench {
+                ctx: ctx.clone(),
+                scene: &scene,
+                scene_settings: &scene_settings,
+                size,
+                taa: !args.no_taa,
+                iterations,
+                agreement_rays: args.lightfield_agreement,
+                order,
             };
-            for &rays in &args.ddgi_rays {
-                for variant in &ddgi_variants {
-                    let mut settings = variant.clone();
-                    settings.volume.rays_per_probe = rays;
-                    settings.volume.probe_counts = counts;
-                    let first_of_scene = !record.ddgi.iter().any(|d| d.scene == scene.name);
-                    // A scene's first configuration also warms the GPU up from idle after the
-                    // scene's load (seen on an H200: those frames ran up to 5× slow).
-                    let warm = warmup.max(match (args.smoke, first_of_scene) {
-                        (true, _) => 1,
-                        (false, true) => 60,
-                        (false, false) => 5,
-                    });
-                    let spec = irradiant::TechniqueSpec::with_settings("ddgi", &settings);
-                    let mut r = frames.time(&spec, warm)?;
-                    r.variant = variant_name(&settings);
-                    record.ddgi.push(r);
+            // A frame is run once at least before timing: its first one builds what it caches.
+            let frame_warmup = Warmup {
+                runs: warmup.runs.max(1),
+                ..warmup
+            };
+            for probes in &args.ddgi_probes {
+                let counts = if probes == "scene" {
+                    scene
+                        .probe_volumes
+                        .first()
+                        .map(|v| v.counts)
+                        .ok_or_else(|| {
+                            CliError::Usage(format!(
+                                "{}: the scene has no probe volume; pass counts such as 16x8x16",
+                                scene.name
+                            ))
+                        })?
+                } else {
+                    crate::options::parse_counts(probes).map_err(CliError::Usage)?
+                };
+                for &rays in &args.ddgi_rays {
+                    for variant in &ddgi_variants {
+                        let mut settings = variant.clone();
+                        settings.volume.rays_per_probe = rays;
+                        settings.volume.probe_counts = counts;
+                        let spec = irradiant::TechniqueSpec::with_settings("ddgi", &settings);
+                        let mut r = frames.time(&spec, frame_warmup)?;
+                        r.variant = variant_name(&settings);
+                        record.ddgi.push(r);
+                    }
                 }
             }
-        }
-        for (i, settings) in ssil_variants.iter().enumerate() {
-            // The grid's first configuration also brings the GPU's clocks up after the rays'
-            // timing (on an H100 its frames otherwise ran up to 15% slow).
-            let warm = warmup.max(match (args.smoke, i) {
-                (true, _) => 1,
-                (false, 0) => 300,
-                (false, _) => 30,
-            });
-            let spec = irradiant::TechniqueSpec::with_settings("ssil", settings);
-            let mut r = frames.time(&spec, warm)?;
-            r.variant = ssil::variant_name(settings);
-            record.ssil.push(r);
-        }
-        for choice in &techniques {
-            let warm = warmup.max(if args.smoke { 1 } else { 30 });
-            let mut spec = irradiant::TechniqueSpec::new(&choice.name, irradiant::Preset::Balanced);
-            spec.settings = choice.overrides.clone();
-            let mut r = frames.time(&spec, warm)?;
-            r.technique = choice.label.clone();
-            r.variant = choice.label.clone();
-            record.techniques.push(r);
+            for settings in &ssil_variants {
+                let spec = irradiant::TechniqueSpec::with_settings("ssil", settings);
+                let mut r = frames.time(&spec, frame_warmup)?;
+                r.variant = ssil::variant_name(settings);
+                record.ssil.push(r);
+            }
+            for choice in &techniques {
+                let mut spec =
+                    irradiant::TechniqueSpec::new(&choice.name, irradiant::Preset::Balanced);
+                spec.settings = choice.overrides.clone();
+                let mut r = frames.time(&spec, frame_warmup)?;
+                r.technique = choice.label.clone();
+                r.variant = choice.label.clone();
+                record.techniques.push(r);
+            }
         }
     }
     table::print_table(&record);
+    let order_problems = if args.check_order {
+        order_check(&record, &order_boundaries[1], args.order_tolerance)
+    } else {
+        Vec::new()
+    };
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&record).expect("bench records serialise");
         crate::write_file(path, text)?;
         println!("wrote {}", path.display());
     }
+    if !order_problems.is_empty() {
+        return Err(CliError::Usage(format!(
+            "timings depend on the order of the scenes (over {}%):\n{}",
+            args.order_tolerance,
+            order_problems.join("\n")
+        )));
+    }
     Ok(())
+}
+
+/// How many records of each kind there were when an order's run began.
+struct RecordLengths {
+    passes: usize,
+    frames: [usize; 3],
+}
+
+impl RecordLengths {
+    fn of(record: &BenchRecord) -> Self {
+        Self {
+            passes: record.passes.len(),
+            frames: [
+                record.ddgi.len(),
+                record.techniques.len(),
+                record.ssil.len(),
+            ],
+        }
+    }
+}
+
+/// Prints every pass's and frame's median in both orders and returns those that differ by
+/// more than `tolerance` percent.
+fn order_check(record: &BenchRecord, reverse_start: &RecordLengths, tolerance: f64) -> Vec<String> {
+    let mut pairs: Vec<(String, f64, f64)> = Vec::new();
+    let (forward, reverse) = record.passes.split_at(reverse_start.passes);
+    for f in forward {
+        if let Some(r) = reverse
+            .iter()
+            .find(|r| r.scene == f.scene && r.label == f.label)
+        {
+            pairs.push((format!("{} {}", f.scene, f.label), f.median_ms, r.median_ms));
+        }
+    }
+    let frame_lists = [&record.ddgi, &record.techniques, &record.ssil];
+    for (list, start) in frame_lists.into_iter().zip(reverse_start.frames) {
+        let (forward, reverse) = list.split_at(start);
+        for f in forward {
+            let same = |r: &&FrameRecord| {
+                r.scene == f.scene && r.technique == f.technique && r.variant == f.variant
+            };
+            if let Some(r) = reverse.iter().find(same) {
+                let name = format!("{} {} {} frame", f.scene, f.technique, f.variant);
+                pairs.push((name, f.frame_ms, r.frame_ms));
+            }
+        }
+    }
+    println!(
+        "\n{:<64} {:>10} {:>10} {:>8}",
+        "order check", "forward", "reverse", "diff %"
+    );
+    let mut problems = Vec::new();
+    for (name, f, r) in pairs {
+        let diff = 100.0 * (r - f) / f.max(1e-9);
+        println!("{name:<64} {f:>10.3} {r:>10.3} {diff:>+8.2}");
+        if diff.abs() > tolerance {
+            problems.push(format!(
+                "  {name}: {f:.3} ms forward, {r:.3} ms reverse ({diff:+.1}%)"
+            ));
+        }
+    }
+    problems
 }
 
 /// Ray casting (primary, diffuse, diffuse any-hit) and one path-traced sample per pixel.
@@ -316,8 +460,9 @@ fn time_rays(
     scene: &irradiant_scene::Scene,
     gpu_scene: &GpuScene,
     size: (u32, u32),
-    warmup: u32,
+    warmup: Warmup,
     iterations: u32,
+    order: &'static str,
     record: &mut BenchRecord,
 ) -> Result<(), CliError> {
     let caster = RayCaster::new(ctx, gpu_scene)?;
@@ -336,6 +481,7 @@ fn time_rays(
         })?;
         record.passes.push(pass_record(
             &scene.name,
+            order,
             label,
             &times,
             Some(rays.len() as u64),
@@ -361,6 +507,7 @@ fn time_rays(
     })?;
     record.passes.push(pass_record(
         &scene.name,
+        order,
         "pathtrace/trace (1 spp)",
         &times,
         None,
@@ -477,7 +624,7 @@ fn variant_name(s: &DdgiSettings) -> String {
 /// durations in milliseconds (GPU timestamps, or wall clock around a wait without them).
 fn time_pass(
     ctx: &GpuContext,
-    warmup: u32,
+    warmup: Warmup,
     iterations: u32,
     mut record_pass: impl FnMut(
         &mut wgpu::CommandEncoder,
@@ -486,7 +633,10 @@ fn time_pass(
 ) -> Result<Vec<f64>, CliError> {
     let mut profiler = Profiler::new(ctx, 1);
     let mut times = Vec::new();
-    for i in 0..warmup + iterations {
+    let warm_start = Instant::now();
+    let mut warm_runs = 0;
+    while times.len() < iterations as usize {
+        let warming = !warmup.done(warm_runs, warm_start);
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -506,22 +656,32 @@ fn time_pass(
         ctx.wait()?;
         let wall = start.elapsed().as_secs_f64() * 1e3;
         let gpu = profiler.read(ctx)?;
-        if i >= warmup {
+        if warming {
+            warm_runs += 1;
+        } else {
             times.push(gpu.first().map_or(wall, |t| t.milliseconds));
         }
     }
     Ok(times)
 }
 
-fn pass_record(scene: &str, label: &str, times: &[f64], rays: Option<u64>) -> PassRecord {
+fn pass_record(
+    scene: &str,
+    order: &'static str,
+    label: &str,
+    times: &[f64],
+    rays: Option<u64>,
+) -> PassRecord {
     let mut sorted = times.to_vec();
     sorted.sort_by(f64::total_cmp);
     let median = sorted[sorted.len() / 2];
     PassRecord {
         scene: scene.to_owned(),
+        order,
         label: label.to_owned(),
         median_ms: median,
         min_ms: sorted[0],
+        max_ms: sorted[sorted.len() - 1],
         rays,
         mrays_per_s: rays.map(|r| r as f64 / (median * 1e-3) / 1e6),
     }

@@ -8,13 +8,31 @@ pub fn print_table(r: &BenchRecord) {
         r.adapter, r.backend, r.driver, r.timing, r.commit
     );
     println!(
-        "{:<22} {:>10} {:>10} {:>12} {:>10}",
-        "scene", "triangles", "BVH nodes", "BVH build ms", "load ms"
+        "{:<22} {:>10} {:>9} {:>12} {:>10} {:>9} {:>12} {:>10} {:>12} {:>13}",
+        "scene",
+        "triangles",
+        "instances",
+        "in world",
+        "BVH nodes",
+        "BVH depth",
+        "BVH build ms",
+        "load ms",
+        "GPU scene MiB",
+        "peak host MiB"
     );
     for s in &r.scenes {
         println!(
-            "{:<22} {:>10} {:>10} {:>12.1} {:>10.1}",
-            s.scene, s.triangles, s.bvh_nodes, s.bvh_build_ms, s.scene_load_ms
+            "{:<22} {:>10} {:>9} {:>12} {:>10} {:>9} {:>12.1} {:>10.1} {:>12.1} {:>13}",
+            s.scene,
+            s.triangles,
+            s.instances,
+            s.world_triangles,
+            s.bvh_nodes,
+            s.max_blas_depth,
+            s.bvh_build_ms,
+            s.scene_load_ms,
+            s.gpu_scene_mib,
+            s.peak_host_mib.map_or("-".into(), |m| format!("{m:.0}"))
         );
     }
     println!(
