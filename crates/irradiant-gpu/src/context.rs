@@ -24,6 +24,10 @@ pub enum GpuError {
         "the GPU device was lost ({0}). The driver reset it or ran out of memory; try a smaller size or fewer samples per frame."
     )]
     DeviceLost(String),
+    #[error(
+        "the GPU ran out of memory (noticed in {what}: {message}). Close other programs that use the GPU, or lower the image size, probe counts or bake resolution."
+    )]
+    OutOfMemory { what: String, message: String },
     #[error("waiting for the GPU failed: {0}")]
     Poll(String),
     #[error(
@@ -92,6 +96,9 @@ pub struct GpuContext {
     pub info: GpuInfo,
     /// Errors the device reported outside an error scope; taken by [`GpuContext::check`].
     errors: Arc<Mutex<Vec<String>>>,
+    /// An allocation the device refused for lack of memory. Reported before any other error:
+    /// what fails after it (views and bind groups of the missing resource) is its consequence.
+    out_of_memory: Arc<Mutex<Option<String>>>,
     lost: Arc<Mutex<Option<String>>>,
 }
 
@@ -225,10 +232,14 @@ impl GpuContext {
         .map_err(|e| unsuitable(e.to_string()))?;
 
         let errors = Arc::new(Mutex::new(Vec::new()));
-        let sink = errors.clone();
+        let out_of_memory = Arc::new(Mutex::new(None));
+        let (sink, memory_sink) = (errors.clone(), out_of_memory.clone());
         // wgpu's default handler panics; Irradiant reports errors as values instead.
-        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            sink.lock().unwrap().push(e.to_string())
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| match e {
+            wgpu::Error::OutOfMemory { .. } => {
+                memory_sink.lock().unwrap().get_or_insert(error_chain(&e));
+            }
+            _ => sink.lock().unwrap().push(e.to_string()),
         }));
         let lost = Arc::new(Mutex::new(None));
         let lost_sink = lost.clone();
@@ -262,6 +273,7 @@ impl GpuContext {
             queue,
             info,
             errors,
+            out_of_memory,
             lost,
         })
     }
@@ -271,6 +283,7 @@ impl GpuContext {
         if let Some(reason) = self.lost.lock().unwrap().clone() {
             return Err(GpuError::DeviceLost(reason));
         }
+        self.check_memory(what)?;
         let mut errors = self.errors.lock().unwrap();
         if let Some(message) = errors.first().cloned() {
             errors.clear();
@@ -298,11 +311,36 @@ impl GpuContext {
         crate::Budget::of(self).check(allocations)
     }
 
-    /// Runs `build` inside a validation error scope, turning errors into values.
+    /// An out-of-memory error the device raised since the last check, as an error; taken.
+    fn check_memory(&self, what: &str) -> Result<(), GpuError> {
+        match self.out_of_memory.lock().unwrap().take() {
+            Some(message) => {
+                // What failed after it is its consequence.
+                self.errors.lock().unwrap().clear();
+                Err(GpuError::OutOfMemory {
+                    what: what.to_owned(),
+                    message,
+                })
+            }
+            None => Ok(()),
+        }
+    }
+
+    /// Runs `build` inside validation and out-of-memory error scopes, turning errors into
+    /// values; an earlier out-of-memory error comes first (it is the cause).
     pub fn scoped<T>(&self, what: &str, build: impl FnOnce(&Device) -> T) -> Result<T, GpuError> {
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let value = build(&self.device);
-        match pollster::block_on(scope.pop()) {
+        let validation = pollster::block_on(validation.pop());
+        if let Some(e) = pollster::block_on(memory.pop()) {
+            return Err(GpuError::OutOfMemory {
+                what: what.to_owned(),
+                message: error_chain(&e),
+            });
+        }
+        self.check_memory(what)?;
+        match validation {
             Some(e) => Err(GpuError::Validation {
                 what: what.to_owned(),
                 message: e.to_string(),
@@ -310,6 +348,19 @@ impl GpuContext {
             None => Ok(value),
         }
     }
+}
+
+/// An error and its sources on one line (wgpu's own text of an out-of-memory error is only
+/// "Out of Memory"; its source says what was being made).
+fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(s) = source {
+        text.push_str(": ");
+        text.push_str(&s.to_string());
+        source = s.source();
+    }
+    text
 }
 
 /// The largest device-local memory heap of a Vulkan adapter (wgpu has no portable query).
