@@ -270,3 +270,87 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
         }
     }
 }
+
+/// A texel whose light rises by 5 % reaches the new value at the highest usable hysteresis.
+/// Blending the f16 atlas into itself lost every update smaller than half its rounding step:
+/// at hysteresis 0.99 a texel stalled anywhere within about 20 % below its target, and crept
+/// up over thousands of frames (docs/ddgi.md, "The stall").
+#[test]
+fn a_small_change_of_light_is_reached_at_high_hysteresis() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.rays_per_probe = 64;
+    settings.update.hysteresis = 0.99;
+    settings.update.convergence_heuristics = false;
+    scene.probe_volumes = vec![ProbeVolumeDesc {
+        name: "test".into(),
+        min: Vec3::splat(-0.5),
+        max: Vec3::splat(0.5),
+        counts: [2, 1, 1],
+    }];
+    let mut session = common::session(&ctx, &scene, (8, 8), common::spec(Some(&settings)));
+    let ddgi = session.technique_as_mut::<Ddgi>().unwrap().volume_mut();
+    let max_distance = ddgi.max_ray_distance();
+    let mut rng = StdRng::seed_from_u64(5);
+    let mut rays = random_rays(&mut rng, 2, 64, max_distance);
+    let directions: Vec<[f32; 4]> = rays
+        .directions
+        .iter()
+        .map(|d| d.extend(0.0).to_array())
+        .collect();
+    ctx.queue.write_buffer(
+        &ddgi.resources.directions,
+        0,
+        bytemuck::cast_slice(&directions),
+    );
+    let (before, after) = (0.5f32, 0.525f32);
+    let frames = 900u32;
+    for frame in 0..=frames {
+        if frame <= 1 {
+            let radiance = if frame == 0 { before } else { after };
+            for s in &mut rays.samples {
+                s.radiance = [radiance; 3];
+                s.distance = s.distance.abs();
+            }
+            ctx.queue.write_buffer(
+                &ddgi.resources.samples,
+                0,
+                bytemuck::cast_slice(&rays.samples),
+            );
+        }
+        // Frame 0 starts over (age 0: hysteresis 0); then probes long past the start-up, so
+        // that every later blend keeps 0.99 of the old value.
+        let age = if frame == 0 { 0 } else { 1000 + frame };
+        ctx.queue.write_buffer(
+            &ddgi.resources.states,
+            0,
+            bytemuck::cast_slice(&[age << 8; 2]),
+        );
+        ddgi.frame = frame;
+        ddgi.prepare(&ctx);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        ddgi.record_blend(&mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+    }
+    // 0.99^900 of the 5 % step is left: 0.006 %.
+    let atlases = ddgi.read_atlases(&ctx).unwrap();
+    let tile = settings.volume.irradiance_texels + 2;
+    let width = ddgi.atlas.probes_per_row * tile;
+    for probe in 0..2u32 {
+        for y in 1..tile - 1 {
+            for x in 1..tile - 1 {
+                let at = (y * width + probe * tile + x) as usize;
+                let got = Vec3::from(atlases.irradiance[at]);
+                // Texels facing no ray keep zero; the rest hold the uniform radiance.
+                if got.max_element() == 0.0 {
+                    continue;
+                }
+                assert!(
+                    (got - Vec3::splat(after)).abs().max_element() <= 0.005 * after,
+                    "probe {probe} texel ({x}, {y}): {got}, not {after} (it started at {before})"
+                );
+            }
+        }
+    }
+}

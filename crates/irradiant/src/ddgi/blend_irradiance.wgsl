@@ -1,10 +1,13 @@
 // ddgi/blend_irradiance: one workgroup a probe. Each interior texel takes the cosine-weighted
-// mean of the radiance its probe's rays brought back this frame, perceptually encoded
-// (value^(1/gamma)) for storage, and blends it into the old value with hysteresis in linear
-// light — lowered per texel
-// where the light changed a lot (003, §4.3). Which rays weigh in, and how much, comes from
-// ddgi/blend_weights. The workgroup then fills its tile's border too (probe_atlas's
-// border_source), so bilinear lookups need no separate pass.
+// mean of the radiance its probe's rays brought back this frame and blends it into the old
+// value with hysteresis, lowered per texel where the light changed a lot (003, §4.3). The
+// running value lives in irradiance_history, in f32 and linear light; the atlas the query
+// samples gets it perceptually encoded (value^(1/gamma)) in f16. Blending the f16 atlas into
+// itself, as before, lost every update smaller than half its rounding step: texels stalled
+// below their target and crept up over thousands of frames (two-rooms 7 % dark after 10 000
+// frames at gamma 5 and hysteresis 0.97, 20 % at 0.99; docs/ddgi.md). Which rays weigh in, and
+// how much, comes from ddgi/blend_weights. The workgroup then fills its tile's border too
+// (probe_atlas's border_source), so bilinear lookups need no separate pass.
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
@@ -14,6 +17,8 @@
 @group(2) @binding(15) var<storage, read> probe_states: array<u32>;
 @group(2) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
 @group(2) @binding(7) var<storage, read_write> irradiance_atlas: array<vec2<u32>>;
+// A probe's interior texels in row order, probe after probe (rgb; a spare lane).
+@group(2) @binding(19) var<storage, read_write> irradiance_history: array<vec4<f32>>;
 
 // BLEND_THREADS (threads a workgroup), TILE_TEXELS (texels of a tile, border included) and
 // BLEND_CHUNK (rays held in workgroup memory at once) come from Ddgi::new.
@@ -92,14 +97,17 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         }
         if interior && part == 0u {
             let value = select(vec3<f32>(0.0), sum / header.weight, header.weight > 0.0);
-            let encoded = pow(max(value, vec3<f32>(0.0)), vec3<f32>(1.0 / volume.irradiance_gamma));
             let index = (origin.y + y) * width + origin.x + x;
-            let packed_old = irradiance_atlas[index];
-            let old = vec3<f32>(unpack2x16float(packed_old.x), unpack2x16float(packed_old.y).x);
+            let history_index = probe * texel_count + t;
+            let old = irradiance_history[history_index].rgb;
             var hysteresis = startup_hysteresis(volume.irradiance_hysteresis, probe_blends(state));
             if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
-                let delta = abs(encoded - old);
-                let change = max(delta.x, max(delta.y, delta.z)) / max(max(max(encoded.x, encoded.y), max(encoded.z, max(old.x, max(old.y, old.z)))), 1e-4);
+                // Judged on encoded values, as 003 §4.3 does: a change the eye would see.
+                let gamma_inverse = vec3<f32>(1.0 / volume.irradiance_gamma);
+                let encoded = pow(max(value, vec3<f32>(0.0)), gamma_inverse);
+                let encoded_old = pow(max(old, vec3<f32>(0.0)), gamma_inverse);
+                let delta = abs(encoded - encoded_old);
+                let change = max(delta.x, max(delta.y, delta.z)) / max(max(max(encoded.x, encoded.y), max(encoded.z, max(encoded_old.x, max(encoded_old.y, encoded_old.z)))), 1e-4);
                 if change > 0.8 {
                     // The distribution the probe samples has changed completely.
                     hysteresis = 0.0;
@@ -107,12 +115,11 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
                     hysteresis = max(0.0, hysteresis - 0.15);
                 }
             }
-            // The average is taken in linear light and only stored encoded: an average of
-            // encoded noisy samples decodes darker than their mean (Jensen's inequality;
-            // two-rooms 8 % darker after 10 000 frames at gamma 5 and hysteresis 0.97).
-            let gamma = vec3<f32>(volume.irradiance_gamma);
-            let linear = mix(value, pow(max(old, vec3<f32>(0.0)), gamma), hysteresis);
-            let blended = pow(max(linear, vec3<f32>(0.0)), 1.0 / gamma);
+            // The average is taken in linear light: an average of encoded noisy samples decodes
+            // darker than their mean (Jensen's inequality).
+            let linear = max(mix(value, old, hysteresis), vec3<f32>(0.0));
+            irradiance_history[history_index] = vec4<f32>(linear, 0.0);
+            let blended = pow(linear, vec3<f32>(1.0 / volume.irradiance_gamma));
             let packed = vec2<u32>(pack2x16float(blended.xy), pack2x16float(vec2<f32>(blended.z, 0.0)));
             irradiance_atlas[index] = packed;
             tile_values[i] = packed;

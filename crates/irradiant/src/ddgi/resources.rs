@@ -76,6 +76,11 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
             atlas_setting,
         ),
         Allocation::storage(
+            "ddgi/irradiance_history",
+            probes * v.irradiance_texels.pow(2) as u64 * 16,
+            atlas_setting,
+        ),
+        Allocation::storage(
             "ddgi/distance_atlas",
             area(atlas.size(v.distance_texels)) * texel,
             atlas_setting,
@@ -111,8 +116,12 @@ pub struct DdgiResources {
     pub directions: wgpu::Buffer,
     pub hits: wgpu::Buffer,
     pub samples: wgpu::Buffer,
-    /// Two packed f16 pairs a texel (rgb, value^(1/gamma)).
+    /// Two packed f16 pairs a texel (rgb, value^(1/gamma)): what the query samples, through
+    /// its texture copy.
     pub irradiance: wgpu::Buffer,
+    /// The blend's running value of each interior texel, linear and f32 (16 bytes a texel):
+    /// f16 loses updates below half its rounding step (ddgi/blend_irradiance).
+    pub irradiance_history: wgpu::Buffer,
     /// Two f32 a texel: mean distance and mean squared distance.
     pub distance: wgpu::Buffer,
     /// Copies of the two atlases that the query samples (rgba16float and rg32float: the
@@ -200,6 +209,7 @@ impl DdgiResources {
             hits: storage("ddgi/hits", size("ddgi/hits")),
             samples: storage("ddgi/samples", size("ddgi/samples")),
             irradiance: storage("ddgi/irradiance_atlas", size("ddgi/irradiance_atlas")),
+            irradiance_history: storage("ddgi/irradiance_history", size("ddgi/irradiance_history")),
             distance: storage("ddgi/distance_atlas", size("ddgi/distance_atlas")),
             offsets: storage("ddgi/probe_offsets", size("ddgi/probe_offsets")),
             states: storage("ddgi/probe_states", size("ddgi/probe_states")),
@@ -223,6 +233,7 @@ impl DdgiResources {
             .buffer("hits", &self.hits)
             .buffer("samples", &self.samples)
             .buffer("irradiance_atlas", &self.irradiance)
+            .buffer("irradiance_history", &self.irradiance_history)
             .buffer("distance_atlas", &self.distance)
             .buffer("probe_offsets", &self.offsets)
             .buffer("probe_states", &self.states)
