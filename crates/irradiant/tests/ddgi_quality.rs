@@ -17,7 +17,7 @@ fn converging(weights: ProbeWeights) -> DdgiSettings {
 }
 
 #[test]
-fn two_rooms_full_ddgi_is_ten_times_closer_than_classic_probes_in_the_dark_room() {
+fn two_rooms_full_ddgi_is_sixteen_times_closer_than_classic_probes_in_the_dark_room() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("two-rooms").unwrap().scene;
     let size = (64, 48);
@@ -48,8 +48,8 @@ fn two_rooms_full_ddgi_is_ten_times_closer_than_classic_probes_in_the_dark_room(
         (f - pt).abs()
     );
     assert!(
-        (f - pt).abs() * 10.0 <= (c - pt).abs(),
-        "full DDGI must be at least 10× closer to the path tracer than classic probes"
+        (f - pt).abs() * 16.0 <= (c - pt).abs(),
+        "full DDGI must be at least 16× closer to the path tracer than classic probes (issue 15: fixes may not bring leaks back)"
     );
 }
 

@@ -102,8 +102,9 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             let old = irradiance_history[history_index].rgb;
             var hysteresis = startup_hysteresis(volume.irradiance_hysteresis, probe_blends(state));
             if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
-                // Judged on encoded values, as 003 §4.3 does: a change the eye would see.
-                let gamma_inverse = vec3<f32>(1.0 / volume.irradiance_gamma);
+                // Judged on perceptually encoded values, as 003 §4.3 does: a change the eye
+                // would see.
+                let gamma_inverse = vec3<f32>(1.0 / CHANGE_GAMMA);
                 let encoded = pow(max(value, vec3<f32>(0.0)), gamma_inverse);
                 let encoded_old = pow(max(old, vec3<f32>(0.0)), gamma_inverse);
                 let delta = abs(encoded - encoded_old);

@@ -11,6 +11,10 @@ irradiant_gpu::wgsl_constants! {
     WEIGHT_BACKFACE_HITS: u32 = 4;
     /// How much of a backface hit's distance is kept (003 §4.1: 80 % shorter).
     BACKFACE_DEPTH_SCALE: f32 = 0.2;
+    /// The perceptual exponent (003 §4.2) under which the convergence heuristics judge how
+    /// much a texel's light changed (25 % and 80 % of value^(1/5)), whatever encoding the
+    /// atlas stores (`irradiance_gamma`).
+    CHANGE_GAMMA: f32 = 5.0;
 
     /// Probe state (the low bits of a probe's state word, 003 §6): near static geometry;
     /// traces and updates every frame. Every probe starts so.
