@@ -181,6 +181,22 @@ fn merge(into: &mut toml::Table, from: &toml::Table, prefix: &str, warnings: &mu
     }
 }
 
+/// Deepest tables a settings file may nest under [frame] or [technique]: no setting is more
+/// than 2 below them; far deeper input (a fuzzer's) would not even read back once written.
+const MAX_TABLE_DEPTH: usize = 8;
+
+/// How many tables deep `table` nests, itself counted.
+fn table_depth(table: &toml::Table) -> usize {
+    fn value_depth(value: &toml::Value) -> usize {
+        match value {
+            toml::Value::Table(t) => table_depth(t),
+            toml::Value::Array(items) => items.iter().map(value_depth).max().unwrap_or(0),
+            _ => 0,
+        }
+    }
+    1 + table.values().map(value_depth).max().unwrap_or(0)
+}
+
 /// What a settings file (or a manifest) sets: the frame and the technique, each optional.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SettingsFile {
@@ -210,13 +226,32 @@ impl SettingsFile {
                 source_name: source_name.into(),
                 message: e.to_string(),
             })?;
-        serde_ignored::deserialize(deserializer, |path| {
+        let file: Self = serde_ignored::deserialize(deserializer, |path| {
             warnings.push(format!("{source_name}: unknown setting {path} is ignored"))
         })
         .map_err(|e: toml::de::Error| SettingsError::Malformed {
             source_name: source_name.into(),
             message: e.to_string(),
-        })
+        })?;
+        let tables = [
+            file.frame.as_ref(),
+            file.technique.as_ref().map(|t| &t.settings),
+        ];
+        let depth = tables
+            .into_iter()
+            .flatten()
+            .map(table_depth)
+            .max()
+            .unwrap_or(0);
+        if depth > MAX_TABLE_DEPTH {
+            return Err(SettingsError::Malformed {
+                source_name: source_name.into(),
+                message: format!(
+                    "its tables nest {depth} deep, where no setting is more than 2 below [frame] or [technique]; check the table headers (a dotted header such as [frame.taa] opens one table a dot)"
+                ),
+            });
+        }
+        Ok(file)
     }
 
     /// The frame settings: the preset's, with this file's [frame] table over them.
@@ -242,6 +277,22 @@ impl SettingsFile {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The settings fuzzer's find: a [frame] table under a hundred dotted headers parsed, but
+    /// its round trip did not (the TOML reader's recursion limit). Now refused up front.
+    #[test]
+    fn absurdly_nested_settings_are_refused_naming_the_file() {
+        let text = include_str!("../tests/fuzz-regressions/settings-nested-tables.toml");
+        let e = SettingsFile::parse(text, "nested.toml", &mut Vec::new()).unwrap_err();
+        assert!(
+            e.to_string().contains("nested.toml") && e.to_string().contains("nest"),
+            "{e}"
+        );
+        let ordinary = "[frame.taa]\nblend = 0.2\n[technique]\nname = \"ddgi\"\n[technique.settings.volume]\nrays_per_probe = 64\n";
+        let file = SettingsFile::parse(ordinary, "ok.toml", &mut Vec::new()).unwrap();
+        let again = SettingsFile::parse(&file.to_toml(), "again", &mut Vec::new()).unwrap();
+        assert_eq!(file, again);
+    }
 
     #[test]
     fn overlay_sets_known_fields_and_warns_about_unknown_ones() {
