@@ -288,7 +288,7 @@ mod tests {
             e.to_string().contains("nested.toml") && e.to_string().contains("nest"),
             "{e}"
         );
-        let ordinary = "[frame.taa]\nblend = 0.2\n[technique]\nname = \"ddgi\"\n[technique.settings.volume]\nrays_per_probe = 64\n";
+        let ordinary = "[frame.taa]\nblend = 0.2\n[technique]\nname = \"ddgi\"\n[technique.volume]\nrays_per_probe = 64\n";
         let file = SettingsFile::parse(ordinary, "ok.toml", &mut Vec::new()).unwrap();
         let again = SettingsFile::parse(&file.to_toml(), "again", &mut Vec::new()).unwrap();
         assert_eq!(file, again);
