@@ -2,9 +2,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use crate::model::{
-    Camera, Instance, Light, LightKind, Material, Mesh, ProbeVolumeDesc, Region, Scene,
-};
+use crate::model::{Camera, Instance, Light, Material, Mesh, ProbeVolumeDesc, Region, Scene};
 
 /// Names accepted by [`builtin`], with a line each for `--help` and error messages.
 pub const BUILTIN_SCENES: &[(&str, &str)] = &[
@@ -25,6 +23,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "a white diffuse sphere under a uniform white sky: the white-furnace test",
     ),
     (
+        "glowing-box",
+        "a closed box whose walls glow and reflect half the light: radiance 2 everywhere (the DDGI furnace)",
+    ),
+    (
         "dense-cluster",
         "a room with 330 000 tiny triangles packed into 4 cm on a table: the deep-tree bench",
     ),
@@ -36,6 +38,7 @@ pub fn builtin(name: &str) -> Option<Scene> {
         "two-rooms" => Some(two_rooms()),
         "box-cylinders" => Some(box_cylinders()),
         "furnace" => Some(furnace()),
+        "glowing-box" => Some(glowing_box()),
         "dense-cluster" => Some(dense_cluster()),
         _ => None,
     }
@@ -260,15 +263,12 @@ pub fn two_rooms() -> Scene {
         fov_y_degrees: 60.0,
     };
     let mut scene = b.into_scene("two-rooms", camera);
-    scene.lights.push(Light {
-        name: "lamp".into(),
-        kind: LightKind::Point,
-        position: v(-2.0, 2.5, 0.0),
-        direction: -Vec3::Y,
-        color: Vec3::new(1.0, 0.9, 0.75),
-        intensity: 12.0,
-        enabled: true,
-    });
+    scene.lights.push(Light::point(
+        "lamp",
+        v(-2.0, 2.5, 0.0),
+        Vec3::new(1.0, 0.9, 0.75),
+        12.0,
+    ));
     // Probes span the rooms up to 10–20 cm from the walls (irradiance is not extrapolated past
     // the outermost probes), and straddle the dividing wall at x = ±0.43.
     scene.probe_volumes.push(ProbeVolumeDesc {
@@ -310,15 +310,9 @@ pub fn box_cylinders() -> Scene {
         fov_y_degrees: 70.0,
     };
     let mut scene = b.into_scene("box-cylinders", camera);
-    scene.lights.push(Light {
-        name: "lamp".into(),
-        kind: LightKind::Point,
-        position: v(-2.2, 2.6, 2.2),
-        direction: -Vec3::Y,
-        color: Vec3::ONE,
-        intensity: 8.0,
-        enabled: true,
-    });
+    scene
+        .lights
+        .push(Light::point("lamp", v(-2.2, 2.6, 2.2), Vec3::ONE, 8.0));
     scene.probe_volumes.push(ProbeVolumeDesc {
         name: "box".into(),
         min: v(-2.25, 0.375, -2.25),
@@ -422,20 +416,48 @@ pub fn dense_cluster() -> Scene {
         fov_y_degrees: 50.0,
     };
     let mut scene = b.into_scene("dense-cluster", camera);
-    scene.lights.push(Light {
-        name: "lamp".into(),
-        kind: LightKind::Point,
-        position: v(0.5, 2.5, 0.5),
-        direction: -Vec3::Y,
-        color: Vec3::ONE,
-        intensity: 10.0,
-        enabled: true,
-    });
+    scene
+        .lights
+        .push(Light::point("lamp", v(0.5, 2.5, 0.5), Vec3::ONE, 10.0));
     scene.probe_volumes.push(ProbeVolumeDesc {
         name: "room".into(),
         min: v(-2.5, 0.4, -2.5),
         max: v(2.5, 2.6, 2.5),
         counts: [6, 4, 6],
+    });
+    scene
+}
+
+/// Emitted radiance and albedo of `glowing_box`'s walls.
+pub const GLOWING_BOX_EMISSION: f32 = 1.0;
+pub const GLOWING_BOX_ALBEDO: f32 = 0.5;
+
+/// A closed box whose every wall emits `GLOWING_BOX_EMISSION` and reflects
+/// `GLOWING_BOX_ALBEDO` diffusely, with no other light: the radiance leaving every point in
+/// every direction is Le / (1 − ρ) = 2 after infinitely many bounces, and the indirect light a
+/// probe holds (what arrives, minus what the walls emit) is ρ·Le / (1 − ρ) = 1 — a furnace test
+/// of energy across bounces, in closed form.
+pub fn glowing_box() -> Scene {
+    let mut b = Builder::new("glowing-box");
+    let glow = b.material(
+        "glow",
+        Vec3::splat(GLOWING_BOX_ALBEDO),
+        Vec3::splat(GLOWING_BOX_EMISSION),
+    );
+    let v = Vec3::new;
+    b.closed_room(v(-1.0, 0.0, -1.0), v(1.0, 2.0, 1.0), 0.1, glow, glow);
+    let camera = Camera {
+        position: v(0.0, 1.0, 0.9),
+        target: v(0.0, 1.0, -1.0),
+        up: Vec3::Y,
+        fov_y_degrees: 70.0,
+    };
+    let mut scene = b.into_scene("glowing-box", camera);
+    scene.probe_volumes.push(ProbeVolumeDesc {
+        name: "box".into(),
+        min: v(-0.8, 0.2, -0.8),
+        max: v(0.8, 1.8, 0.8),
+        counts: [3, 3, 3],
     });
     scene
 }

@@ -18,7 +18,7 @@ mod validate;
 use std::path::Path;
 
 pub use animation::Pose;
-pub use builtin::{BUILTIN_SCENES, builtin};
+pub use builtin::{BUILTIN_SCENES, GLOWING_BOX_ALBEDO, GLOWING_BOX_EMISSION, builtin};
 pub use error::{Result, SceneError};
 pub use framing::camera_for_bounds;
 pub use manifest::{

@@ -154,6 +154,19 @@ pub struct Light {
 }
 
 impl Light {
+    /// A point light, on.
+    pub fn point(name: &str, position: Vec3, color: Vec3, intensity: f32) -> Self {
+        Self {
+            name: name.into(),
+            kind: LightKind::Point,
+            position,
+            direction: -Vec3::Y,
+            color,
+            intensity,
+            enabled: true,
+        }
+    }
+
     /// Radiant intensity (point, spot) or irradiance (directional), zero when off.
     pub fn power(&self) -> Vec3 {
         if self.enabled {

@@ -100,23 +100,33 @@ fn blend_matches_the_oracle_with_rays_in_several_chunks() {
     blend_matches_the_oracle(300);
 }
 
+/// A DDGI session over the Cornell box with one small volume of `counts` probes, whose blends
+/// the tests drive by hand (their own rays, states and frame numbers).
+fn blend_session(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    settings: &DdgiSettings,
+    counts: [u32; 3],
+) -> irradiant::Session {
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    scene.probe_volumes = vec![ProbeVolumeDesc {
+        name: "test".into(),
+        min: Vec3::splat(-0.5),
+        max: Vec3::splat(0.5),
+        counts,
+    }];
+    common::session(ctx, &scene, (8, 8), common::spec(Some(settings)))
+}
+
 /// Probes whose state changes in the second frame (see the states written there).
 const SLEEPING: usize = 1;
 const RESTARTED: usize = 4;
 
 fn blend_matches_the_oracle(rays_per_probe: u32) {
     let Some(ctx) = common::gpu() else { return };
-    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
     let mut settings = DdgiSettings::balanced();
     settings.volume.rays_per_probe = rays_per_probe;
     settings.update.convergence_heuristics = false;
-    scene.probe_volumes = vec![ProbeVolumeDesc {
-        name: "test".into(),
-        min: Vec3::splat(-0.5),
-        max: Vec3::splat(0.5),
-        counts: [3, 2, 1],
-    }];
-    let mut session = common::session(&ctx, &scene, (8, 8), common::spec(Some(&settings)));
+    let mut session = blend_session(&ctx, &settings, [3, 2, 1]);
     let ddgi = session.technique_as_mut::<Ddgi>().unwrap().volume_mut();
     let max_distance = ddgi.max_ray_distance();
     let probes = 6;
@@ -278,18 +288,11 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
 #[test]
 fn a_small_change_of_light_is_reached_at_high_hysteresis() {
     let Some(ctx) = common::gpu() else { return };
-    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
     let mut settings = DdgiSettings::balanced();
     settings.volume.rays_per_probe = 64;
     settings.update.hysteresis = 0.99;
     settings.update.convergence_heuristics = false;
-    scene.probe_volumes = vec![ProbeVolumeDesc {
-        name: "test".into(),
-        min: Vec3::splat(-0.5),
-        max: Vec3::splat(0.5),
-        counts: [2, 1, 1],
-    }];
-    let mut session = common::session(&ctx, &scene, (8, 8), common::spec(Some(&settings)));
+    let mut session = blend_session(&ctx, &settings, [2, 1, 1]);
     let ddgi = session.technique_as_mut::<Ddgi>().unwrap().volume_mut();
     let max_distance = ddgi.max_ray_distance();
     let mut rng = StdRng::seed_from_u64(5);

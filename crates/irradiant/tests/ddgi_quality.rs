@@ -144,3 +144,47 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
         "full DDGI must be brighter (closer) than classic probes around the cylinders"
     );
 }
+
+/// The DDGI furnace (issue 15): in a closed box whose walls emit Le and reflect ρ, light leaves
+/// every point at Le / (1 − ρ) after every bounce — 2 for Le = 1, ρ = ½ — and the indirect term
+/// the probes add is ρ²·Le / (1 − ρ) = ½. Probes carry the bounces from frame to frame (each
+/// frame's probe rays read last frame's probes), so the converged update must reach it: energy
+/// lost or gained per bounce would compound. The paper's convergence heuristics are off here:
+/// on this scene's noisy emitter samples they add light (+16 % indirect at the default
+/// settings, printed below and in docs/ddgi.md), which is a bias of theirs, not of the update.
+#[test]
+fn a_glowing_box_converges_to_its_closed_form_radiance() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("glowing-box").unwrap().scene;
+    let (le, albedo) = (
+        irradiant_scene::GLOWING_BOX_EMISSION,
+        irradiant_scene::GLOWING_BOX_ALBEDO,
+    );
+    let mean = |image: &irradiant::frame::Image| {
+        image
+            .pixels
+            .iter()
+            .map(|p| (p[0] + p[1] + p[2]) / 3.0)
+            .sum::<f32>()
+            / image.pixels.len() as f32
+    };
+    let (total_expected, indirect_expected) =
+        (le / (1.0 - albedo), albedo * albedo * le / (1.0 - albedo));
+    let mut measured = Vec::new();
+    for heuristics in [false, true] {
+        let mut settings = DdgiSettings::balanced();
+        settings.update.convergence_heuristics = heuristics;
+        let frames = render_frames(&ctx, &scene, (32, 32), Some(&settings), 300);
+        let (total, indirect) = (mean(&frames.total), mean(&frames.indirect));
+        eprintln!(
+            "glowing box, heuristics {heuristics}: total {total:.4} (closed form {total_expected:.4}), indirect {indirect:.4} (closed form {indirect_expected:.4})"
+        );
+        measured.push((total, indirect));
+    }
+    let (total, indirect) = measured[0];
+    assert!(
+        (total - total_expected).abs() <= 0.02 * total_expected
+            && (indirect - indirect_expected).abs() <= 0.05 * indirect_expected,
+        "the converged update holds {total:.4} ({indirect:.4} indirect), not Le / (1 − ρ) = {total_expected:.4} ({indirect_expected:.4})"
+    );
+}

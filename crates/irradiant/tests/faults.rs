@@ -2,25 +2,13 @@
 //! what happened and what to try — never a panic, never a raw wgpu message — and nothing is
 //! read back from the lost device as if it were an image.
 
-use std::sync::Arc;
+mod common;
 
-use irradiant::{AdapterChoice, GpuContext, Preset, Session, SessionSettings, TechniqueSpec};
-
-/// A context of its own: destroying it must not touch the other tests' shared one.
-fn own_gpu() -> Option<Arc<GpuContext>> {
-    match GpuContext::new(&AdapterChoice::from_env()) {
-        Ok(ctx) => Some(Arc::new(ctx)),
-        Err(e) if std::env::var("CI").as_deref() != Ok("true") => {
-            eprintln!("SKIPPED: {e}");
-            None
-        }
-        Err(e) => panic!("CI has a GPU adapter: {e}"),
-    }
-}
+use irradiant::{Preset, Session, SessionSettings, TechniqueSpec};
 
 #[test]
 fn a_device_lost_mid_run_is_an_error_naming_what_happened() {
-    let Some(ctx) = own_gpu() else { return };
+    let Some(ctx) = common::gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let settings = || SessionSettings {
         size: (32, 32),

@@ -5,21 +5,10 @@
 //!
 //! A test binary of its own: the limit is the whole process's.
 
-use std::sync::Arc;
+mod common;
 
 use irradiant::ddgi::DdgiSettings;
-use irradiant::{AdapterChoice, GpuContext, Preset, Session, SessionSettings, TechniqueSpec};
-
-fn own_gpu() -> Option<Arc<GpuContext>> {
-    match GpuContext::new(&AdapterChoice::from_env()) {
-        Ok(ctx) => Some(Arc::new(ctx)),
-        Err(e) if std::env::var("CI").as_deref() != Ok("true") => {
-            eprintln!("SKIPPED: {e}");
-            None
-        }
-        Err(e) => panic!("CI has a GPU adapter: {e}"),
-    }
-}
+use irradiant::{Preset, Session, SessionSettings, TechniqueSpec};
 
 /// The process's virtual memory size now, bytes.
 fn address_space_in_use() -> u64 {
@@ -44,7 +33,7 @@ fn limit_address_space(bytes: u64) {
 
 #[test]
 fn running_out_of_memory_mid_run_is_an_error_and_the_session_survives() {
-    let Some(ctx) = own_gpu() else { return };
+    let Some(ctx) = common::gpu() else { return };
     if ctx.info.device_type != "Cpu" {
         eprintln!("SKIPPED: only a software adapter's memory is the process's");
         return;

@@ -6,7 +6,8 @@ use std::sync::Arc;
 
 use irradiant::{AdapterChoice, GpuContext};
 
-/// The test adapter. Without one, tests skip with a message on a developer machine and fail
+/// The test adapter: a context of the caller's own (tests that break theirs — destroy the
+/// device, starve it of memory — touch no other test's). Without one, tests skip with a message on a developer machine and fail
 /// under CI (CI=true), where a missing driver must not pass as green.
 pub fn gpu() -> Option<Arc<GpuContext>> {
     match GpuContext::new(&AdapterChoice::from_env()) {
