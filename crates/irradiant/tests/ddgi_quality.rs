@@ -150,7 +150,7 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
 /// the probes add is ρ²·Le / (1 − ρ) = ½. Probes carry the bounces from frame to frame (each
 /// frame's probe rays read last frame's probes), so the converged update must reach it: energy
 /// lost or gained per bounce would compound. The paper's convergence heuristics are off here:
-/// on this scene's noisy emitter samples they add light (+16 % indirect at the default
+/// on this scene's noisy emitter samples they add light (+12 % indirect at the default
 /// settings, printed below and in docs/ddgi.md), which is a bias of theirs, not of the update.
 #[test]
 fn a_glowing_box_converges_to_its_closed_form_radiance() {
