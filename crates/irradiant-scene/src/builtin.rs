@@ -232,12 +232,12 @@ pub fn cornell() -> Scene {
         * Mat4::from_scale(v(0.6, 1.2, 0.6));
     b.transformed_box(tall, white);
     let mut scene = b.into_scene("cornell", Camera::default());
-    scene.probe_volumes.push(ProbeVolumeDesc {
-        name: "box".into(),
-        min: v(-0.9, 0.1, -0.9),
-        max: v(0.9, 1.9, 0.9),
-        counts: [4, 4, 4],
-    });
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "box",
+        v(-0.9, 0.1, -0.9),
+        v(0.9, 1.9, 0.9),
+        [4, 4, 4],
+    ));
     scene
 }
 
@@ -271,12 +271,12 @@ pub fn two_rooms() -> Scene {
     ));
     // Probes span the rooms up to 10–20 cm from the walls (irradiance is not extrapolated past
     // the outermost probes), and straddle the dividing wall at x = ±0.43.
-    scene.probe_volumes.push(ProbeVolumeDesc {
-        name: "rooms".into(),
-        min: v(-3.9, 0.2, -1.9),
-        max: v(3.9, 2.8, 1.9),
-        counts: [10, 4, 5],
-    });
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "rooms",
+        v(-3.9, 0.2, -1.9),
+        v(3.9, 2.8, 1.9),
+        [10, 4, 5],
+    ));
     scene.regions.push(Region {
         name: "dark-room".into(),
         min: v(h, 0.0, -2.0),
@@ -313,12 +313,12 @@ pub fn box_cylinders() -> Scene {
     scene
         .lights
         .push(Light::point("lamp", v(-2.2, 2.6, 2.2), Vec3::ONE, 8.0));
-    scene.probe_volumes.push(ProbeVolumeDesc {
-        name: "box".into(),
-        min: v(-2.25, 0.375, -2.25),
-        max: v(2.25, 2.625, 2.25),
-        counts: [4, 4, 4],
-    });
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "box",
+        v(-2.25, 0.375, -2.25),
+        v(2.25, 2.625, 2.25),
+        [4, 4, 4],
+    ));
     scene.regions.push(Region {
         name: "around-cylinders".into(),
         min: v(-1.5, 0.0, -1.5),
@@ -364,12 +364,12 @@ pub fn furnace() -> Scene {
     let mut scene = b.into_scene("furnace", camera);
     scene.sky = Vec3::ONE;
     // Probes around the sphere, none inside it (the inner ones sit at |p| = 1.15).
-    scene.probe_volumes.push(ProbeVolumeDesc {
-        name: "around".into(),
-        min: Vec3::splat(-2.0),
-        max: Vec3::splat(2.0),
-        counts: [4, 4, 4],
-    });
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "around",
+        Vec3::splat(-2.0),
+        Vec3::splat(2.0),
+        [4, 4, 4],
+    ));
     scene.materials[0].base_color = Vec4::ONE;
     scene
 }
@@ -419,12 +419,12 @@ pub fn dense_cluster() -> Scene {
     scene
         .lights
         .push(Light::point("lamp", v(0.5, 2.5, 0.5), Vec3::ONE, 10.0));
-    scene.probe_volumes.push(ProbeVolumeDesc {
-        name: "room".into(),
-        min: v(-2.5, 0.4, -2.5),
-        max: v(2.5, 2.6, 2.5),
-        counts: [6, 4, 6],
-    });
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "room",
+        v(-2.5, 0.4, -2.5),
+        v(2.5, 2.6, 2.5),
+        [6, 4, 6],
+    ));
     scene
 }
 
@@ -453,11 +453,11 @@ pub fn glowing_box() -> Scene {
         fov_y_degrees: 70.0,
     };
     let mut scene = b.into_scene("glowing-box", camera);
-    scene.probe_volumes.push(ProbeVolumeDesc {
-        name: "box".into(),
-        min: v(-0.8, 0.2, -0.8),
-        max: v(0.8, 1.8, 0.8),
-        counts: [3, 3, 3],
-    });
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "box",
+        v(-0.8, 0.2, -0.8),
+        v(0.8, 1.8, 0.8),
+        [3, 3, 3],
+    ));
     scene
 }

@@ -207,6 +207,17 @@ pub struct ProbeVolumeDesc {
     pub counts: [u32; 3],
 }
 
+impl ProbeVolumeDesc {
+    pub fn new(name: &str, min: Vec3, max: Vec3, counts: [u32; 3]) -> Self {
+        Self {
+            name: name.into(),
+            min,
+            max,
+            counts,
+        }
+    }
+}
+
 /// A named box of the scene, measured by the comparison lab (e.g. the dark room).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Region {

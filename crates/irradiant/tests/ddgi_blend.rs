@@ -5,7 +5,7 @@
 mod common;
 
 use glam::{UVec2, Vec3};
-use irradiant::ddgi::{Ddgi, DdgiSettings};
+use irradiant::ddgi::{Ddgi, DdgiSettings, DdgiVolume};
 use irradiant::gpu_types::GpuDdgiRaySample;
 use irradiant::probes::octahedral::{border_source, texel_direction};
 use irradiant_scene::ProbeVolumeDesc;
@@ -100,6 +100,20 @@ fn blend_matches_the_oracle_with_rays_in_several_chunks() {
     blend_matches_the_oracle(300);
 }
 
+/// Makes `rays`' directions this frame's ray set of every probe.
+fn upload_directions(ctx: &irradiant::GpuContext, ddgi: &DdgiVolume, rays: &Rays) {
+    let directions: Vec<[f32; 4]> = rays
+        .directions
+        .iter()
+        .map(|d| d.extend(0.0).to_array())
+        .collect();
+    ctx.queue.write_buffer(
+        &ddgi.resources.directions,
+        0,
+        bytemuck::cast_slice(&directions),
+    );
+}
+
 /// A DDGI session over the Cornell box with one small volume of `counts` probes, whose blends
 /// the tests drive by hand (their own rays, states and frame numbers).
 fn blend_session(
@@ -141,16 +155,7 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
             settings.volume.rays_per_probe as usize,
             max_distance,
         );
-        let directions: Vec<[f32; 4]> = rays
-            .directions
-            .iter()
-            .map(|d| d.extend(0.0).to_array())
-            .collect();
-        ctx.queue.write_buffer(
-            &ddgi.resources.directions,
-            0,
-            bytemuck::cast_slice(&directions),
-        );
+        upload_directions(&ctx, ddgi, &rays);
         ctx.queue.write_buffer(
             &ddgi.resources.samples,
             0,
@@ -297,16 +302,7 @@ fn a_small_change_of_light_is_reached_at_high_hysteresis() {
     let max_distance = ddgi.max_ray_distance();
     let mut rng = StdRng::seed_from_u64(5);
     let mut rays = random_rays(&mut rng, 2, 64, max_distance);
-    let directions: Vec<[f32; 4]> = rays
-        .directions
-        .iter()
-        .map(|d| d.extend(0.0).to_array())
-        .collect();
-    ctx.queue.write_buffer(
-        &ddgi.resources.directions,
-        0,
-        bytemuck::cast_slice(&directions),
-    );
+    upload_directions(&ctx, ddgi, &rays);
     let (before, after) = (0.5f32, 0.525f32);
     let frames = 900u32;
     for frame in 0..=frames {
