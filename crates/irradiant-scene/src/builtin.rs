@@ -256,12 +256,7 @@ pub fn two_rooms() -> Scene {
     b.cuboid(v(-h, 0.0, -2.0), v(h, 3.0, -0.5), white);
     b.cuboid(v(-h, 0.0, 0.5), v(h, 3.0, 2.0), white);
     b.cuboid(v(-h, 2.0, -0.5), v(h, 3.0, 0.5), white);
-    let camera = Camera {
-        position: v(3.6, 1.6, 1.7),
-        target: v(0.0, 1.0, -0.3),
-        up: Vec3::Y,
-        fov_y_degrees: 60.0,
-    };
+    let camera = Camera::looking_at(v(3.6, 1.6, 1.7), v(0.0, 1.0, -0.3), 60.0);
     let mut scene = b.into_scene("two-rooms", camera);
     scene.lights.push(Light::point(
         "lamp",
@@ -303,12 +298,7 @@ pub fn box_cylinders() -> Scene {
     for (x, z) in [(-0.75, -0.75), (0.75, -0.75), (-0.75, 0.75), (0.75, 0.75)] {
         b.cylinder(v(x, 0.0, z), 0.35, 3.0, 24, column);
     }
-    let camera = Camera {
-        position: v(0.0, 1.6, 2.9),
-        target: v(0.0, 1.0, -1.0),
-        up: Vec3::Y,
-        fov_y_degrees: 70.0,
-    };
+    let camera = Camera::looking_at(v(0.0, 1.6, 2.9), v(0.0, 1.0, -1.0), 70.0);
     let mut scene = b.into_scene("box-cylinders", camera);
     scene
         .lights
@@ -355,12 +345,7 @@ pub fn furnace() -> Scene {
             );
         }
     }
-    let camera = Camera {
-        position: Vec3::new(0.0, 0.0, 4.0),
-        target: Vec3::ZERO,
-        up: Vec3::Y,
-        fov_y_degrees: 40.0,
-    };
+    let camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 40.0);
     let mut scene = b.into_scene("furnace", camera);
     scene.sky = Vec3::ONE;
     // Probes around the sphere, none inside it (the inner ones sit at |p| = 1.15).
@@ -409,12 +394,7 @@ pub fn dense_cluster() -> Scene {
             b.mesh.triangle_materials.push(clay);
         }
     }
-    let camera = Camera {
-        position: v(0.0, 1.2, 1.4),
-        target: v(0.0, 0.75, 0.0),
-        up: Vec3::Y,
-        fov_y_degrees: 50.0,
-    };
+    let camera = Camera::looking_at(v(0.0, 1.2, 1.4), v(0.0, 0.75, 0.0), 50.0);
     let mut scene = b.into_scene("dense-cluster", camera);
     scene
         .lights
@@ -446,12 +426,7 @@ pub fn glowing_box() -> Scene {
     );
     let v = Vec3::new;
     b.closed_room(v(-1.0, 0.0, -1.0), v(1.0, 2.0, 1.0), 0.1, glow, glow);
-    let camera = Camera {
-        position: v(0.0, 1.0, 0.9),
-        target: v(0.0, 1.0, -1.0),
-        up: Vec3::Y,
-        fov_y_degrees: 70.0,
-    };
+    let camera = Camera::looking_at(v(0.0, 1.0, 0.9), v(0.0, 1.0, -1.0), 70.0);
     let mut scene = b.into_scene("glowing-box", camera);
     scene.probe_volumes.push(ProbeVolumeDesc::new(
         "box",

@@ -186,6 +186,18 @@ pub struct Camera {
     pub fov_y_degrees: f32,
 }
 
+impl Camera {
+    /// A camera at `position` looking at `target`, y up.
+    pub fn looking_at(position: Vec3, target: Vec3, fov_y_degrees: f32) -> Self {
+        Self {
+            position,
+            target,
+            up: Vec3::Y,
+            fov_y_degrees,
+        }
+    }
+}
+
 impl Default for Camera {
     fn default() -> Self {
         Self {
