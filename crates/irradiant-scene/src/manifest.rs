@@ -471,36 +471,36 @@ fn flatten(scene: &mut Scene, path: &Path) -> Result<()> {
         name: format!("{} (flattened)", scene.name),
         ..Mesh::default()
     };
+    // Every vertex keeps a normal and a texture coordinate once any mesh has them.
+    let keep_normals = scene.meshes.iter().any(|m| !m.normals.is_empty());
+    let keep_uvs = scene.meshes.iter().any(|m| !m.uvs.is_empty());
     for instance in &scene.instances {
         let mesh = &scene.meshes[instance.mesh as usize];
         let base = merged.positions.len() as u32;
-        let normal_matrix = Mat3::from_mat4(instance.transform).inverse().transpose();
         merged.positions.extend(
             mesh.positions
                 .iter()
                 .map(|&p| instance.transform.transform_point3(p)),
         );
-        // Every vertex keeps a normal and a texture coordinate once any mesh has them.
-        merged.normals.extend((0..mesh.positions.len()).map(|v| {
-            mesh.normals
-                .get(v)
-                .map_or(Vec3::ZERO, |&n| (normal_matrix * n).normalize_or_zero())
-        }));
-        merged.uvs.extend(
-            (0..mesh.positions.len()).map(|v| mesh.uvs.get(v).copied().unwrap_or_default()),
-        );
+        if keep_normals {
+            let normal_matrix = Mat3::from_mat4(instance.transform).inverse().transpose();
+            merged.normals.extend((0..mesh.positions.len()).map(|v| {
+                mesh.normals
+                    .get(v)
+                    .map_or(Vec3::ZERO, |&n| (normal_matrix * n).normalize_or_zero())
+            }));
+        }
+        if keep_uvs {
+            merged.uvs.extend(
+                (0..mesh.positions.len()).map(|v| mesh.uvs.get(v).copied().unwrap_or_default()),
+            );
+        }
         merged
             .indices
             .extend(mesh.indices.iter().map(|&i| base + i));
         merged
             .triangle_materials
             .extend_from_slice(&mesh.triangle_materials);
-    }
-    if scene.meshes.iter().all(|m| m.normals.is_empty()) {
-        merged.normals.clear();
-    }
-    if scene.meshes.iter().all(|m| m.uvs.is_empty()) {
-        merged.uvs.clear();
     }
     scene.meshes = vec![merged];
     scene.instances = vec![Instance {
