@@ -396,7 +396,7 @@ impl Manifest {
                             format!(
                                 "animation names instance '{instance}', which the scene does not have"
                             ),
-                            &format!("Use one of: {}.", names.join(", ")),
+                            format!("Use one of: {}.", names.join(", ")),
                         ));
                     }
                     AnimationTarget::Instance(instance.clone())
@@ -521,7 +521,7 @@ fn apply_material(scene: &mut Scene, m: &MaterialDesc, path: &Path) -> Result<()
                 "[[material]] names '{}', which the mesh file does not have",
                 m.name
             ),
-            &format!("Use one of: {}.", names.join(", ")),
+            format!("Use one of: {}.", names.join(", ")),
         ));
     };
     let check = |key: &str, value: f32, lo: f32, hi: f32| -> Result<f32> {
@@ -531,7 +531,7 @@ fn apply_material(scene: &mut Scene, m: &MaterialDesc, path: &Path) -> Result<()
             Err(invalid(
                 path,
                 format!("material '{}': {key} = {value} is out of range", m.name),
-                &format!("Use a value from {lo} to {hi}."),
+                format!("Use a value from {lo} to {hi}."),
             ))
         }
     };
