@@ -125,6 +125,26 @@ pub fn all_layouts() -> Vec<Expected> {
             _pad0,
             _pad1
         }),
+        gpu_layout!(GpuGatherQuery {
+            origin,
+            far,
+            axis,
+            exponent,
+            kind,
+            on_surface,
+            _pad0,
+            _pad1
+        }),
+        gpu_layout!(GpuGatherParams {
+            count,
+            sample_offset,
+            samples,
+            max_bounces,
+            seed,
+            _pad0,
+            _pad1,
+            _pad2
+        }),
         gpu_layout!(GpuRay {
             origin,
             t_max,

@@ -10,6 +10,7 @@
 //! pipelines are compiled once ([`pipelines`]) and shared by every volume ([`volume`]).
 
 pub mod constants;
+pub mod oracle;
 mod pipelines;
 mod resources;
 mod settings;

@@ -527,6 +527,23 @@ impl DdgiVolume {
         .collect())
     }
 
+    /// Each probe's centre after relocation and whether it updates (vigilant or awake):
+    /// where the probe oracle measures it.
+    pub fn read_probe_centres(&self, ctx: &GpuContext) -> Result<Vec<(Vec3, bool)>, RenderError> {
+        let offsets: Vec<[f32; 4]> = read_buffer_as(ctx, &self.resources.offsets)?;
+        let states: Vec<u32> = read_buffer_as(ctx, &self.resources.states)?;
+        Ok((0..self.grid.probe_count)
+            .map(|p| {
+                let offset = Vec3::from_slice(&offsets[p as usize][..3]);
+                let state = states[p as usize] & PROBE_STATE_MASK;
+                let updates = !self.settings.speed.probe_states
+                    || state == PROBE_VIGILANT
+                    || state == PROBE_AWAKE;
+                (self.grid.probe_position(p) + offset, updates)
+            })
+            .collect())
+    }
+
     pub fn read_atlases(&self, ctx: &GpuContext) -> Result<Atlases, RenderError> {
         let packed: Vec<[half::f16; 4]> = read_buffer_as(ctx, &self.resources.irradiance)?;
         let distance: Vec<[f32; 2]> = read_buffer_as(ctx, &self.resources.distance)?;
@@ -550,6 +567,30 @@ pub struct Atlases {
     pub irradiance_size: (u32, u32),
     pub distance: Vec<[f32; 2]>,
     pub distance_size: (u32, u32),
+}
+
+impl Atlases {
+    /// The texel-wise mean of several frames' atlases of one volume: the converged value with
+    /// the frame-to-frame noise averaged out. None for none.
+    pub fn mean(frames: &[Atlases]) -> Option<Atlases> {
+        let first = frames.first()?;
+        let n = frames.len() as f32;
+        let mut mean = Atlases {
+            irradiance: vec![[0.0; 3]; first.irradiance.len()],
+            irradiance_size: first.irradiance_size,
+            distance: vec![[0.0; 2]; first.distance.len()],
+            distance_size: first.distance_size,
+        };
+        for frame in frames {
+            for (m, v) in mean.irradiance.iter_mut().zip(&frame.irradiance) {
+                (0..3).for_each(|c| m[c] += v[c] / n);
+            }
+            for (m, v) in mean.distance.iter_mut().zip(&frame.distance) {
+                (0..2).for_each(|c| m[c] += v[c] / n);
+            }
+        }
+        Some(mean)
+    }
 }
 
 #[cfg(test)]

@@ -42,6 +42,11 @@ pub struct GBufferSample {
     /// Distance along the primary ray; negative where it left the scene.
     pub depth: f32,
     pub emission: [f32; 3],
+    /// Shading normal.
+    pub normal: [f32; 3],
+    /// What diffuse light the surface reflects: brdf.wgsl's diffuse_weight (albedo less metal
+    /// and the specular layer's share), so that indirect diffuse light is this × E/π.
+    pub diffuse: [f32; 3],
 }
 
 struct FramePasses {
@@ -371,6 +376,20 @@ impl Frame {
             self.resources.texture("gbuffer_emission"),
             8,
         )?);
+        let half_texels = |name: &str| -> Result<Vec<half::f16>, RenderError> {
+            Ok(bytemuck::pod_collect_to_vec(&read_texture(
+                ctx,
+                self.resources.texture(name),
+                8,
+            )?))
+        };
+        let normal = half_texels("gbuffer_normal")?;
+        let albedo = half_texels("gbuffer_albedo")?;
+        let motion: Vec<f32> = bytemuck::pod_collect_to_vec(&read_texture(
+            ctx,
+            self.resources.texture("gbuffer_motion"),
+            16,
+        )?);
         let camera = GpuCamera::new(&self.camera, width, height);
         let jitter = self.last_jitter();
         Ok((0..(width * height) as usize)
@@ -384,6 +403,19 @@ impl Frame {
                     position: position.to_array(),
                     depth: d,
                     emission: [0, 1, 2].map(|c| emission[4 * i + c].to_f32()),
+                    normal: crate::probes::octahedral::oct_decode(Vec2::new(
+                        normal[4 * i].to_f32(),
+                        normal[4 * i + 1].to_f32(),
+                    ))
+                    .to_array(),
+                    diffuse: {
+                        // brdf.wgsl's diffuse_weight: its twin.
+                        let metallic = emission[4 * i + 3].to_f32();
+                        let specular = motion[4 * i + 2];
+                        [0, 1, 2].map(|c| {
+                            albedo[4 * i + c].to_f32() * (1.0 - metallic) * (1.0 - 0.04 * specular)
+                        })
+                    },
                 }
             })
             .collect())

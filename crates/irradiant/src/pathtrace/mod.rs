@@ -1,9 +1,11 @@
 //! The reference path tracer: the ground truth every technique is measured against.
 //! See docs/pathtrace.md.
 
+pub mod gather;
 mod passes;
 pub mod types;
 
+pub use gather::{GatherKind, GatherQuery, Gathered, gather};
 pub use passes::PathTracer;
 
 /// Path tracer settings. Every figure it produces is deterministic for a given seed.

@@ -21,6 +21,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("brdf", include_str!("brdf.wgsl"))
             .with("lights", include_str!("lights.wgsl"))
             .with("camera", include_str!("camera.wgsl"))
+            .with("path", include_str!("../pathtrace/path.wgsl"))
             .with("surface", include_str!("surface.wgsl"))
             .with("octahedral", include_str!("../probes/octahedral.wgsl"))
             .with("probe_grid", include_str!("../probes/grid.wgsl"))

@@ -1,0 +1,85 @@
+// path: the reference path tracer's estimator of the radiance arriving along one ray, shared by
+// the camera (pathtrace/trace) and the oracles that measure probes and queries against the truth
+// (pathtrace/gather): Lambert + GGX, next-event estimation of punctual lights and of one
+// emissive triangle (power-proportional choice) with multiple importance sampling against BRDF
+// sampling, Russian roulette after three bounces.
+#import bvh
+#import brdf
+#import lights
+#import random
+
+// Radiance arriving at `origin` from direction -dir, over at most `max_bounces` bounces. With
+// `first_emission` false the emission of the first surface hit is left out: what a probe
+// stores, since the frame's direct pass samples every emitter itself.
+fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first_emission: bool, rng: ptr<function, u32>) -> vec3<f32> {
+    var origin = start;
+    var dir = start_dir;
+    var throughput = vec3<f32>(1.0);
+    var radiance = vec3<f32>(0.0);
+    // pdf of the BRDF sample that produced `dir`; 0 for the first ray (no MIS on it)
+    var brdf_pdf_prev = 0.0;
+    for (var bounce = 0u; bounce <= max_bounces; bounce++) {
+        let hit = trace_ray(origin, dir, RAY_FAR, false);
+        if hit.triangle == INVALID {
+            radiance += throughput * scene_info.sky;
+            break;
+        }
+        let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
+        if max(s.emission.x, max(s.emission.y, s.emission.z)) > 0.0 && (bounce > 0u || first_emission) {
+            var w = 1.0;
+            if brdf_pdf_prev > 0.0 && scene_info.emitter_count > 0u {
+                let cos_light = abs(dot(s.geometric_normal, dir));
+                let light_pdf = emitter_pdf_area(s.emission) * hit.t * hit.t / max(cos_light, 1e-8);
+                w = power_heuristic(brdf_pdf_prev, light_pdf);
+            }
+            radiance += throughput * s.emission * w;
+        }
+        if bounce == max_bounces {
+            break;
+        }
+        let wo = -dir;
+        radiance += throughput * direct_punctual(s, wo);
+
+        let origin_next = offset_ray(s.position, s.geometric_normal);
+        if scene_info.emitter_count > 0u {
+            let u_select = rand(rng);
+            let e = sample_emitter(u_select, rand2(rng));
+            let to_light = e.position - origin_next;
+            let d2 = dot(to_light, to_light);
+            let distance = sqrt(d2);
+            let wi = to_light / distance;
+            let cos_light = -dot(e.normal, wi);
+            let cos_surface = dot(s.normal, wi);
+            if cos_light > 0.0 && cos_surface > 0.0 && dot(s.geometric_normal, wi) > 0.0 {
+                let light_pdf = e.pdf_area * d2 / cos_light;
+                // Stop short of the emitter so that it does not occlude itself.
+                if !occluded(origin_next, wi, distance * (1.0 - 1e-4)) {
+                    let w = power_heuristic(light_pdf, brdf_pdf(s, wo, wi));
+                    radiance += throughput * brdf_eval(s, wo, wi) * e.radiance * cos_surface * w / light_pdf;
+                }
+            }
+        }
+
+        let b = brdf_sample(s, wo, rand(rng), rand2(rng));
+        if b.pdf <= 0.0 || dot(b.dir, s.geometric_normal) <= 0.0 {
+            break;
+        }
+        throughput *= b.weight;
+        brdf_pdf_prev = b.pdf;
+        origin = origin_next;
+        dir = b.dir;
+        if bounce >= 3u {
+            let survive = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
+            if rand(rng) >= survive {
+                break;
+            }
+            throughput /= survive;
+        }
+    }
+    return radiance;
+}
+
+// A NaN or infinite sample would ruin a whole accumulation: such a sample counts as none.
+fn finite_or_zero(l: vec3<f32>) -> vec3<f32> {
+    return select(vec3<f32>(0.0), l, all(l == l) && all(abs(l) < vec3<f32>(1e30)));
+}
