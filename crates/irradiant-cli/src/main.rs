@@ -7,6 +7,7 @@ mod compare;
 mod info;
 mod memory;
 mod options;
+mod oracle;
 mod over_time;
 mod reference;
 mod render;
@@ -40,6 +41,8 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Run many frames of each technique and check them for NaN, memory growth and drift.
     Soak(soak::SoakArgs),
+    /// Measure DDGI's probes and its query against the path tracer, apart (docs/ddgi.md).
+    Oracle(oracle::OracleArgs),
 }
 
 fn main() -> ExitCode {
@@ -63,6 +66,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::run(&args, &adapter),
         Command::Compare(args) => compare::run(&args, &adapter),
         Command::Soak(args) => soak::run(&args, &adapter),
+        Command::Oracle(args) => oracle::run(&args, &adapter),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -916,3 +916,67 @@ fn two_processes_sharing_a_cache_never_corrupt_it() {
         json("a")["results"][0]["flip_mean"]
     );
 }
+
+/// `irradiant oracle` measures each DDGI variant's probes and query against the path tracer and
+/// writes what it found: the JSON, the histogram, the worst probes and the error map; it
+/// refuses a technique that is not DDGI, naming it.
+#[test]
+fn oracle_measures_ddgi_probes_and_query_and_draws_the_worst() {
+    let out = scratch("oracle");
+    let out_text = out.to_str().unwrap();
+    let (ok, stdout, stderr) = irradiant(&[
+        "oracle",
+        "--scene",
+        "cornell",
+        "--size",
+        "32x24",
+        "--frames",
+        "30",
+        "--average",
+        "2",
+        "--probe-samples",
+        "32",
+        "--query-samples",
+        "16",
+        "--probes",
+        "2x2x2",
+        "--worst",
+        "3",
+        "--techniques",
+        "ddgi,ddgi{update.max_ray_distance=0.05,speed.probe_states=false}",
+        "--out",
+        out_text,
+    ]);
+    assert!(ok, "{stdout}\n{stderr}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("oracle.json")).unwrap()).unwrap();
+    let results = report["results"].as_array().unwrap();
+    assert_eq!(results.len(), 2, "{report}");
+    let signed = |i: usize| results[i]["probe"]["signed_error"].as_f64().unwrap();
+    // Rays cut at 5 cm bring back no light: the probe oracle sees it.
+    assert!(signed(1) < -0.5 && signed(1) < signed(0) - 0.3, "{report}");
+    let histogram: u64 = results[0]["probe"]["histogram"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["probes"].as_u64().unwrap())
+        .sum();
+    assert_eq!(histogram, results[0]["probe"]["probes"].as_u64().unwrap());
+    assert_eq!(results[0]["probe"]["worst"].as_array().unwrap().len(), 3);
+    assert!(
+        results[0]["query"]["median_error"]
+            .as_f64()
+            .unwrap()
+            .is_finite()
+    );
+    for file in [
+        "histogram.txt",
+        "worst-probes.png",
+        "probe-view.png",
+        "query-error.png",
+    ] {
+        assert!(out.join("ddgi").join(file).is_file(), "{file}");
+    }
+    let (ok, _, stderr) = irradiant(&["oracle", "--techniques", "ssil", "--out", out_text]);
+    assert!(!ok && stderr.contains("'ssil' is not DDGI"), "{stderr}");
+}

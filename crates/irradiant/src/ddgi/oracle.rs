@@ -47,7 +47,8 @@ pub struct ProbeError {
 /// A whole volume, measured by the probe oracle.
 #[derive(Clone, Debug)]
 pub struct ProbeOracle {
-    /// Every updating probe (sleeping and switched-off ones are not read by the query).
+    /// Every updating probe (sleeping and switched-off ones are not read by the query). With
+    /// none, the errors below are NaN.
     pub probes: Vec<ProbeError>,
     pub skipped_probes: u32,
     pub irradiance_texels: u32,
@@ -266,15 +267,16 @@ fn summarize(
         probe.distance_median = median(distance.clone());
         all_errors.extend(errors);
     }
+    let none = if probes.is_empty() { f32::NAN } else { 0.0 };
     let mut histogram = vec![0; (2 * HISTOGRAM_HALF_BINS + 2) as usize];
     for p in &probes {
         histogram[ProbeOracle::histogram_bin(p.signed)] += 1;
     }
     ProbeOracle {
         skipped_probes: probe_count - probes.len() as u32,
-        median_texel_error: median(all_errors),
-        signed_error: (sum_ddgi / sum_truth.max(1e-12) - 1.0) as f32,
-        median_distance_error: median(distances.into_iter().flatten().collect()),
+        median_texel_error: median(all_errors) + none,
+        signed_error: (sum_ddgi / sum_truth.max(1e-12) - 1.0) as f32 + none,
+        median_distance_error: median(distances.into_iter().flatten().collect()) + none,
         truth_precision: median(
             precision
                 .iter()
@@ -327,9 +329,7 @@ pub fn query_oracle(
     settings: &PathTraceSettings,
     progress: impl FnMut(u32, u32),
 ) -> Result<QueryOracle, RenderError> {
-    let measured: Vec<usize> = (0..gbuffer.len())
-        .filter(|&i| gbuffer[i].depth >= 0.0 && luminance(gbuffer[i].diffuse) > 0.0)
-        .collect();
+    let measured = measured_pixels(gbuffer);
     let queries: Vec<GatherQuery> = measured
         .iter()
         .map(|&i| GatherQuery {
@@ -350,22 +350,25 @@ pub fn query_oracle(
         let e = truth.radiance(k);
         truth_image.pixels[i] = [0, 1, 2].map(|c| gbuffer[i].diffuse[c] * e[c]);
     }
-    Ok(compare_query(
-        indirect,
-        &truth_image,
-        gbuffer,
-        &measured,
-        regions,
-    ))
+    Ok(compare_with_truth(indirect, &truth_image, gbuffer, regions))
 }
 
-fn compare_query(
+/// The pixels the query oracle measures: a surface that reflects diffuse light.
+fn measured_pixels(gbuffer: &[GBufferSample]) -> Vec<usize> {
+    (0..gbuffer.len())
+        .filter(|&i| gbuffer[i].depth >= 0.0 && luminance(gbuffer[i].diffuse) > 0.0)
+        .collect()
+}
+
+/// The query oracle against a truth already gathered for this G-buffer (another variant's
+/// [`QueryOracle::truth`]: the truth does not depend on the technique).
+pub fn compare_with_truth(
     indirect: &Image,
     truth: &Image,
     gbuffer: &[GBufferSample],
-    measured: &[usize],
     regions: &[Region],
 ) -> QueryOracle {
+    let measured = &measured_pixels(gbuffer)[..];
     let ddgi = |i: usize| luminance(indirect.pixels[i]);
     let true_value = |i: usize| luminance(truth.pixels[i]);
     let mean_truth =

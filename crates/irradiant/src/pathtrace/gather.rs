@@ -109,6 +109,12 @@ pub fn gather(
     settings: &PathTraceSettings,
     mut progress: impl FnMut(u32, u32),
 ) -> Result<Gathered, RenderError> {
+    if queries.is_empty() {
+        return Ok(Gathered {
+            sums: Vec::new(),
+            samples: settings.samples_per_pixel,
+        });
+    }
     ctx.check_allocations(&plan(queries.len()))?;
     let pass = crate::shaders::pass(
         ctx,

@@ -155,4 +155,23 @@ impl GpuCamera {
             + glam::Vec3::from(self.up) * (ndc.y * self.tan_half_fov_y))
             .normalize()
     }
+
+    /// The pixel (y down) a world point is seen at, and its distance along the view; None
+    /// behind the camera: the inverse of [`GpuCamera::ray_dir`].
+    pub fn project(&self, point: glam::Vec3, width: u32, height: u32) -> Option<(glam::Vec2, f32)> {
+        let v = point - glam::Vec3::from(self.position);
+        let depth = v.dot(glam::Vec3::from(self.forward));
+        if depth <= 0.0 {
+            return None;
+        }
+        let ndc = glam::Vec2::new(
+            v.dot(glam::Vec3::from(self.right)) / (depth * self.tan_half_fov_y * self.aspect),
+            v.dot(glam::Vec3::from(self.up)) / (depth * self.tan_half_fov_y),
+        );
+        let pixel = glam::Vec2::new(
+            (ndc.x + 1.0) * 0.5 * width as f32,
+            (1.0 - ndc.y) * 0.5 * height as f32,
+        );
+        Some((pixel, depth))
+    }
 }
