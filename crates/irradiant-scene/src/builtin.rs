@@ -19,6 +19,14 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "a closed box with four cylinders that swallow probes: the dark-leak test",
     ),
     (
+        "empty-box",
+        "box-cylinders without its cylinders: the same room, lamp and probes, nothing in the way",
+    ),
+    (
+        "thin-frames",
+        "thin wooden frames in front of a lit wall: the self-shadow specks test",
+    ),
+    (
         "furnace",
         "a white diffuse sphere under a uniform white sky: the white-furnace test",
     ),
@@ -37,6 +45,8 @@ pub fn builtin(name: &str) -> Option<Scene> {
         "cornell" => Some(cornell()),
         "two-rooms" => Some(two_rooms()),
         "box-cylinders" => Some(box_cylinders()),
+        "empty-box" => Some(empty_box()),
+        "thin-frames" => Some(thin_frames()),
         "furnace" => Some(furnace()),
         "glowing-box" => Some(glowing_box()),
         "dense-cluster" => Some(dense_cluster()),
@@ -289,17 +299,29 @@ pub fn two_rooms() -> Scene {
 /// positions of its 4 × 4 × 4 probe grid (the light-field paper's Fig. 10 setup): probes inside
 /// geometry must not darken the surfaces around the cylinders.
 pub fn box_cylinders() -> Scene {
-    let mut b = Builder::new("box-cylinders");
+    cylinder_box("box-cylinders", true)
+}
+
+/// `box_cylinders` without the cylinders: what is left of DDGI's error with nothing in the
+/// way of the probes.
+pub fn empty_box() -> Scene {
+    cylinder_box("empty-box", false)
+}
+
+fn cylinder_box(name: &str, cylinders: bool) -> Scene {
+    let mut b = Builder::new(name);
     let white = b.material("white", Vec3::splat(0.7), Vec3::ZERO);
     let column = b.material("column", Vec3::new(0.7, 0.55, 0.4), Vec3::ZERO);
     let v = Vec3::new;
     let t = 0.1;
     b.closed_room(v(-3.0, 0.0, -3.0), v(3.0, 3.0, 3.0), t, white, white);
-    for (x, z) in [(-0.75, -0.75), (0.75, -0.75), (-0.75, 0.75), (0.75, 0.75)] {
-        b.cylinder(v(x, 0.0, z), 0.35, 3.0, 24, column);
+    if cylinders {
+        for (x, z) in [(-0.75, -0.75), (0.75, -0.75), (-0.75, 0.75), (0.75, 0.75)] {
+            b.cylinder(v(x, 0.0, z), 0.35, 3.0, 24, column);
+        }
     }
     let camera = Camera::looking_at(v(0.0, 1.6, 2.9), v(0.0, 1.0, -1.0), 70.0);
-    let mut scene = b.into_scene("box-cylinders", camera);
+    let mut scene = b.into_scene(name, camera);
     scene
         .lights
         .push(Light::point("lamp", v(-2.2, 2.6, 2.2), Vec3::ONE, 8.0));
@@ -313,6 +335,45 @@ pub fn box_cylinders() -> Scene {
         name: "around-cylinders".into(),
         min: v(-1.5, 0.0, -1.5),
         max: v(1.5, 3.0, 1.5),
+    });
+    scene
+}
+
+/// Two ladder-like frames of 3 cm bars in front of a wall that a lamp lights brightly, in a
+/// room with 0.5 m probe spacing: bars far thinner than the self-shadow bias, whose dark sides
+/// sample probes on their lit side — the bright specks on thin chair frames (issue 15).
+pub fn thin_frames() -> Scene {
+    let mut b = Builder::new("thin-frames");
+    let white = b.material("white", Vec3::splat(0.75), Vec3::ZERO);
+    let wood = b.material("wood", Vec3::new(0.45, 0.3, 0.18), Vec3::ZERO);
+    let v = Vec3::new;
+    b.closed_room(v(-2.0, 0.0, -2.0), v(2.0, 3.0, 2.0), 0.1, white, white);
+    let bar = 0.03;
+    for (z, x0) in [(-1.3, -0.9), (-0.7, -0.5)] {
+        // Two posts and five rails.
+        for x in [x0, x0 + 1.2] {
+            b.cuboid(v(x, 0.0, z), v(x + bar, 1.6, z + bar), wood);
+        }
+        for k in 0..5 {
+            let y = 0.3 + 0.3 * k as f32;
+            b.cuboid(v(x0, y, z), v(x0 + 1.2 + bar, y + bar, z + bar), wood);
+        }
+    }
+    let camera = Camera::looking_at(v(0.3, 1.2, 1.8), v(-0.1, 0.8, -1.5), 60.0);
+    let mut scene = b.into_scene("thin-frames", camera);
+    scene
+        .lights
+        .push(Light::point("lamp", v(0.8, 2.4, 0.6), Vec3::ONE, 3.0));
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "room",
+        v(-1.75, 0.25, -1.75),
+        v(1.75, 2.75, 1.75),
+        [8, 6, 8],
+    ));
+    scene.regions.push(Region {
+        name: "frames".into(),
+        min: v(-1.0, 0.0, -1.4),
+        max: v(0.8, 1.7, -0.6),
     });
     scene
 }

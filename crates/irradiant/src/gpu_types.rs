@@ -210,8 +210,8 @@ pub fn all_layouts() -> Vec<Expected> {
             wake_box_count,
             volume_index,
             volume_is_last,
-            _pad0,
-            _pad1
+            bounce_hysteresis,
+            _pad0
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,

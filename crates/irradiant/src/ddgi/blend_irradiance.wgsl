@@ -2,7 +2,11 @@
 // mean of the radiance its probe's rays brought back this frame and blends it into the old
 // value with hysteresis, lowered per texel where the light changed a lot (003, §4.3). The
 // running value lives in irradiance_history, in f32 and linear light; the atlas the query
-// samples gets it perceptually encoded (value^(1/gamma)) in f16. Blending the f16 atlas into
+// samples gets it perceptually encoded (value^(1/gamma)) in f16. A second running value, the
+// bounce copy, blends the same samples at bounce_hysteresis into irradiance_bounce_atlas, which
+// probe rays read at their hits: the next bounce then follows within a few frames instead of
+// waiting on the slow value (in a white room the paper's single atlas took 170 frames a time
+// constant to bring multi-bounce light in; docs/ddgi.md). Blending the f16 atlas into
 // itself, as before, lost every update smaller than half its rounding step: texels stalled
 // below their target and crept up over thousands of frames (two-rooms 7 % dark after 10 000
 // frames at gamma 5 and hysteresis 0.97, 20 % at 0.99; docs/ddgi.md). Which rays weigh in, and
@@ -17,8 +21,11 @@
 @group(2) @binding(15) var<storage, read> probe_states: array<u32>;
 @group(2) @binding(18) var<storage, read> blend_weights: array<GpuDdgiBlendWeight>;
 @group(2) @binding(7) var<storage, read_write> irradiance_atlas: array<vec2<u32>>;
-// A probe's interior texels in row order, probe after probe (rgb; a spare lane).
+// A probe's interior texels in row order, probe after probe: the running value (rgb; a spare
+// lane), then the bounce copy's.
 @group(2) @binding(19) var<storage, read_write> irradiance_history: array<vec4<f32>>;
+// Packed like irradiance_atlas.
+@group(2) @binding(20) var<storage, read_write> irradiance_bounce_atlas: array<vec2<u32>>;
 
 // BLEND_THREADS (threads a workgroup), TILE_TEXELS (texels of a tile, border included) and
 // BLEND_CHUNK (rays held in workgroup memory at once) come from Ddgi::new.
@@ -30,6 +37,12 @@ const SLOTS: u32 = (TILE_TEXELS + SLOT_THREADS - 1u) / SLOT_THREADS;
 var<workgroup> cache_radiance: array<vec4<f32>, BLEND_CHUNK>;
 var<workgroup> partial: array<vec4<f32>, BLEND_THREADS>;
 var<workgroup> tile_values: array<vec2<u32>, TILE_TEXELS>;
+var<workgroup> tile_bounce: array<vec2<u32>, TILE_TEXELS>;
+
+fn encode(linear: vec3<f32>) -> vec2<u32> {
+    let e = pow(linear, vec3<f32>(1.0 / volume.irradiance_gamma));
+    return vec2<u32>(pack2x16float(e.xy), pack2x16float(vec2<f32>(e.z, 0.0)));
+}
 
 @compute @workgroup_size(BLEND_THREADS, 1, 1)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
@@ -97,10 +110,11 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
         }
         if interior && part == 0u {
             let value = select(vec3<f32>(0.0), sum / header.weight, header.weight > 0.0);
-            let index = (origin.y + y) * width + origin.x + x;
-            let history_index = probe * texel_count + t;
+            let history_index = probe * texel_count * 2u + t;
+            let bounce_index = history_index + texel_count;
             let old = irradiance_history[history_index].rgb;
-            var hysteresis = startup_hysteresis(volume.irradiance_hysteresis, probe_blends(state));
+            let startup = probe_blends(state);
+            var hysteresis = startup_hysteresis(volume.irradiance_hysteresis, startup);
             if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
                 // Judged on perceptually encoded values, as 003 §4.3 does: a change the eye
                 // would see.
@@ -120,10 +134,17 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             // darker than their mean (Jensen's inequality).
             let linear = max(mix(value, old, hysteresis), vec3<f32>(0.0));
             irradiance_history[history_index] = vec4<f32>(linear, 0.0);
-            let blended = pow(linear, vec3<f32>(1.0 / volume.irradiance_gamma));
-            let packed = vec2<u32>(pack2x16float(blended.xy), pack2x16float(vec2<f32>(blended.z, 0.0)));
+            // The bounce copy never lags the value: what lowered its hysteresis lowers this too.
+            let bounce_hysteresis = min(startup_hysteresis(volume.bounce_hysteresis, startup), hysteresis);
+            let bounce = max(mix(value, irradiance_history[bounce_index].rgb, bounce_hysteresis), vec3<f32>(0.0));
+            irradiance_history[bounce_index] = vec4<f32>(bounce, 0.0);
+            let packed = encode(linear);
+            let packed_bounce = encode(bounce);
+            let index = (origin.y + y) * width + origin.x + x;
             irradiance_atlas[index] = packed;
+            irradiance_bounce_atlas[index] = packed_bounce;
             tile_values[i] = packed;
+            tile_bounce[i] = packed_bounce;
         }
     }
     workgroupBarrier();
@@ -134,6 +155,8 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             continue;
         }
         let source = border_source(x, y, texels);
-        irradiance_atlas[(origin.y + y) * width + origin.x + x] = tile_values[source.y * tile + source.x];
+        let index = (origin.y + y) * width + origin.x + x;
+        irradiance_atlas[index] = tile_values[source.y * tile + source.x];
+        irradiance_bounce_atlas[index] = tile_bounce[source.y * tile + source.x];
     }
 }

@@ -76,8 +76,14 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
             atlas_setting,
         ),
         Allocation::storage(
+            "ddgi/irradiance_bounce_atlas",
+            area(atlas.size(v.irradiance_texels)) * texel,
+            atlas_setting,
+        ),
+        // Two vec4 a texel: the running value and its bounce copy.
+        Allocation::storage(
             "ddgi/irradiance_history",
-            probes * v.irradiance_texels.pow(2) as u64 * 16,
+            probes * v.irradiance_texels.pow(2) as u64 * 32,
             atlas_setting,
         ),
         Allocation::storage(
@@ -87,6 +93,13 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
         ),
         Allocation::texture(
             "ddgi/irradiance_texture",
+            atlas.size(v.irradiance_texels),
+            texel,
+            1,
+            atlas_setting,
+        ),
+        Allocation::texture(
+            "ddgi/irradiance_bounce_texture",
             atlas.size(v.irradiance_texels),
             texel,
             1,
@@ -119,8 +132,12 @@ pub struct DdgiResources {
     /// Two packed f16 pairs a texel (rgb, value^(1/gamma)): what the query samples, through
     /// its texture copy.
     pub irradiance: wgpu::Buffer,
-    /// The blend's running value of each interior texel, linear and f32 (16 bytes a texel):
-    /// f16 loses updates below half its rounding step (ddgi/blend_irradiance).
+    /// The bounce copy: irradiance blended at `bounce_hysteresis`, which probe rays read at
+    /// their hits (packed as `irradiance`), so that multi-bounce light converges quickly.
+    pub irradiance_bounce: wgpu::Buffer,
+    /// The blend's running values of each interior texel, linear and f32 (two vec4 a texel:
+    /// the value, then its bounce copy): f16 loses updates below half its rounding step
+    /// (ddgi/blend_irradiance).
     pub irradiance_history: wgpu::Buffer,
     /// Two f32 a texel: mean distance and mean squared distance.
     pub distance: wgpu::Buffer,
@@ -128,8 +145,10 @@ pub struct DdgiResources {
     /// buffers' bytes as they are), copied after each blend. Hardware bilinear filtering and
     /// gathers take one or two fetches where loading texels took four.
     pub irradiance_texture: wgpu::Texture,
+    pub irradiance_bounce_texture: wgpu::Texture,
     pub distance_texture: wgpu::Texture,
     irradiance_view: wgpu::TextureView,
+    irradiance_bounce_view: wgpu::TextureView,
     distance_view: wgpu::TextureView,
     bilinear: wgpu::Sampler,
     gather: wgpu::Sampler,
@@ -184,6 +203,12 @@ impl DdgiResources {
             atlas_layout.size(v.irradiance_texels),
             wgpu::TextureFormat::Rgba16Float,
         );
+        let irradiance_bounce_texture = atlas::atlas_texture(
+            device,
+            "ddgi/irradiance_bounce_texture",
+            atlas_layout.size(v.irradiance_texels),
+            wgpu::TextureFormat::Rgba16Float,
+        );
         let distance_texture = atlas::atlas_texture(
             device,
             "ddgi/distance_texture",
@@ -193,6 +218,8 @@ impl DdgiResources {
         let (bilinear, gather) = atlas::atlas_samplers(device, "ddgi");
         Ok(Self {
             irradiance_view: irradiance_texture.create_view(&Default::default()),
+            irradiance_bounce_view: irradiance_bounce_texture.create_view(&Default::default()),
+            irradiance_bounce_texture,
             distance_view: distance_texture.create_view(&Default::default()),
             irradiance_texture,
             distance_texture,
@@ -209,6 +236,10 @@ impl DdgiResources {
             hits: storage("ddgi/hits", size("ddgi/hits")),
             samples: storage("ddgi/samples", size("ddgi/samples")),
             irradiance: storage("ddgi/irradiance_atlas", size("ddgi/irradiance_atlas")),
+            irradiance_bounce: storage(
+                "ddgi/irradiance_bounce_atlas",
+                size("ddgi/irradiance_bounce_atlas"),
+            ),
             irradiance_history: storage("ddgi/irradiance_history", size("ddgi/irradiance_history")),
             distance: storage("ddgi/distance_atlas", size("ddgi/distance_atlas")),
             offsets: storage("ddgi/probe_offsets", size("ddgi/probe_offsets")),
@@ -226,6 +257,15 @@ impl DdgiResources {
 
     /// Every resource by the name its passes declare.
     pub fn table(&self) -> ResourceTable<'_> {
+        self.table_sampling(&self.irradiance_view)
+    }
+
+    /// The table of the passes that shade probe rays: their query samples the bounce copy.
+    pub fn bounce_table(&self) -> ResourceTable<'_> {
+        self.table_sampling(&self.irradiance_bounce_view)
+    }
+
+    fn table_sampling<'a>(&'a self, irradiance: &'a wgpu::TextureView) -> ResourceTable<'a> {
         ResourceTable::new()
             .buffer("volume", &self.volume)
             .buffer("ray_set", &self.ray_set)
@@ -233,6 +273,7 @@ impl DdgiResources {
             .buffer("hits", &self.hits)
             .buffer("samples", &self.samples)
             .buffer("irradiance_atlas", &self.irradiance)
+            .buffer("irradiance_bounce_atlas", &self.irradiance_bounce)
             .buffer("irradiance_history", &self.irradiance_history)
             .buffer("distance_atlas", &self.distance)
             .buffer("probe_offsets", &self.offsets)
@@ -240,7 +281,7 @@ impl DdgiResources {
             .buffer("wake_boxes", &self.wake_boxes)
             .buffer("blend_weights", &self.blend_weights)
             .buffer("shadow_queue", &self.shadow_queue)
-            .texture("irradiance_texture", &self.irradiance_view)
+            .texture("irradiance_texture", irradiance)
             .texture("distance_texture", &self.distance_view)
             .sampler("atlas_bilinear", &self.bilinear)
             .sampler("atlas_gather", &self.gather)

@@ -42,8 +42,9 @@ pub struct GpuDdgiVolume {
     pub volume_index: u32,
     /// 1 for the coarsest volume, which fills whatever weight the finer ones left.
     pub volume_is_last: u32,
+    /// Hysteresis of the bounce copy of irradiance that probe rays read.
+    pub bounce_hysteresis: f32,
     pub _pad0: u32,
-    pub _pad1: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiVolume>() == 176);
 

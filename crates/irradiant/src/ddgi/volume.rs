@@ -191,10 +191,16 @@ impl DdgiVolume {
             let mut all: Vec<&ResourceTable> = tables.to_vec();
             all.push(&own);
             let bind = |pass: &std::sync::Arc<irradiant_gpu::ComputePass>| pass.bind(ctx, &all);
+            // Probe rays read the bounce copy of irradiance.
+            let bounce = resources.bounce_table();
+            let mut shading: Vec<&ResourceTable> = tables.to_vec();
+            shading.push(&bounce);
+            let bind_shading =
+                |pass: &std::sync::Arc<irradiant_gpu::ComputePass>| pass.bind(ctx, &shading);
             VolumePasses {
                 ray_directions: bind(&pipelines.ray_directions)?,
                 trace: pipelines.trace.as_ref().map(bind).transpose()?,
-                shade: bind(&pipelines.shade)?,
+                shade: bind_shading(&pipelines.shade)?,
                 shadow: pipelines.shadow.as_ref().map(bind).transpose()?,
                 relocate: bind(&pipelines.relocate)?,
                 probe_states: bind(&pipelines.probe_states)?,
@@ -353,8 +359,8 @@ impl DdgiVolume {
             wake_box_count: self.wake_box_count,
             volume_index: self.index,
             volume_is_last: self.is_last as u32,
+            bounce_hysteresis: u.bounce_hysteresis * irradiance_boost,
             _pad0: 0,
-            _pad1: 0,
         }
     }
 
@@ -462,6 +468,12 @@ impl DdgiVolume {
             encoder,
             &r.irradiance,
             &r.irradiance_texture,
+            ATLAS_TEXEL_BYTES,
+        );
+        copy_atlas_to_texture(
+            encoder,
+            &r.irradiance_bounce,
+            &r.irradiance_bounce_texture,
             ATLAS_TEXEL_BYTES,
         );
         copy_atlas_to_texture(encoder, &r.distance, &r.distance_texture, ATLAS_TEXEL_BYTES);

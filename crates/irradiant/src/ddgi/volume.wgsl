@@ -49,8 +49,9 @@ struct GpuDdgiVolume {
     volume_index: u32,
     // 1 for the coarsest volume, which fills whatever weight the finer ones left
     volume_is_last: u32,
+    // hysteresis of the bounce copy of irradiance that probe rays read (ddgi/blend_irradiance)
+    bounce_hysteresis: f32,
     _pad0: u32,
-    _pad1: u32,
 }
 
 fn probe_index(coord: vec3<u32>) -> u32 {
