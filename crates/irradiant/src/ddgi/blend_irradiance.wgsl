@@ -39,6 +39,17 @@ var<workgroup> partial: array<vec4<f32>, BLEND_THREADS>;
 var<workgroup> tile_values: array<vec2<u32>, TILE_TEXELS>;
 var<workgroup> tile_bounce: array<vec2<u32>, TILE_TEXELS>;
 
+// How much light changed from `before` to `after`, as 003 §4.3 judges it: on perceptually encoded
+// values (value^(1/5)), relative to the larger — a change the eye would see.
+fn encoded_change(after: vec3<f32>, before: vec3<f32>) -> f32 {
+    let gamma_inverse = vec3<f32>(1.0 / CHANGE_GAMMA);
+    let a = pow(max(after, vec3<f32>(0.0)), gamma_inverse);
+    let b = pow(max(before, vec3<f32>(0.0)), gamma_inverse);
+    let delta = abs(a - b);
+    let larger = max(max(max(a.x, a.y), a.z), max(max(b.x, b.y), b.z));
+    return max(delta.x, max(delta.y, delta.z)) / max(larger, 1e-4);
+}
+
 fn encode(linear: vec3<f32>) -> vec2<u32> {
     let e = pow(linear, vec3<f32>(1.0 / volume.irradiance_gamma));
     return vec2<u32>(pack2x16float(e.xy), pack2x16float(vec2<f32>(e.z, 0.0)));
@@ -113,20 +124,19 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             let history_index = probe * texel_count * 2u + t;
             let bounce_index = history_index + texel_count;
             let old = irradiance_history[history_index].rgb;
+            let bounce_old = irradiance_history[bounce_index].rgb;
             let startup = probe_blends(state);
             var hysteresis = startup_hysteresis(volume.irradiance_hysteresis, startup);
             if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
-                // Judged on perceptually encoded values, as 003 §4.3 does: a change the eye
-                // would see.
-                let gamma_inverse = vec3<f32>(1.0 / CHANGE_GAMMA);
-                let encoded = pow(max(value, vec3<f32>(0.0)), gamma_inverse);
-                let encoded_old = pow(max(old, vec3<f32>(0.0)), gamma_inverse);
-                let delta = abs(encoded - encoded_old);
-                let change = max(delta.x, max(delta.y, delta.z)) / max(max(max(encoded.x, encoded.y), max(encoded.z, max(encoded_old.x, max(encoded_old.y, encoded_old.z)))), 1e-4);
-                if change > 0.8 {
+                if encoded_change(value, old) > 0.8 {
                     // The distribution the probe samples has changed completely.
                     hysteresis = 0.0;
-                } else if change > 0.25 {
+                } else if encoded_change(bounce_old, old) > 0.25 {
+                    // A lasting change, judged on the bounce copy (the last frames' fast
+                    // average), not on this frame's sample: a decision that depends on the
+                    // sample it then weighs more favours the samples that cross the threshold,
+                    // and noise is skewed — a few rays that find a bright emitter — so the
+                    // paper's per-sample rule read the glowing box 12 % bright (docs/ddgi.md).
                     hysteresis = max(0.0, hysteresis - 0.15);
                 }
             }
@@ -136,7 +146,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             irradiance_history[history_index] = vec4<f32>(linear, 0.0);
             // The bounce copy never lags the value: what lowered its hysteresis lowers this too.
             let bounce_hysteresis = min(startup_hysteresis(volume.bounce_hysteresis, startup), hysteresis);
-            let bounce = max(mix(value, irradiance_history[bounce_index].rgb, bounce_hysteresis), vec3<f32>(0.0));
+            let bounce = max(mix(value, bounce_old, bounce_hysteresis), vec3<f32>(0.0));
             irradiance_history[bounce_index] = vec4<f32>(bounce, 0.0);
             let packed = encode(linear);
             let packed_bounce = encode(bounce);
