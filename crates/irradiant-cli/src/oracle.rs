@@ -259,6 +259,8 @@ fn query_json(q: &QueryOracle) -> serde_json::Value {
     json!({
         "median_error": q.median_error,
         "signed_error": q.signed_error,
+        "bright_specks": q.specks.0,
+        "dark_specks": q.specks.1,
         "regions": q.regions.iter().map(|(name, ddgi, truth)| json!({
             "name": name, "ddgi": ddgi, "truth": truth,
             "signed": ddgi / truth.max(1e-12) - 1.0,

@@ -339,9 +339,10 @@ fn cylinder_box(name: &str, cylinders: bool) -> Scene {
     scene
 }
 
-/// Two ladder-like frames of 3 cm bars in front of a wall that a lamp lights brightly, in a
-/// room with 0.5 m probe spacing: bars far thinner than the self-shadow bias, whose dark sides
-/// sample probes on their lit side — the bright specks on thin chair frames (issue 15).
+/// Two ladder-like frames of 3 cm bars before a wall, and between the wall and the frames a
+/// lamp that the camera sees the frames' shadowed sides against, in a room with 0.5 m probe
+/// spacing: bars far thinner than the self-shadow bias and a probe's distance texel, whose dark
+/// sides may read the bright probes behind them — the specks on thin chair frames (issue 15).
 pub fn thin_frames() -> Scene {
     let mut b = Builder::new("thin-frames");
     let white = b.material("white", Vec3::splat(0.75), Vec3::ZERO);
@@ -363,7 +364,7 @@ pub fn thin_frames() -> Scene {
     let mut scene = b.into_scene("thin-frames", camera);
     scene
         .lights
-        .push(Light::point("lamp", v(0.8, 2.4, 0.6), Vec3::ONE, 3.0));
+        .push(Light::point("lamp", v(0.1, 1.0, -1.65), Vec3::ONE, 2.0));
     scene.probe_volumes.push(ProbeVolumeDesc::new(
         "room",
         v(-1.75, 0.25, -1.75),

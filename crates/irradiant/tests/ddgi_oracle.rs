@@ -8,7 +8,7 @@ use common::*;
 use glam::Vec3;
 use irradiant::GpuScene;
 use irradiant::ddgi::DdgiSettings;
-use irradiant::ddgi::oracle::{converged_atlases, probe_oracle, query_oracle};
+use irradiant::ddgi::oracle::{compare_with_truth, converged_atlases, probe_oracle, query_oracle};
 use irradiant::pathtrace::{GatherKind, GatherQuery, PathTraceSettings, gather};
 
 fn truth_settings(samples: u32) -> PathTraceSettings {
@@ -244,5 +244,75 @@ fn multi_bounce_light_converges_in_a_hundred_frames_with_the_bounce_copy() {
         signed[1] < -0.08,
         "the paper's single atlas should still be dark: {:+.4}",
         signed[1]
+    );
+}
+
+/// Thin frames before a lit wall (built-in `thin-frames`: bars of 3 cm, a self-shadow bias of
+/// about 11 cm): the query oracle's truth at each bar pixel against DDGI's indirect light there.
+/// Specks are bar pixels more than twice as bright as the truth or under half of it: a few per
+/// cent of the bars at most. An absurd bias (3, pushing the test point 1.1 m off the surface)
+/// shows the check can fail.
+#[test]
+fn thin_frames_show_few_specks() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("thin-frames").unwrap().scene;
+    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
+    let mut truth = None;
+    let mut specks = Vec::new();
+    for bias in [None, Some(3.0)] {
+        let mut settings = DdgiSettings::balanced();
+        settings.volume.rays_per_probe = 128;
+        if let Some(bias) = bias {
+            settings.update.self_shadow_bias = bias;
+        }
+        let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 100);
+        let oracle = match &truth {
+            None => query_oracle(
+                &ctx,
+                &gpu_scene,
+                &frames.gbuffer,
+                &frames.indirect,
+                &scene.regions,
+                &truth_settings(256),
+                |_, _| {},
+            )
+            .unwrap(),
+            Some(first) => {
+                compare_with_truth(&frames.indirect, first, &frames.gbuffer, &scene.regions)
+            }
+        };
+        truth.get_or_insert_with(|| oracle.truth.clone());
+        // The bars are the only wood: diffuse red well above blue.
+        let bars: Vec<usize> = (0..frames.gbuffer.len())
+            .filter(|&i| {
+                let d = frames.gbuffer[i].diffuse;
+                frames.gbuffer[i].depth >= 0.0 && d[0] > 2.0 * d[2]
+            })
+            .collect();
+        let share = |test: &dyn Fn(f32) -> bool| {
+            bars.iter().filter(|&&i| test(oracle.error[i])).count() as f32 / bars.len() as f32
+        };
+        let (bright, dark) = (share(&|e| e > 1.0), share(&|e| e < -0.5));
+        eprintln!(
+            "thin-frames, self-shadow bias {bias:?}: {} bar pixels, bright specks {:.2} %, dark {:.2} %; whole image signed {:+.4}, median {:.4}; regions {:?}",
+            bars.len(),
+            100.0 * bright,
+            100.0 * dark,
+            oracle.signed_error,
+            oracle.median_error,
+            oracle.regions
+        );
+        assert!(bars.len() > 50, "the bars cover {} pixels", bars.len());
+        specks.push(bright.max(dark));
+    }
+    assert!(
+        specks[0] < 0.03,
+        "specks on {:.2} % of the bars",
+        100.0 * specks[0]
+    );
+    assert!(
+        specks[1] > 0.05,
+        "an absurd bias should blotch the bars: {:.2} %",
+        100.0 * specks[1]
     );
 }

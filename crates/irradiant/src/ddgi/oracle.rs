@@ -312,6 +312,9 @@ pub struct QueryOracle {
     pub truth: Image,
     /// Median |error| over the measured pixels.
     pub median_error: f32,
+    /// Shares of the measured pixels more than twice as bright as the truth, and under half
+    /// of it: specks and blotches.
+    pub specks: (f32, f32),
     /// Σ DDGI ÷ Σ truth − 1 over the measured pixels.
     pub signed_error: f32,
     /// (region, DDGI mean, truth mean) of indirect luminance over the pixels inside each region.
@@ -402,7 +405,11 @@ pub fn compare_with_truth(
             })
         })
         .collect();
+    let share = |test: fn(f32) -> bool| {
+        measured.iter().filter(|&&i| test(error[i])).count() as f32 / measured.len().max(1) as f32
+    };
     QueryOracle {
+        specks: (share(|e| e > 1.0), share(|e| e < -0.5)),
         median_error: median(measured.iter().map(|&i| error[i].abs()).collect()),
         signed_error: (total(&ddgi, measured) / total(&true_value, measured).max(1e-12) - 1.0)
             as f32,
