@@ -159,3 +159,29 @@ fn queued_shadow_rays_render_what_inline_shadow_rays_render() {
     eprintln!("worst relative difference of a sample: {worst:e}");
     assert!((b.indirect / a.indirect - 1.0).abs() < 1e-5);
 }
+
+/// The grid's outermost probes read every surface beyond them (the query clamps to the outer
+/// cells): in the empty box at 10×6×10 the walls stand 0.75 m past the outer probes, more than
+/// the 0.5 m spacing, and those probes once fell asleep — the whole image lost half its
+/// indirect light (docs/ddgi.md). They must stay awake: the image is the same with states on
+/// as with every probe tracing.
+#[test]
+fn outer_probes_stay_awake_for_the_walls_beyond_them() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("empty-box").unwrap().scene;
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.probe_counts = [10, 6, 10];
+    settings.volume.rays_per_probe = 64;
+    settings.update.hysteresis = 0.9;
+    let (with_states, states) = indirect_and_states(&ctx, &scene, &settings, 40);
+    settings.speed.probe_states = false;
+    let (without, _) = indirect_and_states(&ctx, &scene, &settings, 40);
+    eprintln!(
+        "empty box 10×6×10: indirect {with_states:.4} with probe states ({states:?}), {without:.4} without"
+    );
+    assert!(states.sleeping > 0, "inner probes sleep: {states:?}");
+    assert!(
+        (with_states / without - 1.0).abs() < 0.05,
+        "probe states change the image: {with_states:.4} against {without:.4}"
+    );
+}

@@ -1,7 +1,11 @@
 // ddgi/probe_states: after the blends, each probe's state for the next frame (003 §6,
 // Listing 5). During the volume's first frames (while relocation runs) it notes whether any
-// front face lies within one grid cell of the probe along every axis, that is, in one of the
-// eight cells the probe is a corner of, where surfaces read it; on the last of those frames a
+// front face lies where surfaces read the probe: within one grid cell of it along every axis
+// (one of the eight cells it is a corner of), widened by the self-shadow bias (the query
+// looks up the cell of the biased point) and, for the grid's outermost probes, without limit
+// outwards (the query clamps points beyond the grid to its outer cells: an empty room whose
+// walls stood more than a cell past its outer probes went black, docs/ddgi.md). On the last
+// of those frames a
 // probe still seeing more than 25 % backfaces turns off, one near geometry stays vigilant, and
 // the rest sleep. From then on, sleeping probes inside a wake box (an animated instance's
 // bounds grown by a cell and the self-shadow bias) wake, and sleep again when it leaves.
@@ -34,12 +38,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     let phase = volume.state_phase;
     if phase == STATES_CLASSIFYING || phase == STATES_CLASSIFY_LAST {
         let m = volume.rays_per_probe;
+        let margin = 0.75 * volume.min_spacing * volume.self_shadow_bias;
+        let coord = grid_coord(probe, volume.counts);
+        let unbounded = vec3<f32>(volume.max_ray_distance);
+        let reach = volume.spacing + margin;
+        let reach_below = select(reach, unbounded, coord == vec3<u32>(0u));
+        let reach_above = select(reach, unbounded, coord == volume.counts - 1u);
         var backfaces = 0u;
         for (var r = 0u; r < m; r++) {
             let distance = samples[probe * m + r].distance;
             if distance < 0.0 {
                 backfaces++;
-            } else if distance < volume.max_ray_distance && all(abs(directions[r].xyz * distance) <= volume.spacing) {
+            } else if distance < volume.max_ray_distance && all(directions[r].xyz * distance <= reach_above) && all(-directions[r].xyz * distance <= reach_below) {
                 near = true;
             }
         }
