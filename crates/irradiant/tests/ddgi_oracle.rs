@@ -236,12 +236,12 @@ fn multi_bounce_light_converges_in_a_hundred_frames_with_the_bounce_copy() {
         signed.push(oracle.signed_error);
     }
     assert!(
-        signed[0].abs() < 0.05,
+        signed[0].abs() < 0.08,
         "with the bounce copy: {:+.4}",
         signed[0]
     );
     assert!(
-        signed[1] < -0.08,
+        signed[1] < -0.12,
         "the paper's single atlas should still be dark: {:+.4}",
         signed[1]
     );

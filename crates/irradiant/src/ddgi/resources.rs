@@ -80,10 +80,9 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
             area(atlas.size(v.irradiance_texels)) * texel,
             atlas_setting,
         ),
-        // Two vec4 a texel: the running value and its bounce copy.
         Allocation::storage(
             "ddgi/irradiance_history",
-            probes * v.irradiance_texels.pow(2) as u64 * 32,
+            probes * v.irradiance_texels.pow(2) as u64 * 16,
             atlas_setting,
         ),
         Allocation::storage(
@@ -135,9 +134,8 @@ pub struct DdgiResources {
     /// The bounce copy: irradiance blended at `bounce_hysteresis`, which probe rays read at
     /// their hits (packed as `irradiance`), so that multi-bounce light converges quickly.
     pub irradiance_bounce: wgpu::Buffer,
-    /// The blend's running values of each interior texel, linear and f32 (two vec4 a texel:
-    /// the value, then its bounce copy): f16 loses updates below half its rounding step
-    /// (ddgi/blend_irradiance).
+    /// The blend's running value of each interior texel, linear and f32 (16 bytes a texel):
+    /// f16 loses updates below half its rounding step (ddgi/blend_irradiance).
     pub irradiance_history: wgpu::Buffer,
     /// Two f32 a texel: mean distance and mean squared distance.
     pub distance: wgpu::Buffer,
