@@ -46,9 +46,9 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let grid = (biased - volume.origin) / volume.spacing;
     let base = clamp(vec3<i32>(floor(grid)), vec3<i32>(0), max(max_base, vec3<i32>(0)));
     let alpha = saturate(grid - vec3<f32>(base));
-    // The probes blend as value^(1/blend_gamma): the atlas's encoding is decoded that far
-    // before the blend and the rest after (003, Listing 2, blends at gamma 2).
-    let decode_before = volume.irradiance_gamma / volume.blend_gamma;
+    // Half of the gamma curve is decoded before blending probes and half after, so that the
+    // probes blend in a perceptual (gamma 2) space (003, Listing 2).
+    let half_gamma = volume.irradiance_gamma * 0.5;
     var sum = vec3<f32>(0.0);
     var weight_sum = 0.0;
     for (var i = 0u; i < 8u; i++) {
@@ -87,17 +87,14 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         }
         w *= trilinear.x * trilinear.y * trilinear.z;
         let encoded = sample_irradiance_encoded(probe, n);
-        // An atlas encoded at the blend's gamma needs no decode before it.
+        // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
         var blendable = max(encoded, vec3<f32>(0.0));
-        if decode_before != 1.0 {
-            blendable = pow(blendable, vec3<f32>(decode_before));
+        if half_gamma != 1.0 {
+            blendable = pow(blendable, vec3<f32>(half_gamma));
         }
         sum += w * blendable;
         weight_sum += w;
     }
     let blended = sum / max(weight_sum, 1e-9);
-    if volume.blend_gamma == 2.0 {
-        return blended * blended;
-    }
-    return pow(blended, vec3<f32>(volume.blend_gamma));
+    return blended * blended;
 }

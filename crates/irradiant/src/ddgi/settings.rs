@@ -85,11 +85,6 @@ pub struct DdgiUpdateSettings {
     pub distance_exponent: f32,
     /// The Figure 7 ladder.
     pub weights: ProbeWeights,
-    /// The space the query blends its eight probes in: value^(1/blend_gamma), raised back
-    /// after. 2 is 003's Listing 2 (perceptual: smoother in the dark), but a blend of a bright
-    /// and a dark probe then comes out darker than their weighted mean (Jensen's inequality);
-    /// 1 blends light itself and keeps its energy.
-    pub blend_gamma: f32,
     /// 003 §4.3's convergence heuristics: per-texel hysteresis drops where the light changed
     /// by more than 25 % / 80 %, and scene-level drops for some frames after a light or an
     /// object changes. Faster response to changes, slightly more flicker.
@@ -176,7 +171,6 @@ impl DdgiSettings {
                 self_shadow_bias: 0.3,
                 distance_exponent: 50.0,
                 weights: ProbeWeights::Full,
-                blend_gamma: 2.0,
                 convergence_heuristics: true,
                 relocation: true,
                 seed: 0,
@@ -280,7 +274,6 @@ impl DdgiSettings {
             0.0,
             10.0,
         )?;
-        check_range("technique.update.blend_gamma", u.blend_gamma, 1.0, 5.0)?;
         check_range(
             "technique.update.distance_exponent",
             u.distance_exponent,

@@ -44,8 +44,7 @@ pub struct GpuDdgiVolume {
     pub volume_is_last: u32,
     /// Hysteresis of the bounce copy of irradiance that probe rays read.
     pub bounce_hysteresis: f32,
-    /// The query blends probes as value^(1/blend_gamma).
-    pub blend_gamma: f32,
+    pub _pad0: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiVolume>() == 176);
 

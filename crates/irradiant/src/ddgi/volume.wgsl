@@ -51,8 +51,7 @@ struct GpuDdgiVolume {
     volume_is_last: u32,
     // hysteresis of the bounce copy of irradiance that probe rays read (ddgi/blend_irradiance)
     bounce_hysteresis: f32,
-    // the query blends probes as value^(1/blend_gamma) (ddgi/query)
-    blend_gamma: f32,
+    _pad0: u32,
 }
 
 fn probe_index(coord: vec3<u32>) -> u32 {

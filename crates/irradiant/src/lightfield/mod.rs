@@ -560,7 +560,6 @@ impl Lightfield {
         v.self_shadow_bias = self.settings.shade.self_shadow_bias;
         v.distance_exponent = b.distance_exponent;
         v.irradiance_gamma = IRRADIANCE_GAMMA;
-        v.blend_gamma = IRRADIANCE_GAMMA;
         v.weights = WEIGHT_BACKFACE | WEIGHT_CHEBYSHEV;
         v.min_spacing = self.grid.min_spacing();
         v.state_phase = STATES_OFF;
