@@ -241,13 +241,18 @@ fn probe_json(p: &ProbeOracle, worst: usize) -> serde_json::Value {
             let (lo, hi) = ProbeOracle::histogram_range(b);
             json!({"from": finite_or_null(lo), "to": finite_or_null(hi), "probes": p.histogram[b]})
         }).collect::<Vec<_>>(),
-        "worst": p.worst(worst).iter().map(|w| json!({
-            "probe": w.probe,
-            "centre": w.centre.to_array(),
-            "signed": w.signed,
-            "texel_median": w.texel_median,
-            "distance_median": w.distance_median,
-        })).collect::<Vec<_>>(),
+        "worst": p.worst(worst).iter().map(|w| probe_error_json(w)).collect::<Vec<_>>(),
+        "every_probe": p.probes.iter().map(probe_error_json).collect::<Vec<_>>(),
+    })
+}
+
+fn probe_error_json(p: &irradiant::ddgi::oracle::ProbeError) -> serde_json::Value {
+    json!({
+        "probe": p.probe,
+        "centre": p.centre.to_array(),
+        "signed": p.signed,
+        "texel_median": p.texel_median,
+        "distance_median": p.distance_median,
     })
 }
 
