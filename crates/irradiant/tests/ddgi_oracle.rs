@@ -29,6 +29,33 @@ fn small_cornell_ddgi() -> DdgiSettings {
     s
 }
 
+/// The probe oracle of a DDGI session after 100 frames, its atlases averaged over `average`
+/// more, against `samples` path-traced samples a texel.
+fn converged_probe_oracle(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &irradiant_scene::Scene,
+    size: (u32, u32),
+    settings: &DdgiSettings,
+    average: u32,
+    samples: u32,
+) -> irradiant::ddgi::oracle::ProbeOracle {
+    let mut session = session(ctx, scene, size, spec(Some(settings)));
+    let atlases = converged_atlases(&mut session, 100, average).unwrap();
+    let volume = session
+        .technique_as::<irradiant::ddgi::Ddgi>()
+        .unwrap()
+        .volume();
+    probe_oracle(
+        ctx,
+        session.gpu_scene(),
+        volume,
+        &atlases,
+        &truth_settings(samples),
+        |_, _| {},
+    )
+    .unwrap()
+}
+
 #[test]
 fn the_gather_pass_reads_the_glowing_box_in_closed_form() {
     let Some(ctx) = gpu() else { return };
@@ -98,21 +125,7 @@ fn the_probe_oracle_finds_converged_probes_close_and_short_rays_dark() {
     for max_ray_distance in [0.0, 0.1] {
         let mut settings = small_cornell_ddgi();
         settings.update.max_ray_distance = max_ray_distance;
-        let mut session = session(&ctx, &scene, (32, 32), spec(Some(&settings)));
-        let atlases = converged_atlases(&mut session, 100, 8).unwrap();
-        let ddgi = session
-            .technique_as::<irradiant::ddgi::Ddgi>()
-            .unwrap()
-            .volume();
-        let oracle = probe_oracle(
-            &ctx,
-            session.gpu_scene(),
-            ddgi,
-            &atlases,
-            &truth_settings(1024),
-            |_, _| {},
-        )
-        .unwrap();
+        let oracle = converged_probe_oracle(&ctx, &scene, (32, 32), &settings, 8, 1024);
         eprintln!(
             "cornell 3×3×3, max ray distance {max_ray_distance}: {} probes ({} skipped), median texel error {:.4}, signed {:+.4}, distance {:.4}, truth precision {:.4}, histogram {:?}",
             oracle.probes.len(),
@@ -214,21 +227,7 @@ fn multi_bounce_light_converges_in_a_hundred_frames_with_the_bounce_copy() {
         if let Some(h) = bounce_hysteresis {
             settings.update.bounce_hysteresis = h;
         }
-        let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
-        let atlases = converged_atlases(&mut session, 100, 4).unwrap();
-        let volume = session
-            .technique_as::<irradiant::ddgi::Ddgi>()
-            .unwrap()
-            .volume();
-        let oracle = probe_oracle(
-            &ctx,
-            session.gpu_scene(),
-            volume,
-            &atlases,
-            &truth_settings(256),
-            |_, _| {},
-        )
-        .unwrap();
+        let oracle = converged_probe_oracle(&ctx, &scene, (16, 16), &settings, 4, 256);
         eprintln!(
             "thin-frames 4×3×4 after 100 frames, bounce hysteresis {bounce_hysteresis:?}: signed {:+.4}, median texel error {:.4} (truth ±{:.4})",
             oracle.signed_error, oracle.median_texel_error, oracle.truth_precision
