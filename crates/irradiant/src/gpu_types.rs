@@ -211,7 +211,7 @@ pub fn all_layouts() -> Vec<Expected> {
             volume_index,
             volume_is_last,
             bounce_hysteresis,
-            _pad0
+            extrapolation
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,

@@ -246,6 +246,32 @@ fn multi_bounce_light_converges_in_a_hundred_frames_with_the_bounce_copy() {
     );
 }
 
+/// The empty box's walls lie half a cell past its outermost probes. Clamped there (the paper's
+/// query), the walls read the probes' light, darker than theirs, and the bounce loop compounds
+/// it: its probes converge several per cent dark. Extrapolating the last two layers' trend
+/// (`update.extrapolation`, on by default) brings them within a few per cent of the truth.
+#[test]
+fn walls_past_the_outermost_probes_keep_their_light_across_bounces() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("empty-box").unwrap().scene;
+    let mut signed = Vec::new();
+    for extrapolation in [None, Some(0.0)] {
+        let mut settings = DdgiSettings::balanced();
+        settings.volume.rays_per_probe = 128;
+        if let Some(cells) = extrapolation {
+            settings.update.extrapolation = cells;
+        }
+        let oracle = converged_probe_oracle(&ctx, &scene, (16, 16), &settings, 4, 256);
+        eprintln!(
+            "empty box after 100 frames, extrapolation {extrapolation:?}: signed {:+.4}, median texel error {:.4} (truth ±{:.4})",
+            oracle.signed_error, oracle.median_texel_error, oracle.truth_precision
+        );
+        signed.push(oracle.signed_error);
+    }
+    assert!(signed[0].abs() < 0.04, "extrapolated: {:+.4}", signed[0]);
+    assert!(signed[1] < -0.04, "the clamped query should be dark: {:+.4}", signed[1]);
+}
+
 /// Thin frames before a lit wall (built-in `thin-frames`: bars of 3 cm, a self-shadow bias of
 /// about 11 cm): the query oracle's truth at each bar pixel against DDGI's indirect light there.
 /// Specks are bar pixels more than twice as bright as the truth or under half of it: a few per

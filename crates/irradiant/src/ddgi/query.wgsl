@@ -1,6 +1,7 @@
-// ddgi: the irradiance query at any point of the volume: the 8-probe cage, trilinear ×
-// smooth backface (wrap) × Chebyshev visibility × low-weight crush, with the self-shadow bias,
-// normalised. Shared by the probe rays' shading (ddgi/shade) and the camera (ddgi/resolve).
+// ddgi: the irradiance query at any point of the volume: the 8-probe cage, trilinear (extrapolated
+// just past the outermost probes) × smooth backface (wrap) × Chebyshev visibility × low-weight
+// crush, with the self-shadow bias, normalised. Shared by the probe rays' shading (ddgi/shade)
+// and the camera (ddgi/resolve).
 #import ddgi_probes
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
@@ -46,11 +47,18 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let grid = (biased - volume.origin) / volume.spacing;
     let base = clamp(vec3<i32>(floor(grid)), vec3<i32>(0), max(max_base, vec3<i32>(0)));
     let alpha = saturate(grid - vec3<f32>(base));
+    // Past the outermost probes (a wall beyond the last layer) the clamped cage reads the last
+    // layer's value, darker than the wall's light; the same cage also extrapolates the last two
+    // layers' trend up to `extrapolation` cells out. Its trilinear weights go negative there,
+    // so it is kept only where visibility leaves most of its weight standing.
+    let alpha_out = clamp(grid - vec3<f32>(base), vec3<f32>(-volume.extrapolation), vec3<f32>(1.0 + volume.extrapolation));
     // Half of the gamma curve is decoded before blending probes and half after, so that the
     // probes blend in a perceptual (gamma 2) space (003, Listing 2).
     let half_gamma = volume.irradiance_gamma * 0.5;
     var sum = vec3<f32>(0.0);
     var weight_sum = 0.0;
+    var sum_out = vec3<f32>(0.0);
+    var weight_sum_out = 0.0;
     for (var i = 0u; i < 8u; i++) {
         let offset = vec3<u32>(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u);
         let coord = min(vec3<u32>(base) + offset, volume.counts - 1u);
@@ -59,7 +67,6 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
             continue;
         }
         let probe_pos = probe_position(probe);
-        let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
         var w = 1.0;
         if (volume.weights & WEIGHT_BACKFACE) != 0u {
             // Smooth backface: wrap shading of the direction to the probe.
@@ -85,6 +92,9 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         if w < crush {
             w *= w * w / (crush * crush);
         }
+        let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
+        let trilinear_out = mix(1.0 - alpha_out, alpha_out, vec3<f32>(offset));
+        let w_out = w * trilinear_out.x * trilinear_out.y * trilinear_out.z;
         w *= trilinear.x * trilinear.y * trilinear.z;
         let encoded = sample_irradiance_encoded(probe, n);
         // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
@@ -94,7 +104,14 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         }
         sum += w * blendable;
         weight_sum += w;
+        sum_out += w_out * blendable;
+        weight_sum_out += w_out;
     }
-    let blended = sum / max(weight_sum, 1e-9);
+    var blended = sum / max(weight_sum, 1e-9);
+    if weight_sum_out > 0.5 * weight_sum {
+        // At most twice or half the clamped value (√2 in this gamma-2 space).
+        let extrapolated = sum_out / weight_sum_out;
+        blended = clamp(extrapolated, blended * 0.70710678, blended * 1.41421356);
+    }
     return blended * blended;
 }

@@ -75,6 +75,14 @@ pub struct DdgiUpdateSettings {
     /// frames (docs/ddgi.md). Lower: multi-bounce light converges in tens of frames, at a little
     /// more noise in the probes; equal to `hysteresis`: the paper's single atlas.
     pub bounce_hysteresis: f32,
+    /// How far past the outermost probes, in grid cells (0 to 0.5), the query extrapolates the
+    /// last two probe layers' trend instead of holding the outermost probes' value. Surfaces
+    /// beyond the last layer (walls half a cell out) are brighter than probes a cell in read,
+    /// and the bounce loop multiplies that deficit by about 1 / (1 − albedo): the empty box
+    /// was 6.5 % dark with 0 (the paper's clamp). Higher follows the light to the walls; it
+    /// overshoots a little where the light flattens out (kept within 2× and ½ of the clamped
+    /// value, and only where visibility leaves the extrapolation well-conditioned).
+    pub extrapolation: f32,
     /// Longest probe ray, in scene units; 0: 1.5 × the volume's diagonal. Shorter rays are
     /// cheaper but miss distant light.
     pub max_ray_distance: f32,
@@ -167,6 +175,7 @@ impl DdgiSettings {
                 hysteresis: 0.97,
                 distance_hysteresis: 0.97,
                 bounce_hysteresis: 0.8,
+                extrapolation: 0.5,
                 max_ray_distance: 0.0,
                 self_shadow_bias: 0.3,
                 distance_exponent: 50.0,
@@ -261,6 +270,12 @@ impl DdgiSettings {
             u.bounce_hysteresis,
             0.0,
             0.999,
+        )?;
+        check_range(
+            "technique.update.extrapolation",
+            u.extrapolation,
+            0.0,
+            0.5,
         )?;
         check_range(
             "technique.update.max_ray_distance",

@@ -360,7 +360,7 @@ impl DdgiVolume {
             volume_index: self.index,
             volume_is_last: self.is_last as u32,
             bounce_hysteresis: u.bounce_hysteresis * irradiance_boost,
-            _pad0: 0,
+            extrapolation: u.extrapolation,
         }
     }
 

@@ -51,7 +51,8 @@ struct GpuDdgiVolume {
     volume_is_last: u32,
     // hysteresis of the bounce copy of irradiance that probe rays read (ddgi/blend_irradiance)
     bounce_hysteresis: f32,
-    _pad0: u32,
+    // cells past the outermost probes that the query extrapolates (DdgiUpdateSettings)
+    extrapolation: f32,
 }
 
 fn probe_index(coord: vec3<u32>) -> u32 {
