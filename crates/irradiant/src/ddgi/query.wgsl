@@ -52,6 +52,8 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     // layers' trend up to `extrapolation` cells out. Its trilinear weights go negative there,
     // so it is kept only where visibility leaves most of its weight standing.
     let alpha_out = clamp(grid - vec3<f32>(base), vec3<f32>(-volume.extrapolation), vec3<f32>(1.0 + volume.extrapolation));
+    // Inside the grid both cages are one: only points past it pay for the second.
+    let outside = any(alpha_out != alpha);
     // Half of the gamma curve is decoded before blending probes and half after, so that the
     // probes blend in a perceptual (gamma 2) space (003, Listing 2).
     let half_gamma = volume.irradiance_gamma * 0.5;
@@ -92,9 +94,8 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         if w < crush {
             w *= w * w / (crush * crush);
         }
+        let w_visible = w;
         let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
-        let trilinear_out = mix(1.0 - alpha_out, alpha_out, vec3<f32>(offset));
-        let w_out = w * trilinear_out.x * trilinear_out.y * trilinear_out.z;
         w *= trilinear.x * trilinear.y * trilinear.z;
         let encoded = sample_irradiance_encoded(probe, n);
         // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
@@ -104,11 +105,15 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         }
         sum += w * blendable;
         weight_sum += w;
-        sum_out += w_out * blendable;
-        weight_sum_out += w_out;
+        if outside {
+            let trilinear_out = mix(1.0 - alpha_out, alpha_out, vec3<f32>(offset));
+            let w_out = w_visible * trilinear_out.x * trilinear_out.y * trilinear_out.z;
+            sum_out += w_out * blendable;
+            weight_sum_out += w_out;
+        }
     }
     var blended = sum / max(weight_sum, 1e-9);
-    if weight_sum_out > 0.5 * weight_sum {
+    if outside && weight_sum_out > 0.5 * weight_sum {
         // At most twice or half the clamped value (√2 in this gamma-2 space).
         let extrapolated = sum_out / weight_sum_out;
         blended = clamp(extrapolated, blended * 0.70710678, blended * 1.41421356);
