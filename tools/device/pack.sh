@@ -9,6 +9,8 @@ cp target/release/irradiant .dev/
 cp -r scenes .dev/repo/
 cp -r ../shared/scenes/sponza-dabrovic ../shared/scenes/sibenik ../shared/scenes/cornell-box .dev/shared/scenes/
 cp tools/device/*.sh .dev/
+# Manifests of oracle experiments (docs/ddgi.md): SCENES=experiments/empty-box-walls.toml.
+cp -r tools/device/scenes .dev/repo/experiments
 # The binary before a change, for like-for-like measurements (tools/device/platform.sh).
 [ -x .dev-before/irradiant ] && cp .dev-before/irradiant .dev/before
 mkdir -p .dev/repo/tools && cp tools/reports.sh .dev/repo/tools/
