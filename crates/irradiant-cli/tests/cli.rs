@@ -60,6 +60,15 @@ fn unknown_scenes_and_techniques_are_refused() {
 }
 
 #[test]
+fn render_help_names_every_built_in_scene() {
+    let (ok, help, _) = irradiant(&["render", "--help"]);
+    assert!(ok);
+    for (name, _) in irradiant_scene::BUILTIN_SCENES {
+        assert!(help.contains(name), "`render --help` leaves out '{name}':\n{help}");
+    }
+}
+
+#[test]
 fn bad_outputs_are_refused_before_rendering() {
     fails_with(
         &["render", "--out", "/nonexistent-dir/x.png"],

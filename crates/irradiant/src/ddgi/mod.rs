@@ -39,7 +39,8 @@ use pipelines::DdgiPipelines;
 /// The registry entry `ddgi`: the full method.
 pub static DDGI: DdgiKind = DdgiKind { classic: false };
 /// The registry entry `classic-probes`: DDGI's probes with trilinear weights only (no
-/// visibility), the classic irradiance probes the paper improves on.
+/// visibility) and the cage clamped at the outermost probes, the classic irradiance probes the
+/// paper improves on.
 pub static CLASSIC_PROBES: DdgiKind = DdgiKind { classic: true };
 
 pub struct DdgiKind {
@@ -47,7 +48,8 @@ pub struct DdgiKind {
 }
 
 impl DdgiKind {
-    /// The settings a spec asks for (classic probes force trilinear weights).
+    /// The settings a spec asks for (classic probes force trilinear weights and no
+    /// extrapolation past the outermost probes).
     pub fn settings(
         &self,
         spec: &TechniqueSpec,
@@ -56,6 +58,7 @@ impl DdgiKind {
         let mut settings = DdgiSettings::from_spec(spec, warnings)?;
         if self.classic {
             settings.update.weights = ProbeWeights::Classic;
+            settings.update.extrapolation = 0.0;
         }
         Ok(settings)
     }

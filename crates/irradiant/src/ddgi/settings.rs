@@ -77,9 +77,9 @@ pub struct DdgiUpdateSettings {
     pub bounce_hysteresis: f32,
     /// How far past the outermost probes, in grid cells (0 to 0.5), the query extrapolates the
     /// last two probe layers' trend instead of holding the outermost probes' value. Surfaces
-    /// beyond the last layer (walls half a cell out) are brighter than probes a cell in read,
-    /// and the bounce loop multiplies that deficit by about 1 / (1 − albedo): the empty box
-    /// was 6.5 % dark with 0 (the paper's clamp). Higher follows the light to the walls; it
+    /// beyond the last layer (walls half a cell out) get more light than the outermost probes
+    /// hold, and the bounce loop multiplies that deficit by about albedo / (1 − albedo): the
+    /// empty box was 6.5 % dark with 0 (the paper's clamp). Higher follows the light to the walls; it
     /// overshoots a little where the light flattens out (kept within 2× and ½ of the clamped
     /// value, and only where visibility leaves the extrapolation well-conditioned).
     pub extrapolation: f32,

@@ -44,6 +44,7 @@ pub struct GpuDdgiVolume {
     pub volume_is_last: u32,
     /// Hysteresis of the bounce copy of irradiance that probe rays read.
     pub bounce_hysteresis: f32,
+    /// Cells past the outermost probes that the query extrapolates.
     pub extrapolation: f32,
 }
 const _: () = assert!(size_of::<GpuDdgiVolume>() == 176);
