@@ -64,7 +64,10 @@ fn render_help_names_every_built_in_scene() {
     let (ok, help, _) = irradiant(&["render", "--help"]);
     assert!(ok);
     for (name, _) in irradiant_scene::BUILTIN_SCENES {
-        assert!(help.contains(name), "`render --help` leaves out '{name}':\n{help}");
+        assert!(
+            help.contains(name),
+            "`render --help` leaves out '{name}':\n{help}"
+        );
     }
 }
 

@@ -271,12 +271,7 @@ impl DdgiSettings {
             0.0,
             0.999,
         )?;
-        check_range(
-            "technique.update.extrapolation",
-            u.extrapolation,
-            0.0,
-            0.5,
-        )?;
+        check_range("technique.update.extrapolation", u.extrapolation, 0.0, 0.5)?;
         check_range(
             "technique.update.max_ray_distance",
             u.max_ray_distance,
