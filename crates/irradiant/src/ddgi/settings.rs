@@ -350,5 +350,14 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("magic") && e.contains("technique"), "{e}");
+        let spec: TechniqueSpec =
+            toml::from_str("name = \"ddgi\"\n[update]\nextrapolation = 2.0\n").unwrap();
+        let e = DdgiSettings::from_spec(&spec, &mut Vec::new())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("technique.update.extrapolation = 2") && e.contains("0.5"),
+            "{e}"
+        );
     }
 }
