@@ -324,37 +324,39 @@ mod tests {
 
     #[test]
     fn settings_errors_name_the_field_the_value_and_the_range() {
-        let spec: TechniqueSpec =
-            toml::from_str("name = \"ddgi\"\n[volume]\nrays_per_probe = 0\n").unwrap();
-        let e = DdgiSettings::from_spec(&spec, &mut Vec::new())
-            .unwrap_err()
-            .to_string();
+        let error = |text: &str, warnings: &mut Vec<String>| {
+            let spec: TechniqueSpec = toml::from_str(text).unwrap();
+            DdgiSettings::from_spec(&spec, warnings)
+                .unwrap_err()
+                .to_string()
+        };
+        let e = error(
+            "name = \"ddgi\"\n[volume]\nrays_per_probe = 0\n",
+            &mut Vec::new(),
+        );
         assert!(
             e.contains("technique.volume.rays_per_probe = 0") && e.contains("1 to 4096"),
             "{e}"
         );
-        let spec: TechniqueSpec =
-            toml::from_str("name = \"ddgi\"\n[update]\nhysteresis = 1.5\nwobble = 2\n").unwrap();
         let mut warnings = Vec::new();
-        let e = DdgiSettings::from_spec(&spec, &mut warnings)
-            .unwrap_err()
-            .to_string();
+        let e = error(
+            "name = \"ddgi\"\n[update]\nhysteresis = 1.5\nwobble = 2\n",
+            &mut warnings,
+        );
         assert!(e.contains("hysteresis = 1.5"), "{e}");
         assert!(
             warnings[0].contains("technique.update.wobble"),
             "{warnings:?}"
         );
-        let spec: TechniqueSpec =
-            toml::from_str("name = \"ddgi\"\n[update]\nweights = \"magic\"\n").unwrap();
-        let e = DdgiSettings::from_spec(&spec, &mut Vec::new())
-            .unwrap_err()
-            .to_string();
+        let e = error(
+            "name = \"ddgi\"\n[update]\nweights = \"magic\"\n",
+            &mut Vec::new(),
+        );
         assert!(e.contains("magic") && e.contains("technique"), "{e}");
-        let spec: TechniqueSpec =
-            toml::from_str("name = \"ddgi\"\n[update]\nextrapolation = 2.0\n").unwrap();
-        let e = DdgiSettings::from_spec(&spec, &mut Vec::new())
-            .unwrap_err()
-            .to_string();
+        let e = error(
+            "name = \"ddgi\"\n[update]\nextrapolation = 2.0\n",
+            &mut Vec::new(),
+        );
         assert!(
             e.contains("technique.update.extrapolation = 2") && e.contains("0.5"),
             "{e}"
