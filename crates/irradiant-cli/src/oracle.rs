@@ -241,7 +241,7 @@ fn probe_json(p: &ProbeOracle, worst: usize) -> serde_json::Value {
             let (lo, hi) = ProbeOracle::histogram_range(b);
             json!({"from": finite_or_null(lo), "to": finite_or_null(hi), "probes": p.histogram[b]})
         }).collect::<Vec<_>>(),
-        "worst": p.worst(worst).iter().map(|w| probe_error_json(w)).collect::<Vec<_>>(),
+        "worst": p.worst(worst).into_iter().map(probe_error_json).collect::<Vec<_>>(),
         "every_probe": p.probes.iter().map(probe_error_json).collect::<Vec<_>>(),
     })
 }

@@ -79,9 +79,9 @@ pub struct DdgiUpdateSettings {
     /// last two probe layers' trend instead of holding the outermost probes' value. Surfaces
     /// beyond the last layer (walls half a cell out) get more light than the outermost probes
     /// hold, and the bounce loop multiplies that deficit by about albedo / (1 − albedo): the
-    /// empty box was 6.5 % dark with 0 (the paper's clamp). Higher follows the light to the walls; it
-    /// overshoots a little where the light flattens out (kept within 2× and ½ of the clamped
-    /// value, and only where visibility leaves the extrapolation well-conditioned).
+    /// empty box was 6.5 % dark with 0 (the paper's clamp). Higher follows the light to the
+    /// walls; it overshoots a little where the light flattens out (kept within 2× and ½ of the
+    /// clamped value, and only where visibility leaves the extrapolation well-conditioned).
     pub extrapolation: f32,
     /// Longest probe ray, in scene units; 0: 1.5 × the volume's diagonal. Shorter rays are
     /// cheaper but miss distant light.
