@@ -7,7 +7,13 @@
 @group(2) @binding(15) var<storage, read> probe_states: array<u32>;
 
 fn probe_position(probe: u32) -> vec3<f32> {
-    return grid_position(probe) + probe_offsets[probe].xyz;
+    return probe_position_at(grid_coord(probe, volume.counts), probe);
+}
+
+// probe_position where the caller knows the probe's grid coordinates (the query's cage), which
+// spares the integer divisions of turning the index back into them.
+fn probe_position_at(coord: vec3<u32>, probe: u32) -> vec3<f32> {
+    return volume.origin + vec3<f32>(coord) * volume.spacing + probe_offsets[probe].xyz;
 }
 
 // Whether the probe's stored light is live: sleeping and switched-off probes are skipped by

@@ -13,19 +13,14 @@
 @group(3) @binding(2) var atlas_bilinear: sampler;
 @group(3) @binding(3) var atlas_gather: sampler;
 
-// Position in a probe's tile for direction d, in texels of the atlas (probe_atlas).
-fn tile_coord(probe: u32, texels: u32, d: vec3<f32>) -> vec2<f32> {
-    return atlas_tile_coord(probe, texels, volume.probes_per_row, d);
-}
-
-fn sample_irradiance_encoded(probe: u32, d: vec3<f32>) -> vec3<f32> {
-    let c = tile_coord(probe, volume.irradiance_texels, d);
+fn sample_irradiance_encoded(cell: vec2<u32>, d: vec3<f32>) -> vec3<f32> {
+    let c = atlas_tile_coord(cell, volume.irradiance_texels, d);
     let size = vec2<f32>(textureDimensions(irradiance_texture));
     return textureSampleLevel(irradiance_texture, atlas_bilinear, (c + 0.5) / size, 0.0).rgb;
 }
 
-fn sample_distance(probe: u32, d: vec3<f32>) -> vec2<f32> {
-    let c = tile_coord(probe, volume.distance_texels, d);
+fn sample_distance(cell: vec2<u32>, d: vec3<f32>) -> vec2<f32> {
+    let c = atlas_tile_coord(cell, volume.distance_texels, d);
     let c0 = floor(c);
     let f = c - c0;
     // Gathering at the corner between the footprint's four texels returns them as
@@ -68,7 +63,8 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         if !probe_shades(probe) {
             continue;
         }
-        let probe_pos = probe_position(probe);
+        let probe_pos = probe_position_at(coord, probe);
+        let cell = atlas_tile_cell(probe, volume.probes_per_row);
         var w = 1.0;
         if (volume.weights & WEIGHT_BACKFACE) != 0u {
             // Smooth backface: wrap shading of the direction to the probe.
@@ -79,7 +75,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         if (volume.weights & WEIGHT_CHEBYSHEV) != 0u {
             let probe_to_point = biased - probe_pos;
             let r = length(probe_to_point);
-            let moments = sample_distance(probe, probe_to_point / max(r, 1e-6));
+            let moments = sample_distance(cell, probe_to_point / max(r, 1e-6));
             if r > moments.x {
                 let variance = abs(moments.y - moments.x * moments.x);
                 let d = r - moments.x;
@@ -97,7 +93,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let w_visible = w;
         let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
         w *= trilinear.x * trilinear.y * trilinear.z;
-        let encoded = sample_irradiance_encoded(probe, n);
+        let encoded = sample_irradiance_encoded(cell, n);
         // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
         var blendable = max(encoded, vec3<f32>(0.0));
         if half_gamma != 1.0 {

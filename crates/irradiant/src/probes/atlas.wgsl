@@ -3,9 +3,15 @@
 // across the octahedral map's fold so that bilinear lookups are seamless.
 #import octahedral
 
+// A probe's tile's column and row in an atlas. Integer division is slow on GPUs: the query
+// finds it once a probe for both of the probe's atlases.
+fn atlas_tile_cell(probe: u32, probes_per_row: u32) -> vec2<u32> {
+    return vec2<u32>(probe % probes_per_row, probe / probes_per_row);
+}
+
 // Top-left texel of a probe's tile (side `tile` texels, border included) in an atlas.
 fn atlas_tile_origin(probe: u32, tile: u32, probes_per_row: u32) -> vec2<u32> {
-    return vec2<u32>(probe % probes_per_row, probe / probes_per_row) * tile;
+    return atlas_tile_cell(probe, probes_per_row) * tile;
 }
 
 // The world direction that interior texel (i, j) of a tile of `texels` interior texels stands for.
@@ -29,9 +35,9 @@ fn border_source(x: u32, y: u32, texels: u32) -> vec2<u32> {
     return vec2<u32>(select(texels, 1u, x == 0u), last - y);
 }
 
-// Position in a probe's tile for direction d, in atlas texels: texel centres at whole numbers,
-// so floor() is the top-left texel of the bilinear footprint.
-fn atlas_tile_coord(probe: u32, texels: u32, probes_per_row: u32, d: vec3<f32>) -> vec2<f32> {
-    let origin = vec2<f32>(atlas_tile_origin(probe, texels + 2u, probes_per_row)) + 1.0;
+// Position in the tile at `cell` (atlas_tile_cell) for direction d, in atlas texels: texel
+// centres at whole numbers, so floor() is the top-left texel of the bilinear footprint.
+fn atlas_tile_coord(cell: vec2<u32>, texels: u32, d: vec3<f32>) -> vec2<f32> {
+    let origin = vec2<f32>(cell * (texels + 2u)) + 1.0;
     return origin + (oct_encode(d) * 0.5 + 0.5) * f32(texels) - 0.5;
 }
