@@ -27,6 +27,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "thin wooden frames in front of a lit wall: the self-shadow specks test",
     ),
     (
+        "table",
+        "a table with a 3 cm top under a lamp, a probe layer at the top's height: the extrapolation-leak test",
+    ),
+    (
         "furnace",
         "a white diffuse sphere under a uniform white sky: the white-furnace test",
     ),
@@ -47,6 +51,7 @@ pub fn builtin(name: &str) -> Option<Scene> {
         "box-cylinders" => Some(box_cylinders()),
         "empty-box" => Some(empty_box()),
         "thin-frames" => Some(thin_frames()),
+        "table" => Some(table()),
         "furnace" => Some(furnace()),
         "glowing-box" => Some(glowing_box()),
         "dense-cluster" => Some(dense_cluster()),
@@ -381,6 +386,54 @@ pub fn thin_frames() -> Scene {
 
 /// A white Lambertian sphere under a uniform sky of radiance 1: every pixel converges to 1,
 /// whatever the number of bounces (the white-furnace test).
+/// A table (a 3 cm top, aprons, legs, low stretchers) half a metre under a lamp in a white room,
+/// probes every 0.5 m with a layer at the height of the top, as in the interior of issue 15: the
+/// probes on the top relocate under it, and the floor under it lies below the lowest probe
+/// layer, where the query extrapolates the last two layers' trend (docs/ddgi.md).
+pub fn table() -> Scene {
+    let mut b = Builder::new("table");
+    let white = b.material("white", Vec3::splat(0.75), Vec3::ZERO);
+    let wood = b.material("wood", Vec3::new(0.55, 0.4, 0.25), Vec3::ZERO);
+    let v = Vec3::new;
+    b.closed_room(v(-3.0, 0.0, -2.5), v(3.0, 3.0, 2.5), 0.1, white, white);
+    b.cuboid(v(-0.6, 0.72, -0.4), v(0.6, 0.75, 0.4), wood);
+    for (x, z) in [(-0.57, -0.37), (0.53, -0.37), (-0.57, 0.33), (0.53, 0.33)] {
+        b.cuboid(v(x, 0.0, z), v(x + 0.04, 0.72, z + 0.04), wood);
+    }
+    // Aprons under the top's edges, between the legs.
+    for z in [-0.37, 0.35] {
+        b.cuboid(v(-0.53, 0.64, z), v(0.53, 0.72, z + 0.02), wood);
+    }
+    for x in [-0.57, 0.55] {
+        b.cuboid(v(x, 0.64, -0.33), v(x + 0.02, 0.72, 0.33), wood);
+    }
+    // Stretchers 15 cm off the floor: one along the table, one at each end.
+    b.cuboid(v(-0.53, 0.15, -0.015), v(0.53, 0.18, 0.015), wood);
+    for x in [-0.565, 0.535] {
+        b.cuboid(v(x, 0.15, -0.33), v(x + 0.03, 0.18, 0.33), wood);
+    }
+    let camera = Camera::looking_at(v(1.6, 0.55, 1.5), v(0.0, 0.45, 0.0), 55.0);
+    let mut scene = b.into_scene("table", camera);
+    scene.lights.push(Light::point(
+        "lamp",
+        v(0.0, 1.3, 0.0),
+        Vec3::new(1.0, 0.95, 0.85),
+        3.0,
+    ));
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "room",
+        v(-2.75, 0.25, -2.25),
+        v(2.75, 2.75, 2.25),
+        [12, 6, 10],
+    ));
+    scene.regions.push(Region {
+        name: "table".into(),
+        min: v(-0.6, 0.0, -0.4),
+        max: v(0.6, 0.76, 0.4),
+    });
+    scene
+}
+
 pub fn furnace() -> Scene {
     let mut b = Builder::new("furnace");
     let white = b.material("white", Vec3::ONE, Vec3::ZERO);

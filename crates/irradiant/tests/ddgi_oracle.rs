@@ -349,3 +349,39 @@ fn thin_frames_show_few_specks() {
         100.0 * specks[1]
     );
 }
+
+/// The table (built-in `table`): the floor under its top lies half a cell below the lowest probe
+/// layer, and the probes of the layer at the top's height relocate under it, 3 cm from its
+/// underside. Extrapolating from them reads that pocket as the field's trend and floods the
+/// floor under the table with light (+16 % over the table and the floor under it before the
+/// query learnt to skip the trend there; checked by removing the check: +12.5 % here against +5.3 %). The query
+/// oracle over that region holds it within 10 %.
+#[test]
+fn the_floor_under_a_table_takes_no_extrapolated_light() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("table").unwrap().scene;
+    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.rays_per_probe = 128;
+    let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 150);
+    let oracle = query_oracle(
+        &ctx,
+        &gpu_scene,
+        &frames.gbuffer,
+        &frames.indirect,
+        &scene.regions,
+        &truth_settings(256),
+        |_, _| {},
+    )
+    .unwrap();
+    eprintln!(
+        "table: whole image signed {:+.4}, median {:.4}; regions {:?}",
+        oracle.signed_error, oracle.median_error, oracle.regions
+    );
+    let (_, ddgi, truth) = oracle.regions.iter().find(|r| r.0 == "table").unwrap();
+    let signed = ddgi / truth - 1.0;
+    assert!(
+        signed.abs() < 0.10,
+        "the table and the floor under it: {signed:+.4}"
+    );
+}

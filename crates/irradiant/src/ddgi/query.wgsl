@@ -33,6 +33,13 @@ fn sample_distance(cell: vec2<u32>, d: vec3<f32>) -> vec2<f32> {
     return mix(top, bottom, f.y);
 }
 
+// The mean distance to the first surface in direction d, from the nearest texel alone: a cheap
+// look for whether a probe has a surface close by that way.
+fn nearest_mean_distance(cell: vec2<u32>, d: vec3<f32>) -> f32 {
+    let c = atlas_tile_coord(cell, volume.distance_texels, d);
+    return textureLoad(distance_texture, vec2<i32>(round(c)), 0).x;
+}
+
 // Cosine-weighted mean radiance arriving at p around normal n (irradiance / π): a Lambertian
 // surface of albedo ρ reflects ρ times this. `wo` points from p towards the viewer.
 fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
@@ -56,6 +63,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     var weight_sum = 0.0;
     var sum_out = vec3<f32>(0.0);
     var weight_sum_out = 0.0;
+    var trend_broken = false;
     for (var i = 0u; i < 8u; i++) {
         let offset = vec3<u32>(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u);
         let coord = min(vec3<u32>(base) + offset, volume.counts - 1u);
@@ -104,12 +112,17 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         if outside {
             let trilinear_out = mix(1.0 - alpha_out, alpha_out, vec3<f32>(offset));
             let w_out = w_visible * trilinear_out.x * trilinear_out.y * trilinear_out.z;
+            // A far-layer probe with a surface within a cell along n (one relocated under a
+            // table top) reads a pocket, not the field's trend: the trend is not extrapolated.
+            if any(trilinear_out < vec3<f32>(0.0)) && nearest_mean_distance(cell, n) < volume.min_spacing {
+                trend_broken = true;
+            }
             sum_out += w_out * blendable;
             weight_sum_out += w_out;
         }
     }
     var blended = sum / max(weight_sum, 1e-9);
-    if outside && weight_sum_out > 0.5 * weight_sum {
+    if outside && !trend_broken && weight_sum_out > 0.5 * weight_sum {
         // At most twice or half the clamped value (√2 in this gamma-2 space).
         let extrapolated = sum_out / weight_sum_out;
         blended = clamp(extrapolated, blended * 0.70710678, blended * 1.41421356);
