@@ -112,8 +112,9 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         if outside {
             let trilinear_out = mix(1.0 - alpha_out, alpha_out, vec3<f32>(offset));
             let w_out = w_visible * trilinear_out.x * trilinear_out.y * trilinear_out.z;
-            // A far-layer probe with a surface within a cell along n (one relocated under a
-            // table top) reads a pocket, not the field's trend: the trend is not extrapolated.
+            // A far-layer probe with a surface nearer than the smallest probe spacing along n
+            // (one relocated under a table top) reads a pocket, not the field's trend: the
+            // trend is not extrapolated.
             if any(trilinear_out < vec3<f32>(0.0)) && nearest_mean_distance(cell, n) < volume.min_spacing {
                 trend_broken = true;
             }
