@@ -287,16 +287,12 @@ pub fn two_rooms() -> Scene {
         v(3.9, 2.8, 1.9),
         [10, 4, 5],
     ));
-    scene.regions.push(Region {
-        name: "dark-room".into(),
-        min: v(h, 0.0, -2.0),
-        max: v(4.0, 3.0, 2.0),
-    });
-    scene.regions.push(Region {
-        name: "lit-room".into(),
-        min: v(-4.0, 0.0, -2.0),
-        max: v(-h, 3.0, 2.0),
-    });
+    scene
+        .regions
+        .push(Region::new("dark-room", v(h, 0.0, -2.0), v(4.0, 3.0, 2.0)));
+    scene
+        .regions
+        .push(Region::new("lit-room", v(-4.0, 0.0, -2.0), v(-h, 3.0, 2.0)));
     scene
 }
 
@@ -336,11 +332,11 @@ fn cylinder_box(name: &str, cylinders: bool) -> Scene {
         v(2.25, 2.625, 2.25),
         [4, 4, 4],
     ));
-    scene.regions.push(Region {
-        name: "around-cylinders".into(),
-        min: v(-1.5, 0.0, -1.5),
-        max: v(1.5, 3.0, 1.5),
-    });
+    scene.regions.push(Region::new(
+        "around-cylinders",
+        v(-1.5, 0.0, -1.5),
+        v(1.5, 3.0, 1.5),
+    ));
     scene
 }
 
@@ -376,11 +372,9 @@ pub fn thin_frames() -> Scene {
         v(1.75, 2.75, 1.75),
         [8, 6, 8],
     ));
-    scene.regions.push(Region {
-        name: "frames".into(),
-        min: v(-1.0, 0.0, -1.4),
-        max: v(0.8, 1.7, -0.6),
-    });
+    scene
+        .regions
+        .push(Region::new("frames", v(-1.0, 0.0, -1.4), v(0.8, 1.7, -0.6)));
     scene
 }
 
@@ -426,11 +420,9 @@ pub fn table() -> Scene {
         v(2.75, 2.75, 2.25),
         [12, 6, 10],
     ));
-    scene.regions.push(Region {
-        name: "table".into(),
-        min: v(-0.6, 0.0, -0.4),
-        max: v(0.6, 0.76, 0.4),
-    });
+    scene
+        .regions
+        .push(Region::new("table", v(-0.6, 0.0, -0.4), v(0.6, 0.76, 0.4)));
     scene
 }
 

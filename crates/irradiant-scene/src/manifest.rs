@@ -362,11 +362,9 @@ impl Manifest {
             apply_material(scene, m, path)?;
         }
         for r in &self.regions {
-            scene.regions.push(Region {
-                name: r.name.clone(),
-                min: r.min.into(),
-                max: r.max.into(),
-            });
+            scene
+                .regions
+                .push(Region::new(&r.name, r.min.into(), r.max.into()));
         }
         for a in &self.animations {
             let target = match (&a.light, &a.instance) {

@@ -238,6 +238,16 @@ pub struct Region {
     pub max: Vec3,
 }
 
+impl Region {
+    pub fn new(name: &str, min: Vec3, max: Vec3) -> Self {
+        Self {
+            name: name.into(),
+            min,
+            max,
+        }
+    }
+}
+
 /// What an animation track drives.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnimationTarget {

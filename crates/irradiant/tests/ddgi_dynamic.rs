@@ -89,11 +89,11 @@ fn a_moving_object_changes_the_indirect_light_as_a_fresh_render_would() {
     // The Cornell box with a red block that slides from the left wall to the right one.
     let mut scene = cornell_with_block(Vec3::new(-0.6, 1.5, 0.0));
     // The walls and floor around where the block arrives: their indirect light changes most.
-    scene.regions.push(irradiant_scene::Region {
-        name: "right".into(),
-        min: Vec3::new(0.2, -0.01, -1.0),
-        max: Vec3::new(1.01, 2.0, 1.0),
-    });
+    scene.regions.push(irradiant_scene::Region::new(
+        "right",
+        Vec3::new(0.2, -0.01, -1.0),
+        Vec3::new(1.01, 2.0, 1.0),
+    ));
     let mut settings = DdgiSettings::balanced();
     settings.volume.rays_per_probe = 128;
     let mut moving = scene.clone();
