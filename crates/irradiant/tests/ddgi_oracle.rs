@@ -56,6 +56,27 @@ fn converged_probe_oracle(
     .unwrap()
 }
 
+/// The query oracle of a rendered frame of `scene`, over its regions, against `samples`
+/// path-traced samples a pixel.
+fn frame_query_oracle(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &irradiant_scene::Scene,
+    frames: &FrameResult,
+    samples: u32,
+) -> irradiant::ddgi::oracle::QueryOracle {
+    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
+    query_oracle(
+        ctx,
+        &gpu_scene,
+        &frames.gbuffer,
+        &frames.indirect,
+        &scene.regions,
+        &truth_settings(samples),
+        |_, _| {},
+    )
+    .unwrap()
+}
+
 #[test]
 fn the_gather_pass_reads_the_glowing_box_in_closed_form() {
     let Some(ctx) = gpu() else { return };
@@ -174,17 +195,7 @@ fn the_query_oracle_reads_the_glowing_box_in_closed_form() {
     // The paper's heuristics are biased upwards on this scene's noise (docs/ddgi.md).
     settings.update.convergence_heuristics = false;
     let frames = render_frames(&ctx, &scene, (24, 24), Some(&settings), 200);
-    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
-    let oracle = query_oracle(
-        &ctx,
-        &gpu_scene,
-        &frames.gbuffer,
-        &frames.indirect,
-        &[],
-        &truth_settings(128),
-        |_, _| {},
-    )
-    .unwrap();
+    let oracle = frame_query_oracle(&ctx, &scene, &frames, 128);
     // Every wall reflects ρ·(E/π) = ρ·ρ·Le/(1 − ρ) of indirect light (less the specular
     // layer's share, in the diffuse weight).
     let (le, albedo) = (
@@ -291,7 +302,6 @@ fn probe_signed_errors(
 fn thin_frames_show_few_specks() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("thin-frames").unwrap().scene;
-    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
     let mut truth = None;
     let mut specks = Vec::new();
     for max_ray_distance in [0.0, 0.05] {
@@ -300,16 +310,7 @@ fn thin_frames_show_few_specks() {
         settings.update.max_ray_distance = max_ray_distance;
         let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 100);
         let oracle = match &truth {
-            None => query_oracle(
-                &ctx,
-                &gpu_scene,
-                &frames.gbuffer,
-                &frames.indirect,
-                &scene.regions,
-                &truth_settings(256),
-                |_, _| {},
-            )
-            .unwrap(),
+            None => frame_query_oracle(&ctx, &scene, &frames, 256),
             Some(first) => {
                 compare_with_truth(&frames.indirect, first, &frames.gbuffer, &scene.regions)
             }
@@ -354,26 +355,16 @@ fn thin_frames_show_few_specks() {
 /// layer, and the probes of the layer at the top's height relocate under it, 3 cm from its
 /// underside. Extrapolating from them reads that pocket as the field's trend and floods the
 /// floor under the table with light (+16 % over the table and the floor under it before the
-/// query learnt to skip the trend there; checked by removing the check: +12.5 % here against +5.3 %). The query
-/// oracle over that region holds it within 10 %.
+/// query learnt to skip the trend there; with the check removed +12.5 % here, +5.3 % with it).
+/// The query oracle over that region holds it within 10 %.
 #[test]
 fn the_floor_under_a_table_takes_no_extrapolated_light() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("table").unwrap().scene;
-    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
     let mut settings = DdgiSettings::balanced();
     settings.volume.rays_per_probe = 128;
     let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 150);
-    let oracle = query_oracle(
-        &ctx,
-        &gpu_scene,
-        &frames.gbuffer,
-        &frames.indirect,
-        &scene.regions,
-        &truth_settings(256),
-        |_, _| {},
-    )
-    .unwrap();
+    let oracle = frame_query_oracle(&ctx, &scene, &frames, 256);
     eprintln!(
         "table: whole image signed {:+.4}, median {:.4}; regions {:?}",
         oracle.signed_error, oracle.median_error, oracle.regions
