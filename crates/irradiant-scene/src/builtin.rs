@@ -279,8 +279,8 @@ pub fn two_rooms() -> Scene {
         Vec3::new(1.0, 0.9, 0.75),
         12.0,
     ));
-    // Probes span the rooms up to 10–20 cm from the walls (irradiance is not extrapolated past
-    // the outermost probes), and straddle the dividing wall at x = ±0.43.
+    // Probes span the rooms up to 10–20 cm from the walls (the query extrapolates at most half
+    // a cell past the outermost probes), and straddle the dividing wall at x = ±0.43.
     scene.probe_volumes.push(ProbeVolumeDesc::new(
         "rooms",
         v(-3.9, 0.2, -1.9),

@@ -62,8 +62,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     } else if closest_front.w < 0.05 * volume.min_spacing && dot(closest_front.xyz, farthest_front.xyz) <= 0.5 {
         // Touching a surface (its visibility tests would be all self-shadow): step towards open
         // space, no further than to 5 % of the spacing. A probe merely near a wall stays: the
-        // irradiance field is not extrapolated past the outermost probes, so they belong close
-        // to the walls.
+        // query extrapolates at most half a cell past the outermost probes, so they belong
+        // close to the walls.
         let candidate = current + farthest_front.xyz * min(0.05 * volume.min_spacing, farthest_front.w);
         if within(candidate, limit) {
             next = candidate;
