@@ -115,7 +115,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
             // A far-layer probe with a surface nearer than the smallest probe spacing along n
             // (one relocated under a table top) reads a pocket, not the field's trend: the
             // trend is not extrapolated.
-            if any(trilinear_out < vec3<f32>(0.0)) && nearest_mean_distance(cell, n) < volume.min_spacing {
+            if !trend_broken && any(trilinear_out < vec3<f32>(0.0)) && nearest_mean_distance(cell, n) < volume.min_spacing {
                 trend_broken = true;
             }
             sum_out += w_out * blendable;
