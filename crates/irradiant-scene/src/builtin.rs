@@ -378,8 +378,6 @@ pub fn thin_frames() -> Scene {
     scene
 }
 
-/// A white Lambertian sphere under a uniform sky of radiance 1: every pixel converges to 1,
-/// whatever the number of bounces (the white-furnace test).
 /// A table (a 3 cm top, aprons, legs, low stretchers) half a metre under a lamp in a white room,
 /// probes every 0.5 m with a layer at the height of the top, as in the interior of issue 15: the
 /// probes on the top relocate under it, and the floor under it lies below the lowest probe
@@ -426,6 +424,8 @@ pub fn table() -> Scene {
     scene
 }
 
+/// A white Lambertian sphere under a uniform sky of radiance 1: every pixel converges to 1,
+/// whatever the number of bounces (the white-furnace test).
 pub fn furnace() -> Scene {
     let mut b = Builder::new("furnace");
     let white = b.material("white", Vec3::ONE, Vec3::ZERO);
