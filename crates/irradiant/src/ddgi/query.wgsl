@@ -43,7 +43,10 @@ fn nearest_mean_distance(cell: vec2<u32>, d: vec3<f32>) -> f32 {
 // Cosine-weighted mean radiance arriving at p around normal n (irradiance / π): a Lambertian
 // surface of albedo ρ reflects ρ times this. `wo` points from p towards the viewer.
 fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    let bias = (n * 0.2 + wo * 0.8) * (0.75 * volume.min_spacing * volume.self_shadow_bias);
+    // 003's bias scales with the smallest spacing; here each axis with its own, so that on a
+    // grid of tall cells (Sibenik's 4 m layers) the bias is the same share of the cell that
+    // the visibility test has to reach across along that axis.
+    let bias = (n * 0.2 + wo * 0.8) * volume.spacing * (0.75 * volume.self_shadow_bias);
     let biased = p + bias;
     let max_base = vec3<i32>(volume.counts) - vec3<i32>(2);
     let grid = (biased - volume.origin) / volume.spacing;

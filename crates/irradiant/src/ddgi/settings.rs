@@ -86,8 +86,9 @@ pub struct DdgiUpdateSettings {
     /// Longest probe ray, in scene units; 0: 1.5 × the volume's diagonal. Shorter rays are
     /// cheaper but miss distant light.
     pub max_ray_distance: f32,
-    /// TunableShadowBias of 003 (eq. 2): moves the visibility test off the surface. Too low:
-    /// self-shadowing blotches; too high: light leaks at thin walls.
+    /// TunableShadowBias of 003 (eq. 2), in probe cells along each axis: moves the visibility
+    /// test off the surface. Too low: self-shadowing blotches; too high: light leaks at thin
+    /// walls.
     pub self_shadow_bias: f32,
     /// Cosine power of the distance blend (RTXGI uses 50). Higher: sharper visibility, noisier.
     pub distance_exponent: f32,

@@ -23,7 +23,7 @@ struct GpuDdgiVolume {
     irradiance_hysteresis: f32,
     distance_hysteresis: f32,
     max_ray_distance: f32,
-    // world-space bias = (n·0.2 + ωo·0.8) · 0.75 · min_spacing · self_shadow_bias
+    // world-space bias = (n·0.2 + ωo·0.8) · 0.75 · spacing · self_shadow_bias, per axis
     self_shadow_bias: f32,
     // cosine power of the distance blend
     distance_exponent: f32,
