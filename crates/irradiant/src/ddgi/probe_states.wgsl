@@ -38,10 +38,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     let phase = volume.state_phase;
     if phase == STATES_CLASSIFYING || phase == STATES_CLASSIFY_LAST {
         let m = volume.rays_per_probe;
+        // A cell and the self-shadow bias at the smallest spacing. The query's bias is per axis
+        // (larger along coarse axes), but a probe past this reach holds at most about a fifth
+        // of a biased point's trilinear weight: on Sibenik the per-axis reach woke 11 % more
+        // probes for 8 % more GI time and changed its query by 0.4 % (docs/ddgi.md).
+        let margin = 0.75 * volume.min_spacing * volume.self_shadow_bias;
         let coord = grid_coord(probe, volume.counts);
         let unbounded = vec3<f32>(volume.max_ray_distance);
-        // A cell and the self-shadow bias (ddgi/query) along each axis.
-        let reach = volume.spacing * (1.0 + 0.75 * volume.self_shadow_bias);
+        let reach = volume.spacing + margin;
         let reach_below = select(reach, unbounded, coord == vec3<u32>(0u));
         let reach_above = select(reach, unbounded, coord == volume.counts - 1u);
         var backfaces = 0u;

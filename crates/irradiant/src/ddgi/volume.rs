@@ -380,7 +380,8 @@ impl DdgiVolume {
     /// Boxes where geometry may come and go (animated instances), grown by a grid cell and the
     /// self-shadow bias (003 §6.3): sleeping probes inside wake up.
     fn upload_wake_boxes(&mut self, ctx: &GpuContext, bounds: &[(Vec3, Vec3)]) {
-        let grow = self.grid.spacing * (1.0 + 0.75 * self.settings.update.self_shadow_bias);
+        let grow = self.grid.spacing
+            + Vec3::splat(0.75 * self.grid.min_spacing() * self.settings.update.self_shadow_bias);
         let mut boxes: Vec<(Vec3, Vec3)> = Vec::new();
         for &(lo, hi) in bounds {
             let grown = (lo - grow, hi + grow);
