@@ -1,8 +1,7 @@
 // ddgi/relocate: one iteration of the probe-position optimiser of 003 §5 (Listing 4), run for
 // the volume's first frames. A probe that sees more than 25 % backfaces is inside geometry and
-// moves through the closest backface (of near ties, the one towards the volume's centre); a
-// probe very close to a front face moves towards the farthest front face. Offsets stay under
-// 45 % of the spacing, so the grid's indexing holds.
+// moves through the closest backface; a probe very close to a front face moves towards the
+// farthest front face. Offsets stay under 45 % of the spacing, so the grid's indexing holds.
 #import ddgi_volume
 #import ddgi_rays
 
@@ -13,12 +12,6 @@
 
 fn within(offset: vec3<f32>, limit: vec3<f32>) -> bool {
     return all(abs(offset) < limit);
-}
-
-// The distance to a backface hit, which ddgi/shade stores as minus its distance, shortened by
-// the backface-hit rule when that is on.
-fn backface_distance(stored: f32) -> f32 {
-    return -stored / select(1.0, BACKFACE_DEPTH_SCALE, (volume.weights & WEIGHT_BACKFACE_HITS) != 0u);
 }
 
 @compute @workgroup_size(64, 1, 1)
@@ -37,7 +30,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         let distance = samples[probe * m + r].distance;
         if distance < 0.0 {
             backfaces++;
-            let t = backface_distance(distance);
+            // ddgi/shade stores a backface hit as minus its distance, shortened by the
+            // backface-hit rule when that is on.
+            let t = -distance / select(1.0, BACKFACE_DEPTH_SCALE, (volume.weights & WEIGHT_BACKFACE_HITS) != 0u);
             if t < closest_back.w {
                 closest_back = vec4<f32>(d, t);
             }
@@ -56,25 +51,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     var next = current;
     if f32(backfaces) > 0.25 * f32(m) {
         // Inside something: cross the closest backface, as far beyond it as the limit allows
-        // (up to twice its distance). Inside a round column every level ray meets the wall at
-        // the same distance, and the shortest of them, picked by the frame's ray set, would send
-        // every such probe out the same arbitrary side: among the backfaces within 2 % of the
-        // closest, the way out is the one most towards the volume's centre, where the shading
-        // points are.
-        let centre = volume.origin + 0.5 * vec3<f32>(volume.counts - 1u) * volume.spacing;
-        let inwards = centre - (grid_position(probe) + current);
-        var exit = closest_back;
-        var best = -2.0;
-        for (var r = 0u; r < m; r++) {
-            let distance = samples[probe * m + r].distance;
-            let towards = dot(directions[r].xyz, inwards);
-            if distance < 0.0 && backface_distance(distance) <= 1.02 * closest_back.w && towards > best {
-                exit = vec4<f32>(directions[r].xyz, backface_distance(distance));
-                best = towards;
-            }
-        }
+        // (up to twice its distance).
         for (var i = 0u; i < 100u; i++) {
-            let candidate = current + exit.xyz * exit.w * (2.0 - f32(i) * 0.01);
+            let candidate = current + closest_back.xyz * closest_back.w * (2.0 - f32(i) * 0.01);
             if within(candidate, limit) {
                 next = candidate;
                 break;
