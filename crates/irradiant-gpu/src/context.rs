@@ -306,6 +306,17 @@ impl GpuContext {
         self.check("GPU work")
     }
 
+    /// Blocks until the GPU has finished the submission `index` (and all before it).
+    pub fn wait_for(&self, index: wgpu::SubmissionIndex) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::Wait {
+                submission_index: Some(index),
+                timeout: None,
+            })
+            .map_err(|e| GpuError::Poll(e.to_string()))?;
+        Ok(())
+    }
+
     /// Checks that `allocations` fit this adapter (see [`crate::Budget`]).
     pub fn check_allocations(&self, allocations: &[crate::Allocation]) -> Result<(), GpuError> {
         crate::Budget::of(self).check(allocations)
