@@ -297,24 +297,23 @@ impl GpuContext {
 
     /// Blocks until the GPU has finished all submitted work.
     pub fn wait(&self) -> Result<(), GpuError> {
-        self.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: None,
-                timeout: None,
-            })
-            .map_err(|e| GpuError::Poll(e.to_string()))?;
+        self.wait_until(None)?;
         self.check("GPU work")
     }
 
     /// Blocks until the GPU has finished the submission `index` (and all before it).
     pub fn wait_for(&self, index: wgpu::SubmissionIndex) -> Result<(), GpuError> {
+        self.wait_until(Some(index))
+    }
+
+    fn wait_until(&self, submission_index: Option<wgpu::SubmissionIndex>) -> Result<(), GpuError> {
         self.device
             .poll(wgpu::PollType::Wait {
-                submission_index: Some(index),
+                submission_index,
                 timeout: None,
             })
-            .map_err(|e| GpuError::Poll(e.to_string()))?;
-        Ok(())
+            .map(|_| ())
+            .map_err(|e| GpuError::Poll(e.to_string()))
     }
 
     /// Checks that `allocations` fit this adapter (see [`crate::Budget`]).
