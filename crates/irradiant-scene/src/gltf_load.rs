@@ -74,17 +74,17 @@ pub fn load_gltf(path: &Path, warnings: &mut Vec<String>) -> Result<Scene> {
         if let Some(light) = node.light() {
             scene.lights.push(convert_light(&light, &node, world));
         }
-        if let (None, Some(cam)) = (&camera, node.camera()) {
-            if let gltf::camera::Projection::Perspective(p) = cam.projection() {
-                let position = world.transform_point3(Vec3::ZERO);
-                let forward = world.transform_vector3(-Vec3::Z).normalize_or(-Vec3::Z);
-                camera = Some(Camera {
-                    position,
-                    target: position + forward,
-                    up: world.transform_vector3(Vec3::Y).normalize_or(Vec3::Y),
-                    fov_y_degrees: p.yfov().to_degrees(),
-                });
-            }
+        if let (None, Some(cam)) = (&camera, node.camera())
+            && let gltf::camera::Projection::Perspective(p) = cam.projection()
+        {
+            let position = world.transform_point3(Vec3::ZERO);
+            let forward = world.transform_vector3(-Vec3::Z).normalize_or(-Vec3::Z);
+            camera = Some(Camera {
+                position,
+                target: position + forward,
+                up: world.transform_vector3(Vec3::Y).normalize_or(Vec3::Y),
+                fov_y_degrees: p.yfov().to_degrees(),
+            });
         }
         stack.extend(node.children().map(|c| (c, world)));
     }
