@@ -13,8 +13,9 @@
 @group(3) @binding(2) var atlas_bilinear: sampler;
 @group(3) @binding(3) var atlas_gather: sampler;
 
-fn sample_irradiance_encoded(cell: vec2<u32>, d: vec3<f32>) -> vec3<f32> {
-    let c = atlas_tile_coord(cell, volume.irradiance_texels, d);
+// `uv`: the direction's place in a tile (tile_uv).
+fn sample_irradiance_encoded(cell: vec2<u32>, uv: vec2<f32>) -> vec3<f32> {
+    let c = atlas_tile_coord_at(cell, volume.irradiance_texels, uv);
     let size = vec2<f32>(textureDimensions(irradiance_texture));
     return textureSampleLevel(irradiance_texture, atlas_bilinear, (c + 0.5) / size, 0.0).rgb;
 }
@@ -35,8 +36,8 @@ fn sample_distance(cell: vec2<u32>, d: vec3<f32>) -> vec2<f32> {
 
 // The mean distance to the first surface in direction d, from the nearest texel alone: a cheap
 // look for whether a probe has a surface close by that way.
-fn nearest_mean_distance(cell: vec2<u32>, d: vec3<f32>) -> f32 {
-    let c = atlas_tile_coord(cell, volume.distance_texels, d);
+fn nearest_mean_distance(cell: vec2<u32>, uv: vec2<f32>) -> f32 {
+    let c = atlas_tile_coord_at(cell, volume.distance_texels, uv);
     return textureLoad(distance_texture, vec2<i32>(round(c)), 0).x;
 }
 
@@ -62,6 +63,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     // Half of the gamma curve is decoded before blending probes and half after, so that the
     // probes blend in a perceptual (gamma 2) space (003, Listing 2).
     let half_gamma = volume.irradiance_gamma * 0.5;
+    let n_uv = tile_uv(n);
     var sum = vec3<f32>(0.0);
     var weight_sum = 0.0;
     var sum_out = vec3<f32>(0.0);
@@ -104,7 +106,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let w_visible = w;
         let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
         w *= trilinear.x * trilinear.y * trilinear.z;
-        let encoded = sample_irradiance_encoded(cell, n);
+        let encoded = sample_irradiance_encoded(cell, n_uv);
         // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
         var blendable = max(encoded, vec3<f32>(0.0));
         if half_gamma != 1.0 {
@@ -118,7 +120,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
             // A far-layer probe with a surface nearer than the smallest probe spacing along n
             // (one relocated under a table top) reads a pocket, not the field's trend: the
             // trend is not extrapolated.
-            if !trend_broken && any(trilinear_out < vec3<f32>(0.0)) && nearest_mean_distance(cell, n) < volume.min_spacing {
+            if !trend_broken && any(trilinear_out < vec3<f32>(0.0)) && nearest_mean_distance(cell, n_uv) < volume.min_spacing {
                 trend_broken = true;
             }
             sum_out += w_out * blendable;

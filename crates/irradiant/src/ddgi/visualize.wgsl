@@ -33,7 +33,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     if found != INVALID_PROBE {
         let n = normalize(origin + dir * nearest - probe_position(found));
-        let encoded = sample_irradiance_encoded(atlas_tile_cell(found, volume.probes_per_row), n);
+        let encoded = sample_irradiance_encoded(atlas_tile_cell(found, volume.probes_per_row), tile_uv(n));
         textureStore(radiance, vec2<i32>(id.xy), vec4<f32>(pow(max(encoded, vec3<f32>(0.0)), vec3<f32>(volume.irradiance_gamma)), 1.0));
     }
 }

@@ -35,9 +35,21 @@ fn border_source(x: u32, y: u32, texels: u32) -> vec2<u32> {
     return vec2<u32>(select(texels, 1u, x == 0u), last - y);
 }
 
-// Position in the tile at `cell` (atlas_tile_cell) for direction d, in atlas texels: texel
-// centres at whole numbers, so floor() is the top-left texel of the bilinear footprint.
-fn atlas_tile_coord(cell: vec2<u32>, texels: u32, d: vec3<f32>) -> vec2<f32> {
+// Direction d's place in any tile, 0…1 a side: the same for every probe, so a query that reads
+// all eight cage probes at one normal finds it once.
+fn tile_uv(d: vec3<f32>) -> vec2<f32> {
+    return oct_encode(d) * 0.5 + 0.5;
+}
+
+// Position in the tile at `cell` (atlas_tile_cell) of the place `uv` (tile_uv), in atlas
+// texels: texel centres at whole numbers, so floor() is the top-left texel of the bilinear
+// footprint.
+fn atlas_tile_coord_at(cell: vec2<u32>, texels: u32, uv: vec2<f32>) -> vec2<f32> {
     let origin = vec2<f32>(cell * (texels + 2u)) + 1.0;
-    return origin + (oct_encode(d) * 0.5 + 0.5) * f32(texels) - 0.5;
+    return origin + uv * f32(texels) - 0.5;
+}
+
+// The same for direction d.
+fn atlas_tile_coord(cell: vec2<u32>, texels: u32, d: vec3<f32>) -> vec2<f32> {
+    return atlas_tile_coord_at(cell, texels, tile_uv(d));
 }
