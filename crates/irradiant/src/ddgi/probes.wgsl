@@ -13,7 +13,7 @@ fn probe_position(probe: u32) -> vec3<f32> {
 // probe_position where the caller knows the probe's grid coordinates (the query's cage), which
 // spares the integer divisions of turning the index back into them.
 fn probe_position_at(coord: vec3<u32>, probe: u32) -> vec3<f32> {
-    return volume.origin + vec3<f32>(coord) * volume.spacing + probe_offsets[probe].xyz;
+    return grid_position_at(coord) + probe_offsets[probe].xyz;
 }
 
 // Whether the probe's stored light is live: sleeping and switched-off probes are skipped by

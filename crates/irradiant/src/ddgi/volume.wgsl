@@ -61,7 +61,12 @@ fn probe_index(coord: vec3<u32>) -> u32 {
 
 // Where a probe sits on the regular grid, before relocation.
 fn grid_position(probe: u32) -> vec3<f32> {
-    return volume.origin + vec3<f32>(grid_coord(probe, volume.counts)) * volume.spacing;
+    return grid_position_at(grid_coord(probe, volume.counts));
+}
+
+// The same from the probe's grid coordinates.
+fn grid_position_at(coord: vec3<u32>) -> vec3<f32> {
+    return volume.origin + vec3<f32>(coord) * volume.spacing;
 }
 
 // Top-left texel of a probe's tile (side `tile` texels, border included) in an atlas.
