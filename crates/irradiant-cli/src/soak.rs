@@ -114,7 +114,7 @@ pub fn run(args: &SoakArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 ..Default::default()
             },
         )?;
-        let mut first: Option<([f64; 3], Option<f64>, Option<f64>, u32)> = None;
+        let mut first: Option<Baseline> = None;
         for frame in 1..=args.frames {
             if !args.still {
                 session.seek((frame as f32 / args.fps) % period);
@@ -139,10 +139,20 @@ pub fn run(args: &SoakArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             let (gpu, host) = (memory::gpu_mib(&ctx), memory::resident_host_mib());
             match first {
                 None if frame >= args.settle.min(args.frames) => {
-                    first = Some((mean, gpu, host, frame))
+                    first = Some(Baseline {
+                        mean,
+                        gpu,
+                        host,
+                        frame,
+                    })
                 }
                 None => {}
-                Some((mean0, gpu0, host0, frame0)) => {
+                Some(Baseline {
+                    mean: mean0,
+                    gpu: gpu0,
+                    host: host0,
+                    frame: frame0,
+                }) => {
                     for (what, now, then, bound) in [
                         ("GPU", gpu, gpu0, args.memory_mib),
                         ("host", host, host0, args.host_memory_mib),
@@ -213,4 +223,14 @@ pub fn run(args: &SoakArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             failures.join("\n  ")
         )))
     }
+}
+
+/// What a technique's soak is checked against: the image's mean and the memory in use at the
+/// first frame after `--settle`.
+#[derive(Clone, Copy)]
+struct Baseline {
+    mean: [f64; 3],
+    gpu: Option<f64>,
+    host: Option<f64>,
+    frame: u32,
 }

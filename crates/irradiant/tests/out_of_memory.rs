@@ -61,8 +61,7 @@ fn running_out_of_memory_mid_run_is_an_error_and_the_session_survives() {
         .and_then(|()| session.render());
     limit_address_space(libc::RLIM_INFINITY);
     let message = result
-        .err()
-        .expect("320 MB do not fit in 128 MiB")
+        .expect_err("320 MB do not fit in 128 MiB")
         .to_string();
     assert!(
         message.contains("ran out of memory") && message.contains("lower"),

@@ -166,9 +166,9 @@ fn cornell_box_matches_mitsuba() {
             for y in 0..8 {
                 for x in 0..8 {
                     let i = ((by * 8 + y) * 64 + bx * 8 + x) as usize;
-                    for c in 0..3 {
-                        sums[0][c] += ours.pixels[i][c] as f64;
-                        sums[1][c] += reference.pixels[i][c] as f64;
+                    for (c, (o, r)) in ours.pixels[i].iter().zip(&reference.pixels[i]).enumerate() {
+                        sums[0][c] += *o as f64;
+                        sums[1][c] += *r as f64;
                     }
                 }
             }

@@ -115,9 +115,9 @@ fn pyramid_levels_vote_and_average_the_level_below() {
                     "level {level} ({x}, {y}): {:?} is not the voted texel of {votes:?}",
                     got(0)
                 );
-                for c in 1..3 {
-                    for j in 0..3 {
-                        let want = sums[c][j] / count;
+                for (c, channel_sums) in sums.iter().enumerate().skip(1) {
+                    for (j, sum) in channel_sums.iter().enumerate() {
+                        let want = sum / count;
                         // f16 storage: 1e-3 relative.
                         assert!(
                             (got(c)[j] - want).abs() <= 2e-3 * want.max(0.05),

@@ -221,7 +221,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             },
         )
     };
-    if !(args.order_tolerance >= 0.0) {
+    if args.order_tolerance.is_nan() || args.order_tolerance < 0.0 {
         return Err(CliError::Usage(format!(
             "--order-tolerance {} is not a percentage; give 0 or more (3 is the default)",
             args.order_tolerance

@@ -83,12 +83,15 @@ fn ms(r: &FrameRecord, keep: impl Fn(&str) -> bool) -> f64 {
         .fold(0.0, |sum, p| sum + p.1)
 }
 
+/// One row of Figure 9's table: a stage's time in a configuration's record.
+type Column = Box<dyn Fn(&FrameRecord) -> f64>;
+
 /// The paper's Figure 9 laid out as it is: a column per configuration, a row per stage.
 pub fn print_table(records: &[FrameRecord]) {
     let Some(first) = records.first() else {
         return;
     };
-    let mut rows: Vec<(String, Box<dyn Fn(&FrameRecord) -> f64>)> = vec![
+    let mut rows: Vec<(String, Column)> = vec![
         (
             "G-buffer pyramid".into(),
             Box::new(|r| ms(r, |l| l == "frame/pyramid")),
