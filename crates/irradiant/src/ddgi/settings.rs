@@ -44,12 +44,13 @@ pub struct DdgiVolumeSettings {
     /// Interior texels per side of a distance tile (14 → 16×16). Sharper visibility, at the
     /// cost of blend time; too few blur occluder edges into light leaks.
     pub distance_texels: u32,
-    /// Encoding exponent of the irradiance the query samples, value^(1/γ), and the query
-    /// blends its probes at γ/2 (003 §4.2 and Listing 2 use 5). 1, the default, stores and
-    /// blends linear light: filtering and blending encoded values darkens (Jensen), and
-    /// measured against the path tracer γ = 1 is closer on every scene (two-rooms' dark room
-    /// −3.5 % against −7.4 % at 5; docs/ddgi.md). The blend's running value is linear f32
-    /// whatever this is. A change starts the probes over.
+    /// Encoding exponent of the irradiance the query samples, value^(1/γ) (003 §4.2 uses 5).
+    /// Whatever γ, the query blends its eight probes in a gamma-2 space (Listing 2), so γ
+    /// decides what the bilinear filter averages. 1, the default, stores linear light:
+    /// filtering encoded values darkens (Jensen), and measured against the path tracer γ = 1
+    /// is closer on every scene (two-rooms' dark room −3.5 % against −7.4 % at 5;
+    /// docs/ddgi.md). The blend's running value is linear f32 whatever this is. A change starts
+    /// the probes over.
     pub irradiance_gamma: f32,
     /// Probe rays shade every punctual light (one shadow ray each) instead of one light chosen
     /// at random (weighted by the light count). One light keeps the shading cost at one shadow
