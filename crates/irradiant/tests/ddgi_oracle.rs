@@ -136,6 +136,69 @@ fn the_gather_pass_reads_the_glowing_box_in_closed_form() {
     assert_eq!(truth.distance_moments(4), [0.5, 0.25]);
 }
 
+/// Splits every triangle of every mesh into four, `levels` times over (flat shading, no texture
+/// coordinates): the same surfaces as many small triangles.
+fn subdivided(mut scene: irradiant_scene::Scene, levels: u32) -> irradiant_scene::Scene {
+    for mesh in &mut scene.meshes {
+        for _ in 0..levels {
+            let mut positions = Vec::new();
+            let mut materials = Vec::new();
+            for (t, corner) in mesh.indices.chunks(3).enumerate() {
+                let [a, b, c] = [0, 1, 2].map(|k| mesh.positions[corner[k] as usize]);
+                let [ab, bc, ca] = [(a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0];
+                for triangle in [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]] {
+                    positions.extend(triangle);
+                    materials.push(mesh.triangle_materials[t]);
+                }
+            }
+            mesh.indices = (0..positions.len() as u32).collect();
+            mesh.positions = positions;
+            mesh.triangle_materials = materials;
+            mesh.normals.clear();
+            mesh.uvs.clear();
+        }
+    }
+    scene
+}
+
+/// The emitters are sampled per triangle (∝ power, by a CDF over all of them) and mixed with
+/// BRDF samples by multiple importance: with the walls cut into 12 288 small triangles, in a
+/// BVH many levels deep, one bounce of their light must still add up to the closed form.
+#[test]
+fn one_bounce_from_many_small_emitters_reads_the_closed_form() {
+    let Some(ctx) = gpu() else { return };
+    let scene = subdivided(irradiant_scene::load("glowing-box").unwrap().scene, 5);
+    let triangles: usize = scene.meshes.iter().map(|m| m.triangle_count()).sum();
+    assert!(triangles >= 12_000, "{triangles} triangles");
+    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
+    // One bounce off a wall that every direction sees: ρ·Le.
+    let expected = irradiant_scene::GLOWING_BOX_ALBEDO * irradiant_scene::GLOWING_BOX_EMISSION;
+    let queries: Vec<GatherQuery> = [Vec3::X, Vec3::NEG_Y, Vec3::Z, Vec3::new(1.0, 1.0, -1.0)]
+        .into_iter()
+        .map(|axis| GatherQuery {
+            origin: Vec3::new(0.2, 1.1, -0.3),
+            axis,
+            exponent: 1.0,
+            kind: GatherKind::Radiance,
+            on_surface: false,
+        })
+        .collect();
+    let settings = PathTraceSettings {
+        max_bounces: 1,
+        ..truth_settings(2048)
+    };
+    let truth = gather(&ctx, &gpu_scene, &queries, &settings, |_, _| {}).unwrap();
+    for i in 0..queries.len() {
+        let l = truth.radiance(i);
+        let error = truth.luminance_standard_error(i);
+        eprintln!("query {i}: {l:?} ± {error:.4} (closed form {expected})");
+        assert!(
+            l.iter().all(|c| (c - expected).abs() <= 0.05 * expected),
+            "query {i} gathered {l:?} ± {error}, not ρ·Le = {expected}"
+        );
+    }
+}
+
 #[test]
 fn the_probe_oracle_finds_converged_probes_close_and_short_rays_dark() {
     let Some(ctx) = gpu() else { return };

@@ -42,21 +42,9 @@ fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first
 
         let origin_next = offset_ray(s.position, s.geometric_normal);
         if scene_info.emitter_count > 0u {
-            let u_select = rand(rng);
-            let e = sample_emitter(u_select, rand2(rng));
-            let to_light = e.position - origin_next;
-            let d2 = dot(to_light, to_light);
-            let distance = sqrt(d2);
-            let wi = to_light / distance;
-            let cos_light = -dot(e.normal, wi);
-            let cos_surface = dot(s.normal, wi);
-            if cos_light > 0.0 && cos_surface > 0.0 && dot(s.geometric_normal, wi) > 0.0 {
-                let light_pdf = e.pdf_area * d2 / cos_light;
-                // Stop short of the emitter so that it does not occlude itself.
-                if !occluded(origin_next, wi, distance * (1.0 - 1e-4)) {
-                    let w = power_heuristic(light_pdf, brdf_pdf(s, wo, wi));
-                    radiance += throughput * brdf_eval(s, wo, wi) * e.radiance * cos_surface * w / light_pdf;
-                }
+            let light = sample_emitter_light(s, wo, rng);
+            if light.pdf > 0.0 {
+                radiance += throughput * light.radiance * power_heuristic(light.pdf, brdf_pdf(s, wo, light.wi));
             }
         }
 

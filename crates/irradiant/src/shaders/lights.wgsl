@@ -82,22 +82,38 @@ fn direct_from_light(s: Surface, wo: vec3<f32>, i: u32) -> vec3<f32> {
     return light;
 }
 
-// f · Le · cos / pdf for one point on an emissive triangle (chosen ∝ power), with its shadow
-// ray: an unbiased estimate of the direct light from every emitter.
-fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
+// One point on an emissive triangle (chosen ∝ power) as seen from a surface: f · Le · cos / pdf
+// where it reaches the surface unblocked (else zero), the pdf in solid angle (0 where it cannot
+// reach the surface's side) and the direction, for the path tracer's MIS weight.
+struct EmitterLight {
+    radiance: vec3<f32>,
+    pdf: f32,
+    wi: vec3<f32>,
+}
+
+fn sample_emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> EmitterLight {
+    var out: EmitterLight;
     let origin = offset_ray(s.position, s.geometric_normal);
     let e = sample_emitter(rand(rng), rand2(rng));
     let to_light = e.position - origin;
     let d2 = dot(to_light, to_light);
     let distance = sqrt(d2);
-    let wi = to_light / distance;
-    let cos_light = -dot(e.normal, wi);
-    let cos_surface = dot(s.normal, wi);
-    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, wi) <= 0.0 {
-        return vec3<f32>(0.0);
+    out.wi = to_light / distance;
+    let cos_light = -dot(e.normal, out.wi);
+    let cos_surface = dot(s.normal, out.wi);
+    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, out.wi) <= 0.0 {
+        return out;
     }
-    if occluded(origin, wi, distance * (1.0 - 1e-4)) {
-        return vec3<f32>(0.0);
+    out.pdf = e.pdf_area * d2 / cos_light;
+    // Stop short of the emitter so that it does not occlude itself.
+    if occluded(origin, out.wi, distance * (1.0 - 1e-4)) {
+        return out;
     }
-    return brdf_eval(s, wo, wi) * e.radiance * cos_surface * cos_light / (e.pdf_area * d2);
+    out.radiance = brdf_eval(s, wo, out.wi) * e.radiance * cos_surface / out.pdf;
+    return out;
+}
+
+// An unbiased estimate of the direct light from every emitter: one sample_emitter_light.
+fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
+    return sample_emitter_light(s, wo, rng).radiance;
 }
