@@ -43,7 +43,8 @@ fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first
         let origin_next = offset_ray(s.position, s.geometric_normal);
         if scene_info.emitter_count > 0u {
             let light = sample_emitter_light(s, wo, rng);
-            if light.pdf > 0.0 {
+            // A blocked sample brings nothing: no MIS weight to work out.
+            if any(light.radiance != vec3<f32>(0.0)) {
                 radiance += throughput * light.radiance * power_heuristic(light.pdf, brdf_pdf(s, wo, light.wi));
             }
         }
