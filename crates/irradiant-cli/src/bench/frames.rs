@@ -22,6 +22,8 @@ pub struct FrameRecord {
     pub rays_per_probe: u32,
     /// How the technique was set up (DDGI: ray order, probes per workgroup, switches).
     pub variant: String,
+    /// The camera while timed: "still", or "moving" (`--moving-camera`).
+    pub camera: &'static str,
     /// Every probe's rays a frame (probes × rays per probe): the paper's Table 2 count.
     pub rays: u64,
     /// Probes that traced rays in the timed frames.
@@ -55,6 +57,8 @@ pub struct FrameBench<'a> {
     pub scene_settings: &'a GpuSceneSettings,
     pub size: (u32, u32),
     pub taa: bool,
+    /// Sway the camera every frame (`bench --moving-camera`).
+    pub moving_camera: bool,
     pub iterations: u32,
     /// Rays of the light-field agreement test (light-field techniques; 0: none).
     pub agreement_rays: u32,
@@ -84,7 +88,12 @@ impl FrameBench<'_> {
         )?;
         let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
         let (warm_start, mut warm_runs, mut timed) = (Instant::now(), 0, 0);
+        let still = session.camera().clone();
         while timed < self.iterations {
+            if self.moving_camera {
+                let turn = if (warm_runs + timed) % 2 == 0 { 1e-2_f32 } else { -1e-2 };
+                session.set_camera(swayed(&still, turn.to_radians()));
+            }
             let timings = session.render_profiled()?;
             if !warmup.done(warm_runs, warm_start) {
                 warm_runs += 1;
@@ -178,6 +187,7 @@ impl FrameBench<'_> {
             probes,
             rays_per_probe,
             variant: spec.name.clone(),
+            camera: if self.moving_camera { "moving" } else { "still" },
             rays: rays as u64,
             updating_probes: counter("updating_probes") as u32,
             traced_rays: traced as u64,
@@ -194,5 +204,14 @@ impl FrameBench<'_> {
                 .collect(),
             passes,
         })
+    }
+}
+
+/// The camera turned by `angle` radians about the vertical through it.
+fn swayed(camera: &irradiant_scene::Camera, angle: f32) -> irradiant_scene::Camera {
+    let turn = glam::Quat::from_rotation_y(angle);
+    irradiant_scene::Camera {
+        target: camera.position + turn * (camera.target - camera.position),
+        ..camera.clone()
     }
 }

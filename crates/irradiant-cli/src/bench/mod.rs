@@ -110,6 +110,11 @@ pub struct BenchArgs {
     /// Time frames without TAA (the frame/taa pass then only copies), as frames were before it.
     #[arg(long)]
     pub no_taa: bool,
+    /// Time frames while the camera sways (a hundredth of a degree about the vertical, back
+    /// and forth every frame) instead of standing still: TAA then reprojects and clips its
+    /// history, and every running mean restarts, as in a game.
+    #[arg(long)]
+    pub moving_camera: bool,
     #[command(flatten)]
     pub ssil: ssil::SsilGridArgs,
     /// Light-field techniques: after timing, trace this many rays from the visible surfaces
@@ -318,6 +323,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 scene_settings: &scene_settings,
                 size,
                 taa: !args.no_taa,
+                moving_camera: args.moving_camera,
                 iterations,
                 agreement_rays: args.lightfield_agreement,
                 order,

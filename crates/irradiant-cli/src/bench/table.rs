@@ -70,6 +70,9 @@ fn frame_table(records: &[FrameRecord]) {
         .iter()
         .map(|l| l.split_once('/').map_or(*l, |(_, stage)| stage))
         .collect();
+    if records.iter().any(|r| r.camera != "still") {
+        println!("\n(timed with the camera moving every frame)");
+    }
     print!(
         "\n{:<10} {:<14} {:<10} {:>5} {:<28} {:>9}",
         "scene", "technique", "probes", "rays", "variant", "Mrays"
