@@ -331,16 +331,13 @@ impl Frame {
 
     /// The last frame's final linear radiance (after TAA).
     pub fn image(&self, ctx: &GpuContext) -> Result<Image, RenderError> {
-        let bytes = read_texture(ctx, self.resources.texture("resolved"), 8)?;
+        let texels: Vec<[f32; 4]> =
+            bytemuck::pod_collect_to_vec(&read_texture(ctx, self.resources.texture("resolved"), 16)?);
         let (width, height) = self.size();
-        let halves: &[half::f16] = bytemuck::cast_slice(&bytes);
         Ok(Image {
             width,
             height,
-            pixels: halves
-                .chunks_exact(4)
-                .map(|p| [p[0].to_f32(), p[1].to_f32(), p[2].to_f32()])
-                .collect(),
+            pixels: texels.iter().map(|p| [p[0], p[1], p[2]]).collect(),
         })
     }
 

@@ -38,11 +38,12 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64)] = &[
     ("gbuffer_motion", wgpu::TextureFormat::Rgba32Float, 16),
     // compose's linear radiance, before TAA
     ("radiance", wgpu::TextureFormat::Rgba32Float, 16),
-    // TAA's output: this frame's final linear image (f16: the history is sampled bilinearly,
-    // and 32-bit floats do not filter on every adapter)
-    ("resolved", wgpu::TextureFormat::Rgba16Float, 8),
+    // TAA's output: this frame's final linear image. f32, as the history it becomes must be: a
+    // still view's history is a running mean over up to 1/blend frames, whose steps f16's 11
+    // bits would round away (at blend 0.01 it stalled 5 % short of the frame).
+    ("resolved", wgpu::TextureFormat::Rgba32Float, 16),
     // last frame's `resolved`
-    ("previous_radiance", wgpu::TextureFormat::Rgba16Float, 8),
+    ("previous_radiance", wgpu::TextureFormat::Rgba32Float, 16),
     // tonemapped sRGB, what a window presents
     ("output", wgpu::TextureFormat::Rgba8Unorm, 4),
 ];
@@ -80,7 +81,6 @@ pub struct FrameResources {
     /// vec4: radiance of rays that leave the scene
     pub sky: wgpu::Buffer,
     pub(crate) textures: Vec<FrameTexture>,
-    linear_clamp: wgpu::Sampler,
 }
 
 impl FrameResources {
@@ -153,12 +153,6 @@ impl FrameResources {
             params: buffer("frame/params", size_of::<GpuFrameParams>() as u64, uniform),
             sky: buffer("frame/sky", 16, uniform),
             textures,
-            linear_clamp: device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some("frame/linear_clamp"),
-                mag_filter: wgpu::FilterMode::Linear,
-                min_filter: wgpu::FilterMode::Linear,
-                ..Default::default()
-            }),
         };
         ctx.queue.write_buffer(
             &resources.sky,
@@ -172,8 +166,7 @@ impl FrameResources {
     pub fn table(&self) -> ResourceTable<'_> {
         let mut table = ResourceTable::new()
             .buffer("frame", &self.params)
-            .buffer("sky", &self.sky)
-            .sampler("linear_clamp", &self.linear_clamp);
+            .buffer("sky", &self.sky);
         for t in &self.textures {
             table = table.texture(t.name, &t.view);
             for (name, view) in &t.levels {
