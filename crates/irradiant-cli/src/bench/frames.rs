@@ -91,7 +91,11 @@ impl FrameBench<'_> {
         let still = session.camera().clone();
         while timed < self.iterations {
             if self.moving_camera {
-                let turn = if (warm_runs + timed) % 2 == 0 { 1e-2_f32 } else { -1e-2 };
+                let turn = if (warm_runs + timed) % 2 == 0 {
+                    1e-2_f32
+                } else {
+                    -1e-2
+                };
                 session.set_camera(swayed(&still, turn.to_radians()));
             }
             let timings = session.render_profiled()?;
@@ -187,7 +191,11 @@ impl FrameBench<'_> {
             probes,
             rays_per_probe,
             variant: spec.name.clone(),
-            camera: if self.moving_camera { "moving" } else { "still" },
+            camera: if self.moving_camera {
+                "moving"
+            } else {
+                "still"
+            },
             rays: rays as u64,
             updating_probes: counter("updating_probes") as u32,
             traced_rays: traced as u64,

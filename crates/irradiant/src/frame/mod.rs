@@ -331,8 +331,11 @@ impl Frame {
 
     /// The last frame's final linear radiance (after TAA).
     pub fn image(&self, ctx: &GpuContext) -> Result<Image, RenderError> {
-        let texels: Vec<[f32; 4]> =
-            bytemuck::pod_collect_to_vec(&read_texture(ctx, self.resources.texture("resolved"), 16)?);
+        let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(
+            ctx,
+            self.resources.texture("resolved"),
+            16,
+        )?);
         let (width, height) = self.size();
         Ok(Image {
             width,
