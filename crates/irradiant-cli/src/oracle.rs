@@ -15,7 +15,7 @@ use irradiant::ddgi::oracle::{
 };
 use irradiant::frame::write_png;
 use irradiant::gpu_types::GpuCamera;
-use irradiant::pathtrace::PathTraceSettings;
+use irradiant::pathtrace::{LightSampling, PathTraceSettings};
 use irradiant::{AdapterChoice, GpuContext, Session, SessionSettings};
 use serde_json::json;
 
@@ -54,6 +54,16 @@ pub struct OracleArgs {
     /// Probes drawn in worst-probes.png and circled in probe-view.png.
     #[arg(long, default_value = "8")]
     pub worst: usize,
+    /// A diagnostic: the truth counts only light that reflected at most this many times on
+    /// its way to the probe or the surface point (1: the emitters' light off one surface).
+    /// Default: every bounce.
+    #[arg(long)]
+    pub truth_bounces: Option<u32>,
+    /// A diagnostic: how the truth finds emitted light — both (multiple importance, the
+    /// truth), emitters (the emitter sample alone, as DDGI's probe rays) or brdf
+    /// (BRDF-sampled rays alone). The three must agree; where they do not, one is wrong.
+    #[arg(long, default_value = "both", value_parser = parse_light_sampling)]
+    pub truth_sampling: LightSampling,
     #[command(flatten)]
     pub settings: SettingsArgs,
 }
@@ -88,6 +98,10 @@ pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let truth = |samples: u32| PathTraceSettings {
         samples_per_pixel: samples,
         samples_per_dispatch: 64,
+        max_bounces: args
+            .truth_bounces
+            .unwrap_or(PathTraceSettings::balanced().max_bounces),
+        light_sampling: args.truth_sampling,
         ..PathTraceSettings::balanced()
     };
     println!(
@@ -101,6 +115,13 @@ pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         args.probe_samples,
         args.query_samples
     );
+    if args.truth_bounces.is_some() || args.truth_sampling != LightSampling::Both {
+        let diagnostic = truth(1);
+        println!(
+            "the truth is a diagnostic's: at most {} bounces, light sampling {:?}",
+            diagnostic.max_bounces, diagnostic.light_sampling
+        );
+    }
     println!(
         "{:<44} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
         "variant", "probe med", "probe Σ", "distance", "truth ±", "query med", "query Σ"
@@ -420,4 +441,15 @@ fn write_error_map(path: &Path, q: &QueryOracle) -> Result<(), CliError> {
         })
         .collect();
     Ok(write_png(path, &rgba, q.width, q.height)?)
+}
+
+fn parse_light_sampling(text: &str) -> Result<LightSampling, String> {
+    match text {
+        "both" => Ok(LightSampling::Both),
+        "emitters" => Ok(LightSampling::Emitters),
+        "brdf" => Ok(LightSampling::Brdf),
+        _ => Err(format!(
+            "'{text}' is not a way to sample light: write both, emitters or brdf"
+        )),
+    }
 }

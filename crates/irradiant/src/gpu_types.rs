@@ -122,7 +122,7 @@ pub fn all_layouts() -> Vec<Expected> {
             samples,
             max_bounces,
             seed,
-            _pad0,
+            light_sampling,
             _pad1
         }),
         gpu_layout!(GpuGatherQuery {
@@ -141,7 +141,7 @@ pub fn all_layouts() -> Vec<Expected> {
             samples,
             max_bounces,
             seed,
-            _pad0,
+            light_sampling,
             _pad1,
             _pad2
         }),

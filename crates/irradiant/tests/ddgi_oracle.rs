@@ -17,6 +17,7 @@ fn truth_settings(samples: u32) -> PathTraceSettings {
         samples_per_dispatch: 64,
         max_bounces: 64,
         seed: 3,
+        light_sampling: Default::default(),
     }
 }
 

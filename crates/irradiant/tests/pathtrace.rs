@@ -21,6 +21,7 @@ fn render(
         samples_per_dispatch: 16,
         max_bounces: 64,
         seed,
+        light_sampling: Default::default(),
     };
     tracer
         .render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {})
@@ -110,6 +111,7 @@ fn an_integrating_sphere_counts_its_bounces_exactly() {
         samples_per_dispatch: 64,
         max_bounces: 64,
         seed: 3,
+        light_sampling: Default::default(),
     };
     let mut measured = Vec::new();
     for bounces in [Some(0), Some(1), Some(2), None] {

@@ -52,6 +52,7 @@ fn a_still_view_converges_to_the_antialiased_reference() {
                 samples_per_dispatch: 64,
                 max_bounces: 1,
                 seed: 3,
+                light_sampling: Default::default(),
             },
             |_, _| {},
         )

@@ -146,7 +146,7 @@ pub fn gather(
             samples,
             max_bounces: settings.max_bounces,
             seed: settings.seed,
-            _pad0: 0,
+            light_sampling: settings.light_sampling.gpu(),
             _pad1: 0,
             _pad2: 0,
         };

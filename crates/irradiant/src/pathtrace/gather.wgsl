@@ -31,7 +31,7 @@ struct GpuGatherParams {
     samples: u32,
     max_bounces: u32,
     seed: u32,
-    _pad0: u32,
+    light_sampling: u32,
     _pad1: u32,
     _pad2: u32,
 }
@@ -72,7 +72,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups
             let d = select(min(hit.t, q.far), q.far, hit.triangle == INVALID);
             sum += vec4<f32>(d, d * d, 0.0, 0.0);
         } else {
-            let l = finite_or_zero(path_radiance(origin, dir, params.max_bounces, false, &rng));
+            let l = finite_or_zero(path_radiance(origin, dir, params.max_bounces, false, params.light_sampling, &rng));
             let y = luminance(l);
             sum += vec4<f32>(l, y * y);
         }

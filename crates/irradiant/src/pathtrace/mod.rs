@@ -22,6 +22,35 @@ pub struct PathTraceSettings {
     pub max_bounces: u32,
     /// Random seed: change it for an independent image.
     pub seed: u32,
+    /// How emitted light is found: both ways weighed by multiple importance (the truth), or
+    /// one alone — a diagnostic: each alone must converge to the same image, so a difference
+    /// between them shows where one of them is wrong.
+    pub light_sampling: LightSampling,
+}
+
+/// The ways the path tracer finds emissive triangles' light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LightSampling {
+    /// The emitter sample and BRDF-sampled rays that hit an emitter, weighed by the power
+    /// heuristic: low noise wherever emitters are small or large.
+    #[default]
+    Both,
+    /// The emitter sample alone (what DDGI's probe rays take): noisy where emitters are large
+    /// and near.
+    Emitters,
+    /// BRDF-sampled rays alone: noisy where emitters are small.
+    Brdf,
+}
+
+impl LightSampling {
+    /// The value the shaders read (`path_radiance`'s `light_sampling`).
+    pub fn gpu(self) -> u32 {
+        match self {
+            Self::Both => 0,
+            Self::Emitters => 1,
+            Self::Brdf => 2,
+        }
+    }
 }
 
 impl Default for PathTraceSettings {
@@ -47,6 +76,7 @@ impl PathTraceSettings {
             samples_per_dispatch: 8,
             max_bounces: 8,
             seed: 0,
+            light_sampling: LightSampling::Both,
         }
     }
     pub fn balanced() -> Self {
@@ -55,6 +85,7 @@ impl PathTraceSettings {
             samples_per_dispatch: 16,
             max_bounces: 32,
             seed: 0,
+            light_sampling: LightSampling::Both,
         }
     }
     pub fn quality() -> Self {
@@ -63,6 +94,7 @@ impl PathTraceSettings {
             samples_per_dispatch: 32,
             max_bounces: 64,
             seed: 0,
+            light_sampling: LightSampling::Both,
         }
     }
 }

@@ -97,7 +97,7 @@ impl PathTracer {
             samples,
             max_bounces: settings.max_bounces,
             seed: settings.seed,
-            _pad0: 0,
+            light_sampling: settings.light_sampling.gpu(),
             _pad1: 0,
         };
         // A fresh uniform per dispatch: write_buffer lands before the whole submission, so

@@ -8,10 +8,16 @@
 #import lights
 #import random
 
+// How emitters' light is found (LightSampling::gpu): both ways weighed by the power heuristic,
+// the emitter sample alone, or BRDF-sampled rays alone.
+const LIGHT_SAMPLING_BOTH: u32 = 0u;
+const LIGHT_SAMPLING_EMITTERS: u32 = 1u;
+const LIGHT_SAMPLING_BRDF: u32 = 2u;
+
 // Radiance arriving at `origin` from direction -dir, over at most `max_bounces` bounces. With
 // `first_emission` false the emission of the first surface hit is left out: what a probe
 // stores, since the frame's direct pass samples every emitter itself.
-fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first_emission: bool, rng: ptr<function, u32>) -> vec3<f32> {
+fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first_emission: bool, light_sampling: u32, rng: ptr<function, u32>) -> vec3<f32> {
     var origin = start;
     var dir = start_dir;
     var throughput = vec3<f32>(1.0);
@@ -27,10 +33,11 @@ fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first
         let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
         if max(s.emission.x, max(s.emission.y, s.emission.z)) > 0.0 && (bounce > 0u || first_emission) {
             var w = 1.0;
-            if brdf_pdf_prev > 0.0 && scene_info.emitter_count > 0u {
+            // The first hit is never an emitter sample's: its emission counts whole.
+            if brdf_pdf_prev > 0.0 && scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
                 let cos_light = abs(dot(s.geometric_normal, dir));
                 let light_pdf = emitter_pdf_area(s.emission) * hit.t * hit.t / max(cos_light, 1e-8);
-                w = power_heuristic(brdf_pdf_prev, light_pdf);
+                w = select(power_heuristic(brdf_pdf_prev, light_pdf), 0.0, light_sampling == LIGHT_SAMPLING_EMITTERS);
             }
             radiance += throughput * s.emission * w;
         }
@@ -41,11 +48,12 @@ fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first
         radiance += throughput * direct_punctual(s, wo);
 
         let origin_next = offset_ray(s.position, s.geometric_normal);
-        if scene_info.emitter_count > 0u {
+        if scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
             let light = sample_emitter_light(s, wo, rng);
             // A blocked sample brings nothing: no MIS weight to work out.
             if any(light.radiance != vec3<f32>(0.0)) {
-                radiance += throughput * light.radiance * power_heuristic(light.pdf, brdf_pdf(s, wo, light.wi));
+                let w = select(power_heuristic(light.pdf, brdf_pdf(s, wo, light.wi)), 1.0, light_sampling == LIGHT_SAMPLING_EMITTERS);
+                radiance += throughput * light.radiance * w;
             }
         }
 

@@ -13,7 +13,7 @@ struct GpuPathTraceParams {
     samples: u32,
     max_bounces: u32,
     seed: u32,
-    _pad0: u32,
+    light_sampling: u32,
     _pad1: u32,
 }
 
@@ -24,7 +24,7 @@ struct GpuPathTraceParams {
 fn trace_path(pixel: vec2<u32>, rng: ptr<function, u32>) -> vec3<f32> {
     let size = vec2<f32>(f32(params.width), f32(params.height));
     let dir = camera_ray_dir(params.camera, vec2<f32>(pixel) + rand2(rng), size);
-    return path_radiance(params.camera.position, dir, params.max_bounces, true, rng);
+    return path_radiance(params.camera.position, dir, params.max_bounces, true, params.light_sampling, rng);
 }
 
 @compute @workgroup_size(8, 8, 1)

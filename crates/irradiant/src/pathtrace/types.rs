@@ -15,7 +15,8 @@ pub struct GpuPathTraceParams {
     pub samples: u32,
     pub max_bounces: u32,
     pub seed: u32,
-    pub _pad0: u32,
+    /// `LightSampling::gpu`
+    pub light_sampling: u32,
     pub _pad1: u32,
 }
 const _: () = assert!(size_of::<GpuPathTraceParams>() == 96);
@@ -43,7 +44,8 @@ pub struct GpuGatherParams {
     pub samples: u32,
     pub max_bounces: u32,
     pub seed: u32,
-    pub _pad0: u32,
+    /// `LightSampling::gpu`
+    pub light_sampling: u32,
     pub _pad1: u32,
     pub _pad2: u32,
 }

@@ -125,6 +125,7 @@ pub fn path_trace(ctx: &GpuContext, scene: &Scene, size: (u32, u32), spp: u32) -
         samples_per_dispatch: 32,
         max_bounces: 64,
         seed: 7,
+        light_sampling: Default::default(),
     };
     tracer
         .render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {})
