@@ -316,7 +316,19 @@ impl GpuScene {
                 "BLAS_WIDE",
                 format!("{}u", (self.blas_layout == BlasLayout::Wide) as u32),
             ),
+            (
+                "SCENE_HAS_EMITTERS",
+                format!("{}u", self.has_emitters() as u32),
+            ),
         ]
+    }
+
+    /// Whether any instance's mesh has an emissive triangle (animation moves emitters but
+    /// never makes or removes one).
+    fn has_emitters(&self) -> bool {
+        self.instance_meshes
+            .iter()
+            .any(|&m| !self.mesh_emitters[m as usize].is_empty())
     }
 
     /// Uploads what animation changes: instance transforms, the top-level BVH, lights and the

@@ -95,6 +95,9 @@ struct EmitterSample {
     radiance: vec3<f32>,
     // pdf with respect to area
     pdf_area: f32,
+    // the triangle and instance it lies on, to recognise it at the end of a shadow ray
+    triangle: u32,
+    instance: u32,
 }
 
 fn sample_emitter(u_select: f32, u: vec2<f32>) -> EmitterSample {
@@ -119,6 +122,8 @@ fn sample_emitter(u_select: f32, u: vec2<f32>) -> EmitterSample {
     let m = materials[tri.material];
     s.radiance = m.emission;
     s.pdf_area = emitter_pdf_area(m.emission);
+    s.triangle = e.triangle;
+    s.instance = e.instance;
     return s;
 }
 
