@@ -162,6 +162,19 @@ fn subdivided(mut scene: irradiant_scene::Scene, levels: u32) -> irradiant_scene
     scene
 }
 
+/// Cosine lobes of radiance about these axes from a point off the middle of the glowing box.
+fn lobes_from_box_middle(axes: &[Vec3]) -> Vec<GatherQuery> {
+    axes.iter()
+        .map(|&axis| GatherQuery {
+            origin: Vec3::new(0.2, 1.1, -0.3),
+            axis,
+            exponent: 1.0,
+            kind: GatherKind::Radiance,
+            on_surface: false,
+        })
+        .collect()
+}
+
 /// The emitters are sampled per triangle (∝ power, by a CDF over all of them) and mixed with
 /// BRDF samples by multiple importance: with the walls cut into 12 288 small triangles, in a
 /// BVH many levels deep, one bounce of their light must still add up to the closed form.
@@ -174,16 +187,8 @@ fn one_bounce_from_many_small_emitters_reads_the_closed_form() {
     let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
     // One bounce off a wall that every direction sees: ρ·Le.
     let expected = irradiant_scene::GLOWING_BOX_ALBEDO * irradiant_scene::GLOWING_BOX_EMISSION;
-    let queries: Vec<GatherQuery> = [Vec3::X, Vec3::NEG_Y, Vec3::Z, Vec3::new(1.0, 1.0, -1.0)]
-        .into_iter()
-        .map(|axis| GatherQuery {
-            origin: Vec3::new(0.2, 1.1, -0.3),
-            axis,
-            exponent: 1.0,
-            kind: GatherKind::Radiance,
-            on_surface: false,
-        })
-        .collect();
+    let queries =
+        lobes_from_box_middle(&[Vec3::X, Vec3::NEG_Y, Vec3::Z, Vec3::new(1.0, 1.0, -1.0)]);
     let settings = PathTraceSettings {
         max_bounces: 1,
         ..truth_settings(2048)
@@ -260,16 +265,7 @@ fn one_bounce_looking_up(
     scene: &irradiant_scene::Scene,
     light_sampling: LightSampling,
 ) -> Vec<f32> {
-    let queries: Vec<GatherQuery> = [Vec3::Y, Vec3::new(1.0, 1.0, 0.0)]
-        .into_iter()
-        .map(|axis| GatherQuery {
-            origin: Vec3::new(0.2, 1.1, -0.3),
-            axis,
-            exponent: 1.0,
-            kind: GatherKind::Radiance,
-            on_surface: false,
-        })
-        .collect();
+    let queries = lobes_from_box_middle(&[Vec3::Y, Vec3::new(1.0, 1.0, 0.0)]);
     let settings = PathTraceSettings {
         max_bounces: 1,
         light_sampling,
