@@ -40,7 +40,7 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64)] = &[
     ("radiance", wgpu::TextureFormat::Rgba32Float, 16),
     // TAA's output: this frame's final linear image. f32, as the history it becomes must be: a
     // still view's history is a running mean over up to 1/blend frames, whose steps f16's 11
-    // bits would round away (at blend 0.01 it stalled 5 % short of the frame).
+    // bits would round away (at blend 0.01 a still view stalled 3.4 % short of the light).
     ("resolved", wgpu::TextureFormat::Rgba32Float, 16),
     // last frame's `resolved`
     ("previous_radiance", wgpu::TextureFormat::Rgba32Float, 16),

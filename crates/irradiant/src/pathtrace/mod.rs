@@ -1,6 +1,7 @@
 //! The reference path tracer: the ground truth every technique is measured against.
 //! See docs/pathtrace.md.
 
+pub mod constants;
 pub mod gather;
 mod passes;
 pub mod types;
@@ -46,9 +47,9 @@ impl LightSampling {
     /// The value the shaders read (`path_radiance`'s `light_sampling`).
     pub fn gpu(self) -> u32 {
         match self {
-            Self::Both => 0,
-            Self::Emitters => 1,
-            Self::Brdf => 2,
+            Self::Both => constants::LIGHT_SAMPLING_BOTH,
+            Self::Emitters => constants::LIGHT_SAMPLING_EMITTERS,
+            Self::Brdf => constants::LIGHT_SAMPLING_BRDF,
         }
     }
 }

@@ -7,12 +7,7 @@
 #import brdf
 #import lights
 #import random
-
-// How emitters' light is found (LightSampling::gpu): both ways weighed by the power heuristic,
-// the emitter sample alone, or BRDF-sampled rays alone.
-const LIGHT_SAMPLING_BOTH: u32 = 0u;
-const LIGHT_SAMPLING_EMITTERS: u32 = 1u;
-const LIGHT_SAMPLING_BRDF: u32 = 2u;
+#import pathtrace_constants
 
 // Radiance arriving at `origin` from direction -dir, over at most `max_bounces` bounces. With
 // `first_emission` false the emission of the first surface hit is left out: what a probe
