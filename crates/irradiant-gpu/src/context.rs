@@ -86,6 +86,12 @@ pub struct GpuInfo {
     pub max_compute_workgroups_per_dimension: u32,
     /// The largest device-local memory heap in bytes, where the driver reports it (Vulkan).
     pub memory: Option<u64>,
+    /// Loop iterations one shader invocation may run in all, where the driver ends every loop
+    /// past a limit: llvmpipe (lavapipe) shares one counter of 65 535 among all the loops of an
+    /// invocation, and past it each loop exits at once, silently (Mesa's
+    /// `LP_MAX_TGSI_LOOP_ITERATIONS`). Passes that loop long in one invocation (the path
+    /// tracer's samples) split their work to stay under it.
+    pub loop_iteration_limit: Option<u32>,
 }
 
 pub struct GpuContext {
@@ -101,6 +107,9 @@ pub struct GpuContext {
     out_of_memory: Arc<Mutex<Option<String>>>,
     lost: Arc<Mutex<Option<String>>>,
 }
+
+/// llvmpipe's limit on the loop iterations of one shader invocation (GpuInfo::loop_iteration_limit).
+const LLVMPIPE_LOOP_ITERATIONS: u32 = 65_535;
 
 /// Storage buffers one shader stage may bind: the scene takes 8, a DDGI pass up to 8 more.
 const STORAGE_BUFFERS_NEEDED: u32 = 16;
@@ -253,6 +262,10 @@ impl GpuContext {
             driver: adapter_info.driver.clone(),
             driver_info: adapter_info.driver_info.clone(),
             timestamps: features.contains(Features::TIMESTAMP_QUERY),
+            loop_iteration_limit: adapter_info
+                .name
+                .contains("llvmpipe")
+                .then_some(LLVMPIPE_LOOP_ITERATIONS),
             max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
             max_buffer_size: limits.max_buffer_size,
             max_compute_workgroup_size_x: limits.max_compute_workgroup_size_x,

@@ -136,7 +136,7 @@ pub fn gather(
         // Zeroed by wgpu: the sums start at nothing.
         mapped_at_creation: false,
     });
-    let per_dispatch = settings.samples_per_dispatch.max(1);
+    let per_dispatch = settings.samples_per_dispatch_on(&ctx.info);
     let mut done = 0;
     while done < settings.samples_per_pixel {
         let samples = per_dispatch.min(settings.samples_per_pixel - done);

@@ -60,7 +60,24 @@ impl Default for PathTraceSettings {
     }
 }
 
+/// Samples of one path-tracer invocation a dispatch takes at most where the adapter limits an
+/// invocation's loop iterations (`GpuInfo::loop_iteration_limit`, llvmpipe's 65 535 shared by
+/// every loop): each sample's BVH traversals run hundreds of iterations a ray. A closed box of
+/// 43 200 emitting triangles read a third of its light short at 64 a dispatch on lavapipe, and
+/// right at this many.
+const SAMPLES_PER_DISPATCH_UNDER_A_LOOP_LIMIT: u32 = 4;
+
 impl PathTraceSettings {
+    /// Samples a dispatch takes on this adapter: `samples_per_dispatch`, fewer where the adapter
+    /// ends loops past a limit.
+    pub fn samples_per_dispatch_on(&self, info: &irradiant_gpu::GpuInfo) -> u32 {
+        let cap = match info.loop_iteration_limit {
+            Some(_) => SAMPLES_PER_DISPATCH_UNDER_A_LOOP_LIMIT,
+            None => u32::MAX,
+        };
+        self.samples_per_dispatch.clamp(1, cap)
+    }
+
     /// Light that bounced at most `bounces` times between the emitters and the surface seen
     /// (0: direct light only; 1: the one indirect bounce that SSIL's first bounce models):
     /// `max_bounces` counts the hop to the emitter too.

@@ -140,7 +140,7 @@ impl PathTracer {
             });
         self.reset(&mut encoder);
         ctx.queue.submit([encoder.finish()]);
-        let per_dispatch = settings.samples_per_dispatch.max(1);
+        let per_dispatch = settings.samples_per_dispatch_on(&ctx.info);
         while self.samples_done < settings.samples_per_pixel {
             let samples = per_dispatch.min(settings.samples_per_pixel - self.samples_done);
             let mut encoder = ctx
