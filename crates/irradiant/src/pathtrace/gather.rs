@@ -137,6 +137,19 @@ pub fn gather(
         mapped_at_creation: false,
     });
     let per_dispatch = settings.samples_per_dispatch_on(&ctx.info);
+    // One uniform and one binding for every dispatch: each is submitted and waited for before
+    // the next writes the uniform (on llvmpipe there are hundreds of small dispatches).
+    let uniform = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("pathtrace/gather_params"),
+        size: size_of::<GpuGatherParams>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let own = ResourceTable::new()
+        .buffer("params", &uniform)
+        .buffer("queries", &query_buffer)
+        .buffer("sums", &sums);
+    let bound = pass.bind(ctx, &[&scene.resources(), &own])?;
     let mut done = 0;
     while done < settings.samples_per_pixel {
         let samples = per_dispatch.min(settings.samples_per_pixel - done);
@@ -150,18 +163,8 @@ pub fn gather(
             _pad1: 0,
             _pad2: 0,
         };
-        let uniform = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("pathtrace/gather_params"),
-                contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-        let own = ResourceTable::new()
-            .buffer("params", &uniform)
-            .buffer("queries", &query_buffer)
-            .buffer("sums", &sums);
-        let bound = pass.bind(ctx, &[&scene.resources(), &own])?;
+        ctx.queue
+            .write_buffer(&uniform, 0, bytemuck::bytes_of(&params));
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {

@@ -71,10 +71,9 @@ impl PathTraceSettings {
     /// Samples a dispatch takes on this adapter: `samples_per_dispatch`, fewer where the adapter
     /// ends loops past a limit.
     pub fn samples_per_dispatch_on(&self, info: &irradiant_gpu::GpuInfo) -> u32 {
-        let cap = match info.loop_iteration_limit {
-            Some(_) => SAMPLES_PER_DISPATCH_UNDER_A_LOOP_LIMIT,
-            None => u32::MAX,
-        };
+        let cap = info
+            .loop_iteration_limit
+            .map_or(u32::MAX, |_| SAMPLES_PER_DISPATCH_UNDER_A_LOOP_LIMIT);
         self.samples_per_dispatch.clamp(1, cap)
     }
 
