@@ -101,8 +101,9 @@ pub struct DdgiUpdateSettings {
     pub convergence_heuristics: bool,
     /// Probe relocation (003 §5): during the volume's first frames, probes inside geometry
     /// move out through the nearest backface, and probes hugging a surface step away from it
-    /// (never more than 45 % of the spacing). Without it, probes swallowed by geometry darken
-    /// everything around them. A change restarts the probes.
+    /// (never more than 45 % of the spacing, nor past the grid's outer layers). Without it,
+    /// probes swallowed by geometry darken everything around them. A change restarts the
+    /// probes.
     pub relocation: bool,
     /// Seed of the per-frame random rotation of the ray set.
     pub seed: u32,
