@@ -327,6 +327,24 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
     );
 }
 
+/// The light field relocates its probes by DDGI's rule (`relocation_keeps_grid`): the probes
+/// in the Cornell box's two boxes leave them through a side rather than under the floor.
+#[test]
+fn light_field_probes_in_boxes_on_the_floor_leave_them_through_a_side() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let mut lf = small();
+    lf.bake.probe_counts = [0, 0, 0];
+    let s = render(&ctx, &scene, (16, 16), spec("lightfield", &lf), 1);
+    let lightfield = s.technique_as::<Lightfield>().unwrap();
+    let positions = lightfield.probe_positions(&ctx).unwrap();
+    let states = lightfield.read_probe_states(&ctx).unwrap();
+    assert_cornell_box_probes_left_through_a_side(&scene, &positions, |p| {
+        states[p] & irradiant::ddgi::constants::PROBE_STATE_MASK
+            != irradiant::ddgi::constants::PROBE_OFF
+    });
+}
+
 /// The debug view (the paper's Figure 20): primary rays traced through the probes alone see
 /// the box as the camera does — red wall left, green wall right.
 #[test]

@@ -1,8 +1,8 @@
 // ddgi/relocate: one iteration of the probe-position optimiser of 003 §5 (Listing 4), run for
 // the volume's first frames. A probe that sees more than 25 % backfaces is inside geometry and
 // moves through the closest backface; a probe very close to a front face moves towards the
-// farthest front face. Offsets stay under 45 % of the spacing, so the grid's indexing holds,
-// and inside the box of the grid's outer layers.
+// farthest front face. Offsets keep the probe in its cell and inside the box of the grid's
+// outer layers (relocation_keeps_grid).
 #import ddgi_volume
 #import ddgi_rays
 
@@ -11,24 +11,8 @@
 @group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
 @group(2) @binding(13) var<storage, read_write> probe_offsets: array<vec4<f32>>;
 
-// How close to a surface a probe may stand, and how far it steps away when closer, as a share
-// of the spacing.
-const SURFACE_STEP: f32 = 0.05;
-
-// Past the outer layers lie the walls the volume was fitted to, or the far side of a surface
-// resting on one: a probe in a box standing on the floor crossed its bottom, the closest
-// backface, into the void under the floor, where it saw almost nothing and darkened the
-// surfaces round the box (docs/ddgi.md, "A probe pushed out of the volume"). An axis of one
-// layer has no extent to keep to.
-fn within(probe: u32, offset: vec3<f32>, limit: vec3<f32>) -> bool {
-    let p = grid_position(probe) + offset - volume.origin;
-    // A surface step is allowed outwards too: a probe in a column that reaches the ceiling
-    // leaves it with a tilt.
-    let slack = SURFACE_STEP * volume.spacing;
-    let extent = volume.spacing * vec3<f32>(volume.counts - 1u);
-    let flat_axis = volume.counts == vec3<u32>(1u);
-    let inside = (p >= -slack & p <= extent + slack) | flat_axis;
-    return all(abs(offset) < limit) && all(inside);
+fn within(probe: u32, offset: vec3<f32>) -> bool {
+    return relocation_keeps_grid(grid_coord(probe, volume.counts), volume.counts, volume.spacing, offset);
 }
 
 @compute @workgroup_size(64, 1, 1)
@@ -39,7 +23,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     }
     let m = volume.rays_per_probe;
     let current = probe_offsets[probe].xyz;
-    let limit = 0.45 * volume.spacing;
     var backfaces = 0u;
     var closest_back = vec4<f32>(0.0, 0.0, 0.0, 1e30);
     var closest_front = vec4<f32>(0.0, 0.0, 0.0, 1e30);
@@ -55,7 +38,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
             // The closest backface the probe may cross: one whose far side lies outside the
             // volume does not count (a box's bottom on the floor), so the probe leaves through
             // a side if one is near enough.
-            if t < closest_back.w && within(probe, current + d * t * 1.01, limit) {
+            if t < closest_back.w && within(probe, current + d * t * 1.01) {
                 closest_back = vec4<f32>(d, t);
             }
         } else {
@@ -74,18 +57,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         // (up to twice its distance). With none that may be crossed it stays, and turns off.
         for (var i = 0u; i < 100u && closest_back.w < 1e30; i++) {
             let candidate = current + closest_back.xyz * closest_back.w * (2.0 - f32(i) * 0.01);
-            if within(probe, candidate, limit) {
+            if within(probe, candidate) {
                 next = candidate;
                 break;
             }
         }
-    } else if closest_front.w < SURFACE_STEP * volume.min_spacing && dot(closest_front.xyz, farthest_front.xyz) <= 0.5 {
+    } else if closest_front.w < RELOCATION_SURFACE_STEP * volume.min_spacing && dot(closest_front.xyz, farthest_front.xyz) <= 0.5 {
         // Touching a surface (its visibility tests would be all self-shadow): step towards open
         // space, no further than a surface step. A probe merely near a wall stays: the
         // query extrapolates at most half a cell past the outermost probes, so they belong
         // close to the walls.
-        let candidate = current + farthest_front.xyz * min(SURFACE_STEP * volume.min_spacing, farthest_front.w);
-        if within(probe, candidate, limit) {
+        let candidate = current + farthest_front.xyz * min(RELOCATION_SURFACE_STEP * volume.min_spacing, farthest_front.w);
+        if within(probe, candidate) {
             next = candidate;
         }
     }

@@ -7,3 +7,25 @@ fn grid_coord(probe: u32, counts: vec3<u32>) -> vec3<u32> {
 fn grid_index(coord: vec3<u32>, counts: vec3<u32>) -> u32 {
     return coord.x + counts.x * (coord.y + counts.y * coord.z);
 }
+
+// Relocation (003 §5) moves a probe by less than this share of the spacing on each axis, so
+// that it keeps its cell and the grid's indexing holds.
+const RELOCATION_LIMIT: f32 = 0.45;
+// How close to a surface a relocated probe may stand, as a share of the spacing; also how far
+// past the grid's outer layers it may go.
+const RELOCATION_SURFACE_STEP: f32 = 0.05;
+
+// Whether a relocation offset keeps the probe at `coord` in its cell and inside the box of the
+// grid's outer layers. Past them lie the walls the grid was fitted to, or the far side of a
+// surface resting on one: a probe in a box standing on the floor crossed its bottom, the
+// closest backface, into the void under the floor (docs/ddgi.md, "A probe pushed out of the
+// volume"). A surface step of slack lets a probe in a column that reaches the ceiling leave it
+// with a tilt. An axis of one layer has no extent to keep to.
+fn relocation_keeps_grid(coord: vec3<u32>, counts: vec3<u32>, spacing: vec3<f32>, offset: vec3<f32>) -> bool {
+    let p = vec3<f32>(coord) * spacing + offset;
+    let slack = RELOCATION_SURFACE_STEP * spacing;
+    let extent = spacing * vec3<f32>(counts - 1u);
+    let flat_axis = counts == vec3<u32>(1u);
+    let inside = (p >= -slack & p <= extent + slack) | flat_axis;
+    return all(abs(offset) < RELOCATION_LIMIT * spacing) && all(inside);
+}

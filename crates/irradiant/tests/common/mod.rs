@@ -267,3 +267,37 @@ pub fn read_level(
         .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
         .collect()
 }
+
+/// The built-in Cornell box's probes after relocation (DDGI's or the light field's, on the
+/// scene's 4×4×4 grid): none past the grid's outer layers by more than a surface step (5 % of
+/// the spacing), and the probe in each box, 0.1 m above the box's bottom on the floor, gone
+/// out through a side and on. Both once crossed the bottom, the closest backface, into the
+/// void under the floor (docs/ddgi.md, "A probe pushed out of the volume").
+pub fn assert_cornell_box_probes_left_through_a_side(
+    scene: &Scene,
+    positions: &[glam::Vec3],
+    on: impl Fn(usize) -> bool,
+) {
+    let volume = &scene.probe_volumes[0];
+    assert_eq!(volume.counts, [4, 4, 4], "the Cornell box's own grid");
+    let (lo, hi) = (volume.min, volume.max);
+    let spacing = (hi - lo) / 3.0;
+    let slack = 0.05 * spacing + 1e-4;
+    for (probe, at) in positions.iter().enumerate() {
+        assert!(
+            at.cmpge(lo - slack).all() && at.cmple(hi + slack).all(),
+            "probe {probe} relocated to {at}, outside the volume {lo} … {hi}"
+        );
+    }
+    // Grid (1, 0, 1) in the tall box, (2, 0, 2) in the short one.
+    for (probe, box_name) in [(1 + 16, "tall"), (2 + 2 * 16, "short")] {
+        let coord = glam::Vec3::new((probe % 4) as f32, 0.0, (probe / 16) as f32);
+        let moved = positions[probe] - (lo + coord * spacing);
+        eprintln!("the {box_name} box's probe {probe}: moved by {moved}");
+        assert!(on(probe), "the {box_name} box's probe {probe} turned off");
+        assert!(
+            moved.with_y(0.0).length() > 0.2,
+            "the {box_name} box's probe {probe} should leave through a side: moved by {moved}"
+        );
+    }
+}
