@@ -345,6 +345,45 @@ fn light_field_probes_in_boxes_on_the_floor_leave_them_through_a_side() {
     });
 }
 
+/// lightfield/prefilter sums a probe's whole reduced map in one shader invocation. Where the
+/// adapter ends an invocation's loops past a limit (llvmpipe: 65 535 iterations), a map too
+/// large to sum under it (2 × 256² texels) is refused, naming the setting; below it the bake
+/// runs.
+#[test]
+fn a_prefilter_map_past_the_adapters_loop_limit_is_refused() {
+    let Some(ctx) = gpu() else { return };
+    if ctx.info.loop_iteration_limit.is_none() {
+        eprintln!("{} ends no loops early: nothing to refuse", ctx.info.name);
+        return;
+    }
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let mut lf = small();
+    lf.bake.resolution = 256;
+    lf.bake.prefilter_resolution = 256;
+    let new_session = |lf: &LightfieldSettings| {
+        Session::new(
+            ctx.clone(),
+            scene.clone(),
+            SessionSettings {
+                size: (16, 16),
+                technique: spec("lightfield", lf),
+                ..Default::default()
+            },
+        )
+    };
+    let message = new_session(&lf).err().unwrap().to_string();
+    eprintln!("{message}");
+    assert!(
+        message.contains("technique.bake.prefilter_resolution") && message.contains("128 or less"),
+        "{message}"
+    );
+    lf.bake.prefilter_resolution = 128;
+    assert!(
+        new_session(&lf).is_ok(),
+        "2 × 128² texels sum under the limit"
+    );
+}
+
 /// The debug view (the paper's Figure 20): primary rays traced through the probes alone see
 /// the box as the camera does — red wall left, green wall right.
 #[test]

@@ -52,6 +52,7 @@ use crate::ddgi::types::GpuDdgiVolume;
 use crate::frame::IMAGE_TILE;
 use crate::probes::{AtlasLayout, ProbeGrid};
 use crate::raycast::types::GpuRay;
+use crate::settings::SettingsError;
 use crate::technique::{
     Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec, non_finite,
 };
@@ -366,6 +367,37 @@ pub struct Lightfield {
     bake: BakeReport,
 }
 
+/// lightfield/prefilter sums every texel of a probe's reduced map, twice (irradiance and
+/// distance), in one invocation: 2 × prefilter_resolution² loop iterations. Where the adapter
+/// ends an invocation's loops past a limit (llvmpipe), a larger map would be summed only in
+/// part, silently; it is refused instead, naming the setting.
+fn check_prefilter_loops(
+    settings: &LightfieldSettings,
+    info: &irradiant_gpu::GpuInfo,
+) -> Result<(), RenderError> {
+    let Some(limit) = info.loop_iteration_limit else {
+        return Ok(());
+    };
+    let size = settings.prefilter_side() as u64;
+    if 2 * size * size < limit as u64 {
+        return Ok(());
+    }
+    // The largest power of two under the limit.
+    let root = (limit as f64 / 2.0).sqrt() as u32;
+    let largest = 1u32 << (31 - root.leading_zeros());
+    Err(SettingsError::invalid(
+        "technique.bake.prefilter_resolution",
+        size,
+        format!(
+            "{largest} or less on {}, which ends a shader invocation's loops after {limit} \
+             iterations and would sum only part of each map (2 × {size}² texels); or pick a \
+             hardware GPU with --adapter",
+            info.name
+        ),
+    )
+    .into())
+}
+
 impl Lightfield {
     pub fn new(
         cx: &TechniqueContext,
@@ -374,6 +406,7 @@ impl Lightfield {
     ) -> Result<Self, RenderError> {
         settings.validate()?;
         let ctx = cx.ctx;
+        check_prefilter_loops(settings, &ctx.info)?;
         let size = cx.frame.size();
         let grid = grid_of(cx.scene, settings)?;
         let atlas = AtlasLayout::new(grid.probe_count, &resources::tile_sides(settings));

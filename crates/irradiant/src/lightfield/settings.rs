@@ -35,7 +35,8 @@ pub struct LightfieldBakeSettings {
     pub distance_texels: u32,
     /// Texels a side of the reduced maps the prefilters convolve (the full maps averaged down):
     /// the cosine lobes are wide, so 64 loses nothing the tiles can show and keeps the bake
-    /// fast. At most `resolution`.
+    /// fast. At most `resolution`; on llvmpipe at most 128 (each texel's sum runs in one
+    /// invocation, whose loops llvmpipe ends past 65 535 iterations).
     pub prefilter_resolution: u32,
     /// Steps that move probes out of geometry before the bake (each re-traces the maps' geometry:
     /// a geometry pass's cost). 0: probes stay on the grid, and those inside solids are only
