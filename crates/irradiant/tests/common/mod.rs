@@ -271,8 +271,9 @@ pub fn read_level(
 /// The built-in Cornell box's probes after relocation (DDGI's or the light field's, on the
 /// scene's 4×4×4 grid): none past the grid's outer layers by more than a surface step (5 % of
 /// the spacing), and the probe in each box, 0.1 m above the box's bottom on the floor, gone
-/// out through a side and on. Both once crossed the bottom, the closest backface, into the
-/// void under the floor (docs/ddgi.md, "A probe pushed out of the volume").
+/// out through a side and on. DDGI's tall box probe once crossed that bottom, the closest
+/// backface, into the void under the floor (lavapipe); the others ended off (docs/ddgi.md,
+/// "A probe pushed out of the volume").
 pub fn assert_cornell_box_probes_left_through_a_side(
     scene: &Scene,
     positions: &[glam::Vec3],
