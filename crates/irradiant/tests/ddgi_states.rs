@@ -210,3 +210,29 @@ fn probes_in_boxes_on_the_floor_leave_them_through_a_side() {
         .unzip();
     assert_cornell_box_probes_left_through_a_side(&scene, &positions, |p| on[p]);
 }
+
+/// A volume of one layer along an axis has no outer layers along it to keep probes between:
+/// relocation moves its probes along that axis as far as the cell allows. The Cornell box with
+/// one layer of 4×4 probes at mid-height (y = 1 m) has one inside the 1.2 m tall box, 0.2 m
+/// under its top: it leaves through the top.
+#[test]
+fn probes_of_a_one_layer_volume_leave_a_box_through_its_top() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.probe_counts = [4, 1, 4];
+    let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
+    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
+        session.render().unwrap();
+    }
+    let volume = session.technique_as::<Ddgi>().unwrap().volume();
+    let in_tall_box = 1 + 4; // grid (1, 0, 1)
+    let (centre, on) = volume.read_probe_centres(&ctx).unwrap()[in_tall_box];
+    let moved = centre - volume.grid.probe_position(in_tall_box as u32);
+    eprintln!("the tall box's probe: moved by {moved}, on {on}");
+    assert!(on, "the tall box's probe turned off at {centre}");
+    assert!(
+        centre.y > 1.2,
+        "the tall box's probe should leave through its top (1.2 m): moved by {moved}"
+    );
+}
