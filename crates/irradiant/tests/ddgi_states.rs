@@ -186,6 +186,21 @@ fn outer_probes_stay_awake_for_the_walls_beyond_them() {
     );
 }
 
+/// Each probe's centre and whether it updates, past the relocation frames and the
+/// classification on the last of them, with the grid they were placed on.
+fn relocated_centres(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &Scene,
+    settings: &DdgiSettings,
+) -> (Vec<(glam::Vec3, bool)>, irradiant::probes::ProbeGrid) {
+    let mut session = session(ctx, scene, (16, 16), spec(Some(settings)));
+    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
+        session.render().unwrap();
+    }
+    let volume = session.technique_as::<Ddgi>().unwrap().volume();
+    (volume.read_probe_centres(ctx).unwrap(), volume.grid.clone())
+}
+
 /// Relocation crosses the closest backface that it may cross, and never past the grid's outer
 /// layers: the probes in the Cornell box's two boxes leave them through a side. On lavapipe
 /// the tall box's probe once dropped under the floor and, seeing too few backfaces there to
@@ -195,19 +210,8 @@ fn outer_probes_stay_awake_for_the_walls_beyond_them() {
 fn probes_in_boxes_on_the_floor_leave_them_through_a_side() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
-    let settings = DdgiSettings::balanced();
-    let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
-    // Past the relocation frames and the classification on the last of them.
-    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
-        session.render().unwrap();
-    }
-    let ddgi = session.technique_as::<Ddgi>().unwrap();
-    let (positions, on): (Vec<_>, Vec<_>) = ddgi
-        .volume()
-        .read_probe_centres(&ctx)
-        .unwrap()
-        .into_iter()
-        .unzip();
+    let (centres, _) = relocated_centres(&ctx, &scene, &DdgiSettings::balanced());
+    let (positions, on): (Vec<_>, Vec<_>) = centres.into_iter().unzip();
     assert_cornell_box_probes_left_through_a_side(&scene, &positions, |p| on[p]);
 }
 
@@ -221,14 +225,10 @@ fn probes_of_a_one_layer_volume_leave_a_box_through_its_top() {
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let mut settings = DdgiSettings::balanced();
     settings.volume.probe_counts = [4, 1, 4];
-    let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
-    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
-        session.render().unwrap();
-    }
-    let volume = session.technique_as::<Ddgi>().unwrap().volume();
+    let (centres, grid) = relocated_centres(&ctx, &scene, &settings);
     let in_tall_box = 1 + 4; // grid (1, 0, 1)
-    let (centre, on) = volume.read_probe_centres(&ctx).unwrap()[in_tall_box];
-    let moved = centre - volume.grid.probe_position(in_tall_box as u32);
+    let (centre, on) = centres[in_tall_box];
+    let moved = centre - grid.probe_position(in_tall_box as u32);
     eprintln!("the tall box's probe: moved by {moved}, on {on}");
     assert!(on, "the tall box's probe turned off at {centre}");
     assert!(

@@ -1,4 +1,5 @@
 // probe_grid: addressing of a regular probe grid (CPU twin: probes::ProbeGrid), x fastest.
+#import probe_constants
 
 fn grid_coord(probe: u32, counts: vec3<u32>) -> vec3<u32> {
     return vec3<u32>(probe % counts.x, (probe / counts.x) % counts.y, probe / (counts.x * counts.y));
@@ -7,13 +8,6 @@ fn grid_coord(probe: u32, counts: vec3<u32>) -> vec3<u32> {
 fn grid_index(coord: vec3<u32>, counts: vec3<u32>) -> u32 {
     return coord.x + counts.x * (coord.y + counts.y * coord.z);
 }
-
-// Relocation (003 §5) moves a probe by less than this share of the spacing on each axis, so
-// that it keeps its cell and the grid's indexing holds.
-const RELOCATION_LIMIT: f32 = 0.45;
-// How close to a surface a relocated probe may stand, as a share of the spacing; also how far
-// past the grid's outer layers it may go.
-const RELOCATION_SURFACE_STEP: f32 = 0.05;
 
 // Whether a relocation offset keeps the probe at `coord` in its cell and inside the box of the
 // grid's outer layers. Past them lie the walls the grid was fitted to, or the far side of a

@@ -1,9 +1,11 @@
 //! Probe code shared by the probe techniques (DDGI now, light-field probes next): grids of
 //! probes, octahedral maps with their border texels, probe ray sets, atlas layouts and the
 //! copies of atlas buffers into textures — each with its WGSL twin (`probe_grid`,
-//! `octahedral`, `probe_atlas` in the shader library).
+//! `octahedral`, `probe_atlas` in the shader library), and the constants both sides share
+//! (`probe_constants`).
 
 pub mod atlas;
+pub mod constants;
 pub mod grid;
 pub mod octahedral;
 pub mod rays;

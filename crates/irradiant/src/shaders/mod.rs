@@ -14,6 +14,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("ddgi_constants", crate::ddgi::constants::wgsl())
             .with("ssil_constants", crate::ssil::constants::wgsl())
             .with("pathtrace_constants", crate::pathtrace::constants::wgsl())
+            .with("probe_constants", crate::probes::constants::wgsl())
             .with("types", include_str!("types.wgsl"))
             .with("random", include_str!("random.wgsl"))
             .with("sampling", include_str!("sampling.wgsl"))

@@ -269,9 +269,9 @@ pub fn read_level(
 }
 
 /// The built-in Cornell box's probes after relocation (DDGI's or the light field's, on the
-/// scene's 4×4×4 grid): none past the grid's outer layers by more than a surface step (5 % of
-/// the spacing), and the probe in each box, 0.1 m above the box's bottom on the floor, gone
-/// out through a side and on. DDGI's tall box probe once crossed that bottom, the closest
+/// scene's 4×4×4 grid): none past the grid's outer layers by more than a surface step, and the
+/// probe in each box, 0.1 m above the box's bottom on the floor, gone out through a side and
+/// on. DDGI's tall box probe once crossed that bottom, the closest
 /// backface, into the void under the floor (lavapipe); the others ended off (docs/ddgi.md,
 /// "A probe pushed out of the volume").
 pub fn assert_cornell_box_probes_left_through_a_side(
@@ -283,7 +283,7 @@ pub fn assert_cornell_box_probes_left_through_a_side(
     assert_eq!(volume.counts, [4, 4, 4], "the Cornell box's own grid");
     let (lo, hi) = (volume.min, volume.max);
     let spacing = (hi - lo) / 3.0;
-    let slack = 0.05 * spacing + 1e-4;
+    let slack = irradiant::probes::constants::RELOCATION_SURFACE_STEP * spacing + 1e-4;
     for (probe, at) in positions.iter().enumerate() {
         assert!(
             at.cmpge(lo - slack).all() && at.cmple(hi + slack).all(),

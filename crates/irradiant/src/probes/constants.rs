@@ -1,0 +1,11 @@
+//! Constants the probe techniques' Rust and WGSL share, defined once (the shader library serves
+//! them as the module `probe_constants`).
+
+irradiant_gpu::wgsl_constants! {
+    /// Relocation (003 §5) moves a probe by less than this share of the spacing on each axis,
+    /// so that it keeps its cell and the grid's indexing holds.
+    RELOCATION_LIMIT: f32 = 0.45;
+    /// How close to a surface a relocated probe may stand, as a share of the spacing; also how
+    /// far past the grid's outer layers it may go (`relocation_keeps_grid`).
+    RELOCATION_SURFACE_STEP: f32 = 0.05;
+}
