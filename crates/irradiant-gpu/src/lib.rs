@@ -16,7 +16,7 @@ pub use context::{AdapterChoice, GpuContext, GpuError, GpuInfo};
 pub use layout::{Expected, StructLayoutError, check_struct_layouts};
 pub use pass::{
     BindingDecl, BoundPass, ComputePass, MAX_WORKGROUPS_PER_DIMENSION, PassDesc, PassError,
-    Resource, ResourceTable, Workgroups,
+    Resource, ResourceTable, WORKGROUP_FOLD, Workgroups,
 };
 pub use profiler::{PassTiming, Profiler};
 pub use readback::{read_buffer, read_buffer_as, read_texture, read_texture_level};

@@ -18,8 +18,9 @@ use crate::{GpuContext, GpuError, Profiler};
 /// Workgroups any adapter allows in each dimension of a dispatch (WebGPU's minimum limit).
 pub const MAX_WORKGROUPS_PER_DIMENSION: u32 = 65_535;
 
-/// Rows of a folded dispatch: linear counts past this continue in the next row.
-const FOLD: u32 = 32_768;
+/// Rows of a folded dispatch: linear counts past this continue in the next row. Shaders that
+/// write an indirect dispatch's counts fold them the same way.
+pub const WORKGROUP_FOLD: u32 = 32_768;
 
 /// The workgroup counts of one dispatch. Only its constructors make one, and each keeps every
 /// dimension within [`MAX_WORKGROUPS_PER_DIMENSION`] by construction, so no pass can ask for
@@ -33,7 +34,7 @@ impl Workgroups {
     /// excess of the last row).
     pub fn linear(count: u64) -> Self {
         let count = count.max(1);
-        let x = count.min(FOLD as u64) as u32;
+        let x = count.min(WORKGROUP_FOLD as u64) as u32;
         let y = count.div_ceil(x as u64);
         // More than 2^31 workgroups: no buffer an adapter binds is that large, so sizes checked
         // before allocation (crate::budget) never get here; saturate rather than wrap.

@@ -89,6 +89,68 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
     );
 }
 
+/// Trace, shade and the blends run only for the probes that update: ddgi/probe_states lists
+/// them for the next frame, with the indirect dispatches that cover them. The list must hold
+/// each updating probe once and nothing else, in grid order within each 64 probes, and the
+/// dispatches must cover it exactly, with one probe a workgroup and with four.
+#[test]
+fn only_the_probes_that_update_are_listed_and_dispatched() {
+    use irradiant::ddgi::constants::{PROBE_AWAKE, PROBE_STATE_MASK, PROBE_VIGILANT};
+    let Some(ctx) = gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    scene.probe_volumes[0].counts = [7, 7, 7];
+    for probes_per_group in [1, 4] {
+        let mut settings = DdgiSettings::balanced();
+        settings.volume.rays_per_probe = 32;
+        settings.speed.probes_per_group = probes_per_group;
+        let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
+        for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
+            session.render().unwrap();
+        }
+        let resources = &session.technique_as::<Ddgi>().unwrap().volume().resources;
+        let states: Vec<u32> = read_buffer_as(&ctx, &resources.states).unwrap();
+        let list: Vec<u32> = read_buffer_as(&ctx, &resources.active_probes).unwrap();
+        let updating: Vec<u32> = (0..states.len() as u32)
+            .filter(|&p| {
+                let state = states[p as usize] & PROBE_STATE_MASK;
+                state == PROBE_VIGILANT || state == PROBE_AWAKE
+            })
+            .collect();
+        let header = irradiant::ddgi::ACTIVE_PROBES_HEADER as usize / 4;
+        let count = list[0] as usize;
+        let mut listed = list[header..header + count].to_vec();
+        eprintln!(
+            "{probes_per_group} a group: {count} of {} probes listed, header {:?}",
+            states.len(),
+            &list[..header]
+        );
+        assert!(
+            !updating.is_empty() && updating.len() < states.len(),
+            "the test needs probes that update and probes that do not"
+        );
+        // The states pass lists each workgroup's 64 probes in grid order.
+        for chunk in listed.chunks(64) {
+            let group = chunk[0] / 64;
+            if chunk.iter().all(|&p| p / 64 == group) {
+                assert!(chunk.windows(2).all(|w| w[0] < w[1]), "{chunk:?}");
+            }
+        }
+        listed.sort_unstable();
+        assert_eq!(
+            listed, updating,
+            "the list holds exactly the updating probes"
+        );
+        let ray_blocks = 32u32.div_ceil(64 / probes_per_group);
+        let ray_groups = (count as u32).div_ceil(probes_per_group) * ray_blocks;
+        let at = |offset: u64| &list[offset as usize / 4..offset as usize / 4 + 3];
+        assert_eq!(at(irradiant::ddgi::ACTIVE_RAY_GROUPS), [ray_groups, 1, 1]);
+        assert_eq!(
+            at(irradiant::ddgi::ACTIVE_BLEND_GROUPS),
+            [count as u32, 1, 1]
+        );
+    }
+}
+
 /// ddgi/trace_shade (DdgiSettings::fuse_trace_and_shade) traces and shades in one pass: the same
 /// rays, hits and random numbers as ddgi/trace then ddgi/shade, so the same image.
 #[test]

@@ -15,6 +15,7 @@
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
+#import ddgi_active
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
@@ -62,13 +63,14 @@ fn encode(linear: vec3<f32>) -> vec2<u32> {
 }
 
 @compute @workgroup_size(BLEND_THREADS, 1, 1)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
-    let probe = group.x + group.y * groups.x;
-    if probe >= volume.probe_count {
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) li: u32) {
+    // Only probes that update are listed; the state decides, uniformly per workgroup, where
+    // the two disagree (a state written since the list was made): the others keep their texels.
+    let probe = listed_probe(group);
+    if probe == NOT_LISTED {
         return;
     }
     let state = probe_states[probe];
-    // Uniform per workgroup: a probe that does not update keeps its texels.
     if !probe_updates(state) {
         return;
     }

@@ -5,9 +5,11 @@
 //!
 //! Each frame every volume records `ddgi/ray_directions → ddgi/trace → ddgi/shade →
 //! (ddgi/shadow) → (ddgi/relocate) → ddgi/blend_weights → ddgi/blend_irradiance →
-//! ddgi/blend_distance → ddgi/probe_states` (the blends fill their tiles' borders), and
-//! `ddgi/resolve` blends its indirect diffuse light into the frame's, finest volume first. The
-//! pipelines are compiled once ([`pipelines`]) and shared by every volume ([`volume`]).
+//! ddgi/blend_distance → ddgi/probe_states` (the blends fill their tiles' borders; trace, shade
+//! and the blends are dispatched indirectly over the probes that update, which
+//! ddgi/probe_states lists for the next frame), and `ddgi/resolve` blends its indirect diffuse
+//! light into the frame's, finest volume first. The pipelines are compiled once
+//! ([`pipelines`]) and shared by every volume ([`volume`]).
 
 pub mod constants;
 pub mod oracle;
@@ -17,7 +19,10 @@ mod settings;
 pub mod types;
 mod volume;
 
-pub use resources::{ATLAS_TEXEL_BYTES, MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER};
+pub use resources::{
+    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES,
+    MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER,
+};
 pub use settings::{
     DdgiSettings, DdgiSpeedSettings, DdgiUpdateSettings, DdgiVolumeSettings, ProbeWeights,
     RELOCATION_FRAMES,

@@ -21,12 +21,64 @@
 // min, max corners, two vec4 a box
 @group(2) @binding(17) var<storage, read> wake_boxes: array<vec4<f32>>;
 
+// The list of probes that update next frame, built here (cleared before this pass).
+@group(2) @binding(21) var<storage, read_write> active_probes: DdgiActiveProbesWrite;
+
+var<workgroup> listed_before: array<u32, 64>;
+var<workgroup> list_base: u32;
+
 @compute @workgroup_size(64, 1, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
     let probe = id.x + id.y * groups.x * 64u;
-    if probe >= volume.probe_count {
-        return;
+    var updates = false;
+    if probe < volume.probe_count {
+        let word = next_state(probe);
+        probe_states[probe] = word;
+        updates = probe_updates(word);
     }
+    list_if_updating(probe, updates, li);
+}
+
+// Appends the workgroup's updating probes to active_probes in grid order, with one global
+// atomic a workgroup, and raises both indirect dispatches to cover them.
+fn list_if_updating(probe: u32, updates: bool, li: u32) {
+    // Inclusive prefix sum of the flags over the workgroup: each probe's place.
+    listed_before[li] = u32(updates);
+    workgroupBarrier();
+    for (var stride = 1u; stride < 64u; stride <<= 1u) {
+        var other = 0u;
+        if li >= stride {
+            other = listed_before[li - stride];
+        }
+        workgroupBarrier();
+        listed_before[li] += other;
+        workgroupBarrier();
+    }
+    if li == 63u {
+        let count = listed_before[63];
+        var base = 0u;
+        if count > 0u {
+            base = atomicAdd(&active_probes.count, count);
+            let listed = base + count;
+            let rays = folded_groups((listed + PROBES_PER_GROUP - 1u) / PROBES_PER_GROUP * ray_blocks(volume.rays_per_probe));
+            atomicMax(&active_probes.rays_x, rays.x);
+            atomicMax(&active_probes.rays_y, rays.y);
+            atomicMax(&active_probes.rays_z, 1u);
+            let blends = folded_groups(listed);
+            atomicMax(&active_probes.blends_x, blends.x);
+            atomicMax(&active_probes.blends_y, blends.y);
+            atomicMax(&active_probes.blends_z, 1u);
+        }
+        list_base = base;
+    }
+    workgroupBarrier();
+    if updates {
+        active_probes.probes[list_base + listed_before[li] - 1u] = probe;
+    }
+}
+
+// The probe's state word for the next frame.
+fn next_state(probe: u32) -> u32 {
     let word = probe_states[probe];
     var state = probe_state(word);
     var near = (word & PROBE_NEAR_GEOMETRY) != 0u;
@@ -78,5 +130,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         }
         state = select(PROBE_SLEEPING, PROBE_AWAKE, woken);
     }
-    probe_states[probe] = state | select(0u, PROBE_NEAR_GEOMETRY, near) | (blends << PROBE_AGE_SHIFT);
+    return state | select(0u, PROBE_NEAR_GEOMETRY, near) | (blends << PROBE_AGE_SHIFT);
 }

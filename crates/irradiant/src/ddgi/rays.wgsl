@@ -34,27 +34,8 @@ struct GpuDdgiBlendWeight {
     weight: f32,
 }
 
-// Rays are stored probe-major: ray r of probe p is p × rays_per_probe + r.
-struct RaySlot {
-    probe: u32,
-    ray: u32,
-    index: u32,
-    valid: bool,
-}
-
-// Which ray a thread of ddgi/trace or ddgi/shade takes. A 64-thread workgroup takes
-// PROBES_PER_GROUP neighbouring probes (a shader constant from DdgiSettings) and
-// 64 / PROBES_PER_GROUP neighbouring rays of each, interleaved so that a warp holds the
-// same rays of all its probes: near-parallel rays from nearby origins, or with one probe a
-// cone of rays from one origin.
-fn ray_slot(group: vec3<u32>, groups: vec3<u32>, local_index: u32) -> RaySlot {
+// Workgroups of 64 / PROBES_PER_GROUP rays that cover one probe's rays.
+fn ray_blocks(rays_per_probe: u32) -> u32 {
     let rays_per_group = 64u / PROBES_PER_GROUP;
-    let ray_blocks = (volume.rays_per_probe + rays_per_group - 1u) / rays_per_group;
-    let linear = group.x + group.y * groups.x;
-    var slot: RaySlot;
-    slot.probe = (linear / ray_blocks) * PROBES_PER_GROUP + local_index % PROBES_PER_GROUP;
-    slot.ray = (linear % ray_blocks) * rays_per_group + local_index / PROBES_PER_GROUP;
-    slot.index = slot.probe * volume.rays_per_probe + slot.ray;
-    slot.valid = slot.probe < volume.probe_count && slot.ray < volume.rays_per_probe;
-    return slot;
+    return (rays_per_probe + rays_per_group - 1u) / rays_per_group;
 }

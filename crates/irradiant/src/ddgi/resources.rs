@@ -8,12 +8,21 @@ use super::settings::DdgiSettings;
 use super::types::{
     GpuDdgiBlendWeight, GpuDdgiRayHit, GpuDdgiRaySample, GpuDdgiShadowRay, GpuDdgiVolume,
 };
+use super::volume::DdgiDispatches;
 use crate::RenderError;
 use crate::probes::{AtlasLayout, ProbeGrid, atlas};
 
 /// Bytes before the queued rays in `shadow_queue`; the indirect dispatch's (x, y, z) start
 /// at byte 4.
 pub const SHADOW_QUEUE_HEADER: u64 = 16;
+
+/// Bytes before the probe indices in `active_probes`: the count, then the indirect dispatches
+/// of trace and shade (x, y, z at byte 4) and of the blends (at byte 16).
+pub const ACTIVE_PROBES_HEADER: u64 = 32;
+/// Where `active_probes` holds the indirect dispatch of ddgi/trace and ddgi/shade.
+pub const ACTIVE_RAY_GROUPS: u64 = 4;
+/// Where `active_probes` holds the indirect dispatch of the blends.
+pub const ACTIVE_BLEND_GROUPS: u64 = 16;
 
 /// Wake boxes the buffer holds; further animated instances merge into the last box.
 pub const MAX_WAKE_BOXES: usize = 64;
@@ -113,6 +122,16 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
         ),
         Allocation::storage("ddgi/probe_offsets", probes * 16, PROBE_SETTING),
         Allocation::storage("ddgi/probe_states", probes * 4, PROBE_SETTING),
+        Allocation::storage(
+            "ddgi/active_probes",
+            ACTIVE_PROBES_HEADER + probes * 4,
+            PROBE_SETTING,
+        ),
+        Allocation::storage(
+            "ddgi/every_probe",
+            ACTIVE_PROBES_HEADER + probes * 4,
+            PROBE_SETTING,
+        ),
     ]
 }
 
@@ -154,6 +173,12 @@ pub struct DdgiResources {
     pub offsets: wgpu::Buffer,
     /// u32 a probe: state, near-geometry flag and blends since it started (ddgi::constants).
     pub states: wgpu::Buffer,
+    /// The probes that update this frame, and the indirect dispatches over them
+    /// (DdgiActiveProbes in ddgi/states.wgsl): written by ddgi/probe_states for the next
+    /// frame, copied from `every_probe` when the states start over.
+    pub active_probes: wgpu::Buffer,
+    /// `active_probes` as it is when every probe updates (each volume's first frames).
+    pub every_probe: wgpu::Buffer,
     /// Two vec4 (min, max) a box: where animated instances may wake sleeping probes.
     pub wake_boxes: wgpu::Buffer,
     /// GpuDdgiBlendWeight lists: per tile texel, the rays of its blend and their weights, the
@@ -172,6 +197,7 @@ impl DdgiResources {
         grid: &ProbeGrid,
         atlas_layout: &AtlasLayout,
         settings: &DdgiSettings,
+        dispatches: &DdgiDispatches,
     ) -> Result<Self, RenderError> {
         let allocations = plan(grid, settings);
         ctx.check_allocations(&allocations)?;
@@ -242,6 +268,20 @@ impl DdgiResources {
             distance: storage("ddgi/distance_atlas", size("ddgi/distance_atlas")),
             offsets: storage("ddgi/probe_offsets", size("ddgi/probe_offsets")),
             states: storage("ddgi/probe_states", size("ddgi/probe_states")),
+            active_probes: every_probe_list(
+                ctx,
+                "ddgi/active_probes",
+                grid,
+                dispatches,
+                wgpu::BufferUsages::INDIRECT,
+            ),
+            every_probe: every_probe_list(
+                ctx,
+                "ddgi/every_probe",
+                grid,
+                dispatches,
+                wgpu::BufferUsages::empty(),
+            ),
             wake_boxes: storage("ddgi/wake_boxes", MAX_WAKE_BOXES as u64 * 32),
             shadow_queue: storage_buffer(
                 device,
@@ -277,6 +317,7 @@ impl DdgiResources {
             .buffer("probe_offsets", &self.offsets)
             .buffer("probe_states", &self.states)
             .buffer("wake_boxes", &self.wake_boxes)
+            .buffer("active_probes", &self.active_probes)
             .buffer("blend_weights", &self.blend_weights)
             .buffer("shadow_queue", &self.shadow_queue)
             .texture("irradiance_texture", irradiance)
@@ -284,6 +325,26 @@ impl DdgiResources {
             .sampler("atlas_bilinear", &self.bilinear)
             .sampler("atlas_gather", &self.gather)
     }
+}
+
+/// A list of the active probes (DdgiActiveProbes) that holds every probe of the grid, with
+/// the dispatches that cover them all.
+fn every_probe_list(
+    ctx: &GpuContext,
+    label: &str,
+    grid: &ProbeGrid,
+    dispatches: &DdgiDispatches,
+    extra: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    let mut words = vec![grid.probe_count];
+    words.extend(dispatches.rays.counts());
+    words.extend(dispatches.blends.counts());
+    words.push(0);
+    words.extend(0..grid.probe_count);
+    let buffer = storage_buffer(&ctx.device, label, words.len() as u64 * 4, extra);
+    ctx.queue
+        .write_buffer(&buffer, 0, bytemuck::cast_slice(&words));
+    buffer
 }
 
 fn storage_buffer(

@@ -4,6 +4,7 @@
 // direct pass samples every emitter already, so the probes hold indirect light only.
 #import ddgi_query
 #import ddgi_rays
+#import ddgi_active
 #import lights
 #import random
 
@@ -29,18 +30,18 @@ var<workgroup> queued_in_group: atomic<u32>;
 var<workgroup> group_base: u32;
 
 @compute @workgroup_size(64, 1, 1)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
-    let slot = ray_slot(group, groups, local_index);
+    let slot = ray_slot(group, local_index);
     var shadow: GpuDdgiShadowRay;
     var queued = false;
-    if slot.valid && probe_shades(slot.probe) {
+    if slot.valid {
         // LIGHT_PER_WARP: one random light for each 32 neighbouring threads (a warp) instead
         // of each ray, so that a warp's shadow rays walk to one light together rather than
         // taking turns for each light; every ray still sees each light with equal probability.
         var light_rng = ray_rng(slot.index);
         if LIGHT_PER_WARP == 1u {
-            light_rng = rng_seed((group.x + group.y * groups.x) * 2u + local_index / 32u, volume.frame, 0x2c1b3c6du);
+            light_rng = rng_seed(slot.group_key * 2u + local_index / 32u, volume.frame, 0x2c1b3c6du);
         }
         queued = shade_ray(slot, rand(&light_rng), &shadow);
     }
@@ -128,7 +129,7 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
 }
 
 // Appends the workgroup's queued shadow rays to the queue with one global atomic a workgroup,
-// and raises ddgi/shadow's workgroup count (folded like fold_groups) to cover them.
+// and raises ddgi/shadow's indirect dispatch to cover them.
 fn enqueue_shadow(queued: bool, ray: GpuDdgiShadowRay, local_index: u32) {
     if local_index == 0u {
         atomicStore(&queued_in_group, 0u);
@@ -144,9 +145,9 @@ fn enqueue_shadow(queued: bool, ray: GpuDdgiShadowRay, local_index: u32) {
         var base = 0u;
         if count > 0u {
             base = atomicAdd(&shadow_queue.count, count);
-            let workgroups = (base + count + 63u) / 64u;
-            atomicMax(&shadow_queue.groups_x, min(workgroups, 32768u));
-            atomicMax(&shadow_queue.groups_y, (workgroups + 32767u) / 32768u);
+            let groups = folded_groups((base + count + 63u) / 64u);
+            atomicMax(&shadow_queue.groups_x, groups.x);
+            atomicMax(&shadow_queue.groups_y, groups.y);
             atomicMax(&shadow_queue.groups_z, 1u);
         }
         group_base = base;

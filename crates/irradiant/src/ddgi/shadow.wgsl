@@ -2,9 +2,9 @@
 // with no idle lanes; each adds its light to its probe ray's sample where nothing blocks it.
 #import ddgi_volume
 #import ddgi_rays
+#import ddgi_states
 #import lights
 
-// (ddgi_rays' ray_slot reads the volume; this pass does not.)
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
 
@@ -19,9 +19,9 @@ struct DdgiShadowQueueRead {
 @group(2) @binding(19) var<storage, read> shadow_queue: DdgiShadowQueueRead;
 
 @compute @workgroup_size(64, 1, 1)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
-    let i = (group.x + group.y * groups.x) * 64u + local_index;
+    let i = folded_index(group) * 64u + local_index;
     if i >= shadow_queue.count {
         return;
     }

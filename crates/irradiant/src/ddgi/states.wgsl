@@ -27,3 +27,47 @@ fn probe_updates(word: u32) -> bool {
 fn probe_blends(word: u32) -> u32 {
     return word >> PROBE_AGE_SHIFT;
 }
+
+// The probes that update, listed by ddgi/probe_states at the end of each frame for the next
+// (DdgiResources::active_probes): their count, the indirect dispatch of ddgi/trace and
+// ddgi/shade (a workgroup a ray block of PROBES_PER_GROUP listed probes), that of the blends
+// (a workgroup a listed probe), then the probes in grid order within each 64 of the states
+// pass. Workgroups then start only for probes that update: on Sibenik 43 % of the probes
+// sleep or are off. ddgi_active reads it; this is ddgi/probe_states' view, which builds it.
+struct DdgiActiveProbesWrite {
+    count: atomic<u32>,
+    rays_x: atomic<u32>,
+    rays_y: atomic<u32>,
+    rays_z: atomic<u32>,
+    blends_x: atomic<u32>,
+    blends_y: atomic<u32>,
+    blends_z: atomic<u32>,
+    padding: u32,
+    probes: array<u32>,
+}
+
+// The same list, read.
+struct DdgiActiveProbes {
+    count: u32,
+    rays_x: u32,
+    rays_y: u32,
+    rays_z: u32,
+    blends_x: u32,
+    blends_y: u32,
+    blends_z: u32,
+    padding: u32,
+    probes: array<u32>,
+}
+
+// An indirect dispatch's (x, y) for `workgroups` workgroups in a row, folded as
+// Workgroups::linear folds a direct one.
+fn folded_groups(workgroups: u32) -> vec2<u32> {
+    return vec2<u32>(min(workgroups, WORKGROUP_FOLD), (workgroups + WORKGROUP_FOLD - 1u) / WORKGROUP_FOLD);
+}
+
+// A workgroup's place in a folded dispatch (rows are WORKGROUP_FOLD wide whenever there is
+// more than one): not from num_workgroups, which wgpu leaves 0 on D3D12 for indirect
+// dispatches it does not check.
+fn folded_index(group: vec3<u32>) -> u32 {
+    return group.x + group.y * WORKGROUP_FOLD;
+}

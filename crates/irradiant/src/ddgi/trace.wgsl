@@ -1,6 +1,7 @@
-// ddgi/trace: m rays from every probe, closest hit, into the hit buffer.
+// ddgi/trace: m rays from every probe that updates, closest hit, into the hit buffer.
 #import ddgi_probes
 #import ddgi_rays
+#import ddgi_active
 #import bvh
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
@@ -8,10 +9,10 @@
 @group(2) @binding(4) var<storage, read_write> hits: array<GpuDdgiRayHit>;
 
 @compute @workgroup_size(64, 1, 1)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
-    let slot = ray_slot(group, groups, local_index);
-    if !slot.valid || !probe_shades(slot.probe) {
+    let slot = ray_slot(group, local_index);
+    if !slot.valid {
         return;
     }
     let dir = directions[slot.ray].xyz;

@@ -10,7 +10,8 @@ use irradiant_scene::ProbeVolumeDesc;
 use super::constants::*;
 use super::pipelines::DdgiPipelines;
 use super::resources::{
-    ATLAS_TEXEL_BYTES, DdgiResources, MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER, tile_sides,
+    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES, DdgiResources,
+    MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER, tile_sides,
 };
 use super::settings::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
 use super::types::GpuDdgiVolume;
@@ -78,12 +79,14 @@ impl Boost {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DdgiDispatches {
     pub ray_directions: Workgroups,
-    /// ddgi/trace and ddgi/shade (one thread a probe ray).
+    /// ddgi/trace and ddgi/shade (one thread a probe ray) when every probe updates: they are
+    /// dispatched indirectly over the probes that do (`DdgiResources::active_probes`), which
+    /// starts as this.
     pub rays: Workgroups,
     /// ddgi/relocate and ddgi/probe_states (one thread a probe).
     pub probes: Workgroups,
     pub blend_weights: Workgroups,
-    /// The blends: one workgroup a probe.
+    /// The blends: one workgroup a probe (as `rays`, the most of an indirect dispatch).
     pub blends: Workgroups,
     /// ddgi/resolve and ddgi/visualize over the image.
     pub image: Workgroups,
@@ -185,7 +188,8 @@ impl DdgiVolume {
     ) -> Result<Self, RenderError> {
         let grid = ProbeGrid::new(desc);
         let atlas = AtlasLayout::new(grid.probe_count, &tile_sides(settings));
-        let resources = DdgiResources::new(ctx, &grid, &atlas, settings)?;
+        let dispatches = DdgiDispatches::new(&grid, settings, frame_size);
+        let resources = DdgiResources::new(ctx, &grid, &atlas, settings, &dispatches)?;
         let passes = {
             let own = resources.table();
             let mut all: Vec<&ResourceTable> = tables.to_vec();
@@ -213,7 +217,7 @@ impl DdgiVolume {
         };
         let diagonal = (desc.max - desc.min).length().max(1e-3);
         let mut volume = Self {
-            dispatches: DdgiDispatches::new(&grid, settings, frame_size),
+            dispatches,
             settings: settings.clone(),
             grid,
             atlas,
@@ -409,20 +413,33 @@ impl DdgiVolume {
         encoder: &mut wgpu::CommandEncoder,
         mut profiler: Option<&mut Profiler>,
     ) {
+        let r = &self.resources;
         if self.states_pending {
-            encoder.clear_buffer(&self.resources.states, 0, None);
+            // Every probe starts vigilant, so every probe is listed.
+            encoder.clear_buffer(&r.states, 0, None);
+            encoder.copy_buffer_to_buffer(&r.every_probe, 0, &r.active_probes, 0, None);
             self.states_pending = false;
         }
         let (p, d) = (&self.passes, &self.dispatches);
         p.ray_directions
             .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
         if let Some(trace) = &p.trace {
-            trace.dispatch(encoder, profiler.as_deref_mut(), d.rays);
+            trace.dispatch_indirect(
+                encoder,
+                profiler.as_deref_mut(),
+                &r.active_probes,
+                ACTIVE_RAY_GROUPS,
+            );
         }
         if p.shadow.is_some() {
-            encoder.clear_buffer(&self.resources.shadow_queue, 0, Some(SHADOW_QUEUE_HEADER));
+            encoder.clear_buffer(&r.shadow_queue, 0, Some(SHADOW_QUEUE_HEADER));
         }
-        p.shade.dispatch(encoder, profiler.as_deref_mut(), d.rays);
+        p.shade.dispatch_indirect(
+            encoder,
+            profiler.as_deref_mut(),
+            &r.active_probes,
+            ACTIVE_RAY_GROUPS,
+        );
         if let Some(shadow) = &p.shadow {
             shadow.dispatch_indirect(
                 encoder,
@@ -440,8 +457,10 @@ impl DdgiVolume {
                 .dispatch(encoder, profiler.as_deref_mut(), d.probes);
         }
         self.record_blend(encoder, profiler.as_deref_mut());
-        let p = &self.passes;
-        p.probe_states
+        // The states pass lists the next frame's updating probes afresh.
+        encoder.clear_buffer(&self.resources.active_probes, 0, Some(ACTIVE_PROBES_HEADER));
+        self.passes
+            .probe_states
             .dispatch(encoder, profiler, self.dispatches.probes);
         self.frame += 1;
         for boost in &mut self.boosts {
@@ -457,13 +476,21 @@ impl DdgiVolume {
         encoder: &mut wgpu::CommandEncoder,
         mut profiler: Option<&mut Profiler>,
     ) {
-        let (p, d) = (&self.passes, &self.dispatches);
+        let (p, d, r) = (&self.passes, &self.dispatches, &self.resources);
         p.blend_weights
             .dispatch(encoder, profiler.as_deref_mut(), d.blend_weights);
-        p.blend_irradiance
-            .dispatch(encoder, profiler.as_deref_mut(), d.blends);
-        p.blend_distance.dispatch(encoder, profiler, d.blends);
-        let r = &self.resources;
+        p.blend_irradiance.dispatch_indirect(
+            encoder,
+            profiler.as_deref_mut(),
+            &r.active_probes,
+            ACTIVE_BLEND_GROUPS,
+        );
+        p.blend_distance.dispatch_indirect(
+            encoder,
+            profiler,
+            &r.active_probes,
+            ACTIVE_BLEND_GROUPS,
+        );
         copy_atlas_to_texture(
             encoder,
             &r.irradiance,

@@ -1,0 +1,48 @@
+// ddgi: which probe, and which of its rays, a thread of the passes that work per updating probe
+// takes — ddgi/trace, ddgi/shade and the blends, dispatched indirectly over the list of probes
+// that update (DdgiActiveProbes, built by ddgi/probe_states the frame before).
+#import ddgi_states
+#import ddgi_rays
+
+@group(2) @binding(21) var<storage, read> active_probes: DdgiActiveProbes;
+
+// Returned for a workgroup past the list's end (the last row of a folded dispatch).
+const NOT_LISTED: u32 = 0xffffffffu;
+
+// The probe of a blend workgroup (one a listed probe), or NOT_LISTED.
+fn listed_probe(group: vec3<u32>) -> u32 {
+    let listed = folded_index(group);
+    return select(NOT_LISTED, active_probes.probes[min(listed, active_probes.count - 1u)], listed < active_probes.count);
+}
+
+// Rays are stored probe-major: ray r of probe p is p × rays_per_probe + r.
+struct RaySlot {
+    probe: u32,
+    ray: u32,
+    index: u32,
+    valid: bool,
+    // The same for every thread of the workgroup and independent of the list's order: the
+    // first probe's index and the ray block (seeds that must not depend on the order).
+    group_key: u32,
+}
+
+// Which ray a thread of ddgi/trace or ddgi/shade takes. A 64-thread workgroup takes
+// PROBES_PER_GROUP neighbouring listed probes (a shader constant from DdgiSettings) and
+// 64 / PROBES_PER_GROUP neighbouring rays of each, interleaved so that a warp holds the
+// same rays of all its probes: near-parallel rays from nearby origins, or with one probe a
+// cone of rays from one origin.
+fn ray_slot(group: vec3<u32>, local_index: u32) -> RaySlot {
+    let rays_per_group = 64u / PROBES_PER_GROUP;
+    let blocks = ray_blocks(volume.rays_per_probe);
+    let linear = folded_index(group);
+    let first = (linear / blocks) * PROBES_PER_GROUP;
+    let listed = first + local_index % PROBES_PER_GROUP;
+    let last = active_probes.count - 1u;
+    var slot: RaySlot;
+    slot.ray = (linear % blocks) * rays_per_group + local_index / PROBES_PER_GROUP;
+    slot.valid = listed < active_probes.count && slot.ray < volume.rays_per_probe;
+    slot.probe = active_probes.probes[min(listed, last)];
+    slot.index = slot.probe * volume.rays_per_probe + slot.ray;
+    slot.group_key = active_probes.probes[min(first, last)] * blocks + linear % blocks;
+    return slot;
+}
