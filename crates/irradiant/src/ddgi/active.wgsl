@@ -21,8 +21,9 @@ struct RaySlot {
     ray: u32,
     index: u32,
     valid: bool,
-    // The same for every thread of the workgroup and independent of the list's order: the
-    // first probe's index and the ray block (seeds that must not depend on the order).
+    // The same for every thread of the workgroup: the first probe's index and the ray block,
+    // a seed that with one probe a workgroup does not depend on the list's order (atomic, so
+    // not repeatable from run to run).
     group_key: u32,
 }
 
