@@ -254,6 +254,7 @@ fn probe_json(p: &ProbeOracle, worst: usize) -> serde_json::Value {
     json!({
         "probes": p.probes.len(),
         "skipped_probes": p.skipped_probes,
+        "tied_probes": p.tied_probes,
         "median_texel_error": p.median_texel_error,
         "signed_error": p.signed_error,
         "median_distance_error": p.median_distance_error,
@@ -297,9 +298,10 @@ fn query_json(q: &QueryOracle) -> serde_json::Value {
 /// The per-probe error histogram as text bars.
 fn histogram_text(p: &ProbeOracle) -> String {
     let mut text = format!(
-        "per-probe error (Σ DDGI ÷ Σ truth − 1), {} probes, {} skipped\n",
+        "per-probe error (Σ DDGI ÷ Σ truth − 1), {} probes, {} skipped, {} tied\n",
         p.probes.len(),
-        p.skipped_probes
+        p.skipped_probes,
+        p.tied_probes
     );
     let most = p.histogram.iter().copied().max().unwrap_or(1).max(1);
     for (b, &count) in p.histogram.iter().enumerate() {

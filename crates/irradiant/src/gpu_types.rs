@@ -211,7 +211,11 @@ pub fn all_layouts() -> Vec<Expected> {
             volume_index,
             volume_is_last,
             bounce_hysteresis,
-            extrapolation
+            extrapolation,
+            tied_probe_weight,
+            _pad0,
+            _pad1,
+            _pad2
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,

@@ -605,6 +605,47 @@ fn thin_frames_show_few_specks() {
     );
 }
 
+/// Box-cylinders (issue 15's "deficit ≤ 10 %"): its sixteen probes stand on the four columns'
+/// axes, where backfaces all round tie for the closest. Whichever way such a probe leaves, it
+/// lights some of its eight cells and misleads the others: counted like any probe (weight 1),
+/// the query over the view reads 14 % dark here; at the default weight (0.1) against probes
+/// with a clear view, 6.6 % (lavapipe, session 17). Weight 1 shows the check can fail.
+#[test]
+fn tied_probes_on_the_columns_axes_keep_box_cylinders_within_ten_percent() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("box-cylinders").unwrap().scene;
+    let mut truth = None;
+    let mut errors = Vec::new();
+    for tied_probe_weight in [DdgiSettings::balanced().update.tied_probe_weight, 1.0] {
+        let mut settings = DdgiSettings::balanced();
+        settings.update.tied_probe_weight = tied_probe_weight;
+        let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 120);
+        let oracle = match &truth {
+            None => frame_query_oracle(&ctx, &scene, &frames, 256),
+            Some(first) => {
+                compare_with_truth(&frames.indirect, first, &frames.gbuffer, &scene.regions)
+            }
+        };
+        truth.get_or_insert_with(|| oracle.truth.clone());
+        eprintln!(
+            "box-cylinders, tied probes weighing {tied_probe_weight}: signed {:+.4}, median {:.4}; regions {:?}",
+            oracle.signed_error, oracle.median_error, oracle.regions
+        );
+        errors.push(oracle.signed_error);
+    }
+    assert!(
+        errors[0].abs() <= 0.10,
+        "box-cylinders' query is {:+.1} % off the truth",
+        100.0 * errors[0]
+    );
+    assert!(
+        errors[1].abs() > errors[0].abs() + 0.03,
+        "tied probes weighing 1 should read darker: {:+.4} against {:+.4}",
+        errors[1],
+        errors[0]
+    );
+}
+
 /// The table (built-in `table`): the floor under its top lies half a cell below the lowest probe
 /// layer, and the probes of the layer at the top's height relocate under it, 3 cm from its
 /// underside. Extrapolating from them reads that pocket as the field's trend and floods the

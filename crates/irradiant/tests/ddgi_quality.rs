@@ -126,7 +126,9 @@ fn cornell_box_converged_ddgi_is_within_flip_0_1_of_the_path_tracer() {
 /// The light-field paper's Figure 10 setup: probes swallowed by cylinders must not darken the
 /// surfaces around the cylinders (the "dark halo"). A halo is local: measured as the ratio of
 /// DDGI's to the path tracer's indirect light over 8×8-pixel tiles around the cylinders, no
-/// tile may fall far below the typical tile.
+/// tile may fall far below the typical tile. Nor may one stand far above it: the tied probes on
+/// the columns' axes count little where a cell has probes with a clear view, which must not
+/// light the shaded gaps between the columns as a bright band.
 #[test]
 fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
     let Some(ctx) = gpu() else { return };
@@ -143,20 +145,28 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
             8,
         );
         ratios.sort_by(f64::total_cmp);
-        let (worst, median) = (ratios[0], ratios[ratios.len() / 2]);
-        (worst, median)
+        (
+            ratios[0],
+            ratios[ratios.len() / 2],
+            ratios[ratios.len() - 1],
+        )
     };
     let full = tiles(&converging(ProbeWeights::Full));
     let mut unrelocated = converging(ProbeWeights::Full);
     unrelocated.update.relocation = false;
     let unrelocated = tiles(&unrelocated);
     let classic = tiles(&converging(ProbeWeights::Classic));
+    let mut barely_tied = converging(ProbeWeights::Full);
+    barely_tied.update.tied_probe_weight = 0.01;
+    let barely_tied = tiles(&barely_tied);
     eprintln!(
-        "box-cylinders, DDGI ÷ path tracer indirect over 8×8 tiles around the cylinders (worst, median): full {full:.2?}, without relocation {unrelocated:.2?}, classic {classic:.2?}"
+        "box-cylinders, DDGI ÷ path tracer indirect over 8×8 tiles around the cylinders (worst, median, best): full {full:.2?}, without relocation {unrelocated:.2?}, classic {classic:.2?}, tied probes weighing 0.01 {barely_tied:.2?}"
     );
-    // Seen on lavapipe (session 11): full 0.70 / 0.81, without relocation 0.27 / 0.87 (black
-    // between the four cylinders, whose eight cage probes are all swallowed), classic 0.41 /
-    // 0.57. Bound: the worst tile at least 75 % of the median one — no local dark spot.
+    // Seen on lavapipe (session 17): full 0.79 / 0.94 / 1.20, without relocation 0.27 / 0.87
+    // (black between the four cylinders, whose eight cage probes are all swallowed), classic
+    // 0.71 / 0.83, tied probes weighing 0.01 1.41 against 0.98 (the gaps between the columns
+    // read the probes beyond them). Bounds: the worst tile at least 75 % of the median one — no
+    // local dark spot — and the best at most the median ÷ 75 %.
     assert!(
         full.0 >= 0.75 * full.1,
         "a dark halo: worst tile {:.2} against median {:.2}",
@@ -164,8 +174,18 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
         full.1
     );
     assert!(
+        full.2 * 0.75 <= full.1,
+        "a bright band: best tile {:.2} against median {:.2}",
+        full.2,
+        full.1
+    );
+    assert!(
         unrelocated.0 < 0.75 * unrelocated.1,
         "without relocation the swallowed probes should show the halo this test exists to catch"
+    );
+    assert!(
+        barely_tied.2 * 0.75 > barely_tied.1,
+        "tied probes weighing 0.01 should show the bright band this test exists to catch"
     );
     assert!(
         full.1 > classic.1,

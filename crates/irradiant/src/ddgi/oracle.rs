@@ -51,6 +51,8 @@ pub struct ProbeOracle {
     /// none, the errors below are NaN.
     pub probes: Vec<ProbeError>,
     pub skipped_probes: u32,
+    /// Probes relocation found tied (`DdgiVolume::read_tied_probes`), measured or not.
+    pub tied_probes: u32,
     pub irradiance_texels: u32,
     pub distance_texels: u32,
     /// Per probe compared, its irradiance texels in row order: (DDGI, truth), linear rgb.
@@ -224,14 +226,16 @@ pub fn probe_oracle(
         });
         irradiance.push(texels);
     }
-    Ok(summarize(
+    let mut oracle = summarize(
         probes,
         irradiance,
         distances,
         &precision,
         centres.len() as u32,
         (it, dt),
-    ))
+    );
+    oracle.tied_probes = volume.read_tied_probes(ctx)?.iter().filter(|&&t| t).count() as u32;
+    Ok(oracle)
 }
 
 /// The statistics of a probe oracle run from its per-texel values (separate from the GPU work
@@ -274,6 +278,7 @@ fn summarize(
     }
     ProbeOracle {
         skipped_probes: probe_count - probes.len() as u32,
+        tied_probes: 0,
         median_texel_error: median(all_errors) + none,
         signed_error: (sum_ddgi / sum_truth.max(1e-12) - 1.0) as f32 + none,
         median_distance_error: median(distances.into_iter().flatten().collect()) + none,

@@ -1,5 +1,6 @@
 // ddgi: probe positions after relocation (003 §5): the grid position plus a per-probe offset
-// of less than half the spacing, found during the volume's first frames; and probe states.
+// of less than half the spacing, found during the volume's first frames (xyz; w is 1 for a tied
+// probe); and probe states.
 #import ddgi_volume
 #import ddgi_states
 
@@ -20,4 +21,10 @@ fn probe_position_at(coord: vec3<u32>, probe: u32) -> vec3<f32> {
 // the query (003 §6).
 fn probe_shades(probe: u32) -> bool {
     return probe_updates(probe_states[probe]);
+}
+
+// Whether relocation found the probe inside geometry with no single way out (ddgi/relocate):
+// the query counts it at `tied_probe_weight`.
+fn probe_is_tied(probe: u32) -> bool {
+    return probe_offsets[probe].w > 0.5;
 }

@@ -1,6 +1,6 @@
 // ddgi: the irradiance query at any point of the volume: the 8-probe cage, trilinear (extrapolated
 // just past the outermost probes) × smooth backface (wrap) × Chebyshev visibility × low-weight
-// crush, with the self-shadow bias, normalised. Shared by the probe rays' shading (ddgi/shade)
+// crush × `tied_probe_weight` for tied probes, with the self-shadow bias, normalised. Shared by the probe rays' shading (ddgi/shade)
 // and the camera (ddgi/resolve).
 #import ddgi_probes
 
@@ -102,6 +102,9 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let crush = 0.2;
         if w < crush {
             w *= w * w / (crush * crush);
+        }
+        if probe_is_tied(probe) {
+            w *= volume.tied_probe_weight;
         }
         let w_visible = w;
         let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));

@@ -1,6 +1,7 @@
 // ddgi/relocate: one iteration of the probe-position optimiser of 003 §5 (Listing 4), run for
 // the volume's first frames. A probe that sees more than 25 % backfaces is inside geometry and
-// moves through the closest backface; a probe very close to a front face moves towards the
+// moves through the closest backface (towards the volume's middle when backfaces all round
+// tie, and is marked tied); a probe very close to a front face moves towards the
 // farthest front face. Offsets keep the probe in its cell and inside the box of the grid's
 // outer layers (relocation_keeps_grid).
 #import ddgi_volume
@@ -10,6 +11,15 @@
 @group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
 @group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
 @group(2) @binding(13) var<storage, read_write> probe_offsets: array<vec4<f32>>;
+
+// Backfaces within this share of the closest one's distance tie with it.
+const EXIT_TIE: f32 = 0.02;
+
+// How far a ray went to the backface it hit; 0 for a front face or a miss. ddgi/shade stores a
+// backface hit as minus its distance, shortened by the backface-hit rule when that is on.
+fn backface_distance(distance: f32) -> f32 {
+    return max(-distance, 0.0) / select(1.0, BACKFACE_DEPTH_SCALE, (volume.weights & WEIGHT_BACKFACE_HITS) != 0u);
+}
 
 fn within(probe: u32, offset: vec3<f32>) -> bool {
     return relocation_keeps_grid(grid_coord(probe, volume.counts), volume.counts, volume.spacing, offset);
@@ -32,9 +42,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         let distance = samples[probe * m + r].distance;
         if distance < 0.0 {
             backfaces++;
-            // ddgi/shade stores a backface hit as minus its distance, shortened by the
-            // backface-hit rule when that is on.
-            let t = -distance / select(1.0, BACKFACE_DEPTH_SCALE, (volume.weights & WEIGHT_BACKFACE_HITS) != 0u);
+            let t = backface_distance(distance);
             // The closest backface the probe may cross: one whose far side lies outside the
             // volume does not count (a box's bottom on the floor), so the probe leaves through
             // a side if one is near enough. 1.01 times its distance is the shortest crossing
@@ -53,6 +61,34 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         }
     }
     var next = current;
+    // Once tied, a probe stays tied until the relocation starts over (its later iterations
+    // start outside the geometry).
+    var tied = probe_offsets[probe].w;
+    if f32(backfaces) > 0.25 * f32(m) && closest_back.w < 1e30 {
+        // A tie: a backface nearly as close as the closest but more than 60° from it (a probe
+        // on a column's axis). Whichever exit it takes lights some of its eight cells and
+        // misleads the others, and a random one made the result a lottery of the ray set. It
+        // leaves towards the volume's middle, and the query counts it at `tied_probe_weight`.
+        let middle = volume.origin + 0.5 * volume.spacing * vec3<f32>(volume.counts - 1u);
+        // (A probe at the very middle still gets a direction.)
+        let inwards = normalize(middle - grid_position(probe) - current + vec3<f32>(1e-4, 2e-4, 3e-4));
+        var inmost = closest_back;
+        for (var r = 0u; r < m; r++) {
+            let d = directions[r].xyz;
+            let t = backface_distance(samples[probe * m + r].distance);
+            if t > 0.0 && t <= closest_back.w * (1.0 + EXIT_TIE) && within(probe, current + d * t * 1.01) {
+                if dot(d, closest_back.xyz) < 0.5 {
+                    tied = 1.0;
+                }
+                if dot(d, inwards) > dot(inmost.xyz, inwards) {
+                    inmost = vec4<f32>(d, t);
+                }
+            }
+        }
+        if tied > 0.5 {
+            closest_back = inmost;
+        }
+    }
     if f32(backfaces) > 0.25 * f32(m) {
         // Inside something: cross the closest backface, as far beyond it as the limit allows
         // (up to twice its distance). With none that may be crossed it stays, and turns off.
@@ -73,5 +109,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
             next = candidate;
         }
     }
-    probe_offsets[probe] = vec4<f32>(next, f32(backfaces) / f32(m));
+    probe_offsets[probe] = vec4<f32>(next, tied);
 }

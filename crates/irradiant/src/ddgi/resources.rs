@@ -169,7 +169,7 @@ pub struct DdgiResources {
     distance_view: wgpu::TextureView,
     bilinear: wgpu::Sampler,
     gather: wgpu::Sampler,
-    /// vec4 a probe: relocation offset (xyz) and the share of its rays that hit backfaces (w).
+    /// vec4 a probe: relocation offset (xyz) and 1 if relocation found it tied (w; ddgi/relocate).
     pub offsets: wgpu::Buffer,
     /// u32 a probe: state, near-geometry flag and blends since it started (ddgi::constants).
     pub states: wgpu::Buffer,

@@ -46,8 +46,13 @@ pub struct GpuDdgiVolume {
     pub bounce_hysteresis: f32,
     /// Cells past the outermost probes that the query extrapolates.
     pub extrapolation: f32,
+    /// Query weight of a probe that left geometry by a tied exit (ddgi/relocate).
+    pub tied_probe_weight: f32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
-const _: () = assert!(size_of::<GpuDdgiVolume>() == 176);
+const _: () = assert!(size_of::<GpuDdgiVolume>() == 192);
 
 /// A probe ray's closest hit; `t` < 0 for a miss; `bary` is `pack2x16unorm`.
 #[repr(C)]

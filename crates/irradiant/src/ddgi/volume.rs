@@ -365,6 +365,10 @@ impl DdgiVolume {
             volume_is_last: self.is_last as u32,
             bounce_hysteresis: u.bounce_hysteresis * irradiance_boost,
             extrapolation: u.extrapolation,
+            tied_probe_weight: u.tied_probe_weight,
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         }
     }
 
@@ -581,6 +585,13 @@ impl DdgiVolume {
                 (self.grid.probe_position(p) + offset, updates)
             })
             .collect())
+    }
+
+    /// Whether relocation found each probe tied: inside geometry with no single way out
+    /// (ddgi/relocate), so that the query counts it at `update.tied_probe_weight`.
+    pub fn read_tied_probes(&self, ctx: &GpuContext) -> Result<Vec<bool>, RenderError> {
+        let offsets: Vec<[f32; 4]> = read_buffer_as(ctx, &self.resources.offsets)?;
+        Ok(offsets.iter().map(|o| o[3] > 0.5).collect())
     }
 
     pub fn read_atlases(&self, ctx: &GpuContext) -> Result<Atlases, RenderError> {

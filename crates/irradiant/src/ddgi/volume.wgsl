@@ -53,6 +53,11 @@ struct GpuDdgiVolume {
     bounce_hysteresis: f32,
     // cells past the outermost probes that the query extrapolates (DdgiUpdateSettings)
     extrapolation: f32,
+    // query weight of a probe that left geometry by a tied exit (DdgiUpdateSettings)
+    tied_probe_weight: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 fn probe_index(coord: vec3<u32>) -> u32 {

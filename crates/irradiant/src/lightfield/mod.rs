@@ -597,6 +597,8 @@ impl Lightfield {
         v.min_spacing = self.grid.min_spacing();
         v.state_phase = STATES_OFF;
         v.volume_is_last = 1;
+        // No probe of a light field is relocated, so none is tied.
+        v.tied_probe_weight = 1.0;
         v
     }
 
