@@ -382,5 +382,14 @@ mod tests {
             e.contains("technique.update.extrapolation = 2") && e.contains("0.5"),
             "{e}"
         );
+        // 0 would leave the cells of tied probes alone with no light at all.
+        let e = error(
+            "name = \"ddgi\"\n[update]\ntied_probe_weight = 0.0\n",
+            &mut Vec::new(),
+        );
+        assert!(
+            e.contains("technique.update.tied_probe_weight = 0") && e.contains("0.01 to 1"),
+            "{e}"
+        );
     }
 }
