@@ -597,7 +597,7 @@ impl Lightfield {
         v.min_spacing = self.grid.min_spacing();
         v.state_phase = STATES_OFF;
         v.volume_is_last = 1;
-        // No probe of a light field is relocated, so none is tied.
+        // lightfield/relocate marks no probe tied (w of its offsets is 0).
         v.tied_probe_weight = 1.0;
         v
     }
