@@ -531,6 +531,33 @@ fn walls_past_the_outermost_probes_keep_their_light_across_bounces() {
 
 /// The probe oracle's signed error on a built-in scene after 100 frames of each labelled
 /// variant, 256 samples a texel.
+/// DDGI's frame of `scene` at 64×48 after `frames` frames under each of `variants`, with its
+/// query oracle, all against one truth (`samples` path-traced samples a pixel, traced for the
+/// first variant: the G-buffer is the same for all).
+fn query_oracles_against_one_truth(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &irradiant_scene::Scene,
+    variants: &[DdgiSettings],
+    frames: u32,
+    samples: u32,
+) -> Vec<(FrameResult, irradiant::ddgi::oracle::QueryOracle)> {
+    let mut truth = None;
+    variants
+        .iter()
+        .map(|settings| {
+            let result = render_frames(ctx, scene, (64, 48), Some(settings), frames);
+            let oracle = match &truth {
+                None => frame_query_oracle(ctx, scene, &result, samples),
+                Some(first) => {
+                    compare_with_truth(&result.indirect, first, &result.gbuffer, &scene.regions)
+                }
+            };
+            truth.get_or_insert_with(|| oracle.truth.clone());
+            (result, oracle)
+        })
+        .collect()
+}
+
 fn probe_signed_errors(
     ctx: &std::sync::Arc<irradiant::GpuContext>,
     scene: &str,
@@ -556,20 +583,17 @@ fn probe_signed_errors(
 fn thin_frames_show_few_specks() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("thin-frames").unwrap().scene;
-    let mut truth = None;
-    let mut specks = Vec::new();
-    for max_ray_distance in [0.0, 0.05] {
+    let ray_lengths = [0.0, 0.05];
+    let variants = ray_lengths.map(|max_ray_distance| {
         let mut settings = DdgiSettings::balanced();
         settings.volume.rays_per_probe = 128;
         settings.update.max_ray_distance = max_ray_distance;
-        let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 100);
-        let oracle = match &truth {
-            None => frame_query_oracle(&ctx, &scene, &frames, 256),
-            Some(first) => {
-                compare_with_truth(&frames.indirect, first, &frames.gbuffer, &scene.regions)
-            }
-        };
-        truth.get_or_insert_with(|| oracle.truth.clone());
+        settings
+    });
+    let mut specks = Vec::new();
+    for (max_ray_distance, (frames, oracle)) in ray_lengths.into_iter().zip(
+        query_oracles_against_one_truth(&ctx, &scene, &variants, 100, 256),
+    ) {
         // The bars are the only wood: diffuse red well above blue.
         let bars: Vec<usize> = (0..frames.gbuffer.len())
             .filter(|&i| {
@@ -614,19 +638,16 @@ fn thin_frames_show_few_specks() {
 fn tied_probes_on_the_columns_axes_keep_box_cylinders_within_ten_percent() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("box-cylinders").unwrap().scene;
-    let mut truth = None;
-    let mut errors = Vec::new();
-    for tied_probe_weight in [DdgiSettings::balanced().update.tied_probe_weight, 1.0] {
+    let weights = [DdgiSettings::balanced().update.tied_probe_weight, 1.0];
+    let variants = weights.map(|tied_probe_weight| {
         let mut settings = DdgiSettings::balanced();
         settings.update.tied_probe_weight = tied_probe_weight;
-        let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 120);
-        let oracle = match &truth {
-            None => frame_query_oracle(&ctx, &scene, &frames, 256),
-            Some(first) => {
-                compare_with_truth(&frames.indirect, first, &frames.gbuffer, &scene.regions)
-            }
-        };
-        truth.get_or_insert_with(|| oracle.truth.clone());
+        settings
+    });
+    let mut errors = Vec::new();
+    for (tied_probe_weight, (_, oracle)) in weights.into_iter().zip(
+        query_oracles_against_one_truth(&ctx, &scene, &variants, 120, 256),
+    ) {
         eprintln!(
             "box-cylinders, tied probes weighing {tied_probe_weight}: signed {:+.4}, median {:.4}; regions {:?}",
             oracle.signed_error, oracle.median_error, oracle.regions
