@@ -12,9 +12,6 @@
 @group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
 @group(2) @binding(13) var<storage, read_write> probe_offsets: array<vec4<f32>>;
 
-// Backfaces within this share of the closest one's distance tie with it.
-const EXIT_TIE: f32 = 0.02;
-
 // How far a ray went to the backface it hit; 0 for a front face or a miss. ddgi/shade stores a
 // backface hit as minus its distance, shortened by the backface-hit rule when that is on.
 fn backface_distance(distance: f32) -> f32 {
@@ -65,19 +62,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     // start outside the geometry).
     var tied = probe_offsets[probe].w;
     if f32(backfaces) > 0.25 * f32(m) && closest_back.w < 1e30 {
-        // A tie: a backface nearly as close as the closest but more than 60° from it (a probe
-        // on a column's axis). Whichever exit it takes lights some of its eight cells and
-        // misleads the others, and a random one made the result a lottery of the ray set. It
-        // leaves towards the volume's middle, and the query counts it at `tied_probe_weight`.
-        let middle = volume.origin + 0.5 * volume.spacing * vec3<f32>(volume.counts - 1u);
-        // (A probe at the very middle still gets a direction.)
-        let inwards = normalize(middle - grid_position(probe) - current + vec3<f32>(1e-4, 2e-4, 3e-4));
+        // A tie (relocation_exits_tie; a probe on a column's axis): whichever exit it takes
+        // lights some of its eight cells and misleads the others, and a random one made the
+        // result a lottery of the ray set. It leaves towards the volume's middle among the
+        // exits nearly as close as the closest, and the query counts it at
+        // `tied_probe_weight`.
+        let inwards = relocation_inwards(grid_coord(probe, volume.counts), volume.counts, volume.spacing, current);
         var inmost = closest_back;
         for (var r = 0u; r < m; r++) {
             let d = directions[r].xyz;
             let t = backface_distance(samples[probe * m + r].distance);
-            if t > 0.0 && t <= closest_back.w * (1.0 + EXIT_TIE) && within(probe, current + d * t * 1.01) {
-                if dot(d, closest_back.xyz) < 0.5 {
+            if t > 0.0 && t <= closest_back.w * (1.0 + RELOCATION_EXIT_TIE) && within(probe, current + d * t * 1.01) {
+                if relocation_exits_tie(d, t, closest_back.xyz, closest_back.w) {
                     tied = 1.0;
                 }
                 if dot(d, inwards) > dot(inmost.xyz, inwards) {

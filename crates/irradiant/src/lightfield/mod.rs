@@ -597,8 +597,7 @@ impl Lightfield {
         v.min_spacing = self.grid.min_spacing();
         v.state_phase = STATES_OFF;
         v.volume_is_last = 1;
-        // lightfield/relocate marks no probe tied (w of its offsets is 0).
-        v.tied_probe_weight = 1.0;
+        v.tied_probe_weight = self.settings.shade.tied_probe_weight;
         v
     }
 
@@ -946,6 +945,12 @@ impl Technique for Lightfield {
         }
         self.settings = settings;
         self.write_filter_passes(ctx);
+        // The irradiance query's bias and tied-probe weight.
+        ctx.queue.write_buffer(
+            &self.resources.volume,
+            0,
+            bytemuck::bytes_of(&self.volume()),
+        );
         Ok(true)
     }
     fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {

@@ -8,4 +8,8 @@ irradiant_gpu::wgsl_constants! {
     /// How close to a surface a relocated probe may stand, as a share of the spacing; also how
     /// far past the grid's outer layers it may go (`relocation_keeps_grid`).
     RELOCATION_SURFACE_STEP: f32 = 0.05;
+    /// A swallowed probe's exits tie (`relocation_exits_tie`) when a backface within this share
+    /// of the closest one's distance lies more than 60° from it: the probe stands on a column's
+    /// axis, or in a wall's very middle, and no exit is the right one.
+    RELOCATION_EXIT_TIE: f32 = 0.02;
 }

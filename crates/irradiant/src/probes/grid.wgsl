@@ -23,3 +23,17 @@ fn relocation_keeps_grid(coord: vec3<u32>, counts: vec3<u32>, spacing: vec3<f32>
     let inside = (p >= -slack & p <= extent + slack) | flat_axis;
     return all(abs(offset) < RELOCATION_LIMIT * spacing) && all(inside);
 }
+
+// Whether a backface at distance t in direction d ties with the closest (direction `closest`,
+// distance `closest_t`) as a way out: nearly as close, and more than 60° away from it.
+fn relocation_exits_tie(d: vec3<f32>, t: f32, closest: vec3<f32>, closest_t: f32) -> bool {
+    return t <= closest_t * (1.0 + RELOCATION_EXIT_TIE) && dot(d, closest) < 0.5;
+}
+
+// The direction from a probe (grid coordinates `coord`, moved by `offset`) towards the middle
+// of its grid, where a probe whose exits tie leaves: there it serves the cells that have no
+// other probe. (A probe at the very middle still gets a direction.)
+fn relocation_inwards(coord: vec3<u32>, counts: vec3<u32>, spacing: vec3<f32>, offset: vec3<f32>) -> vec3<f32> {
+    let middle = 0.5 * spacing * vec3<f32>(counts - 1u);
+    return normalize(middle - vec3<f32>(coord) * spacing - offset + vec3<f32>(1e-4, 2e-4, 3e-4));
+}
