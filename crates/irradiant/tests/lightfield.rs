@@ -307,31 +307,15 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
     let s = render(&ctx, &scene, size, spec("lightfield", &lf), 1);
     let lightfield = s.technique_as::<Lightfield>().unwrap();
     let grid = lightfield.grid().clone();
-    let moved: Vec<(glam::Vec3, glam::Vec3)> = lightfield
+    let moved = lightfield
         .probe_positions(&ctx)
         .unwrap()
         .iter()
         .enumerate()
-        .map(|(p, &at)| (grid.probe_position(p as u32), at))
-        .filter(|(on_grid, at)| at.distance(*on_grid) > 1e-4)
-        .collect();
-    eprintln!(
-        "box-cylinders: {} probes moved out of the cylinders",
-        moved.len()
-    );
-    assert!(
-        !moved.is_empty(),
-        "the cylinders swallow probes: some must move"
-    );
-    // Each stood on a column's axis, where the way out ties all round: it leaves towards the
-    // grid's middle (as DDGI's do), not by whichever map texel came first.
-    let across = |v: glam::Vec3| glam::Vec2::new(v.x, v.z).length();
-    for (on_grid, at) in &moved {
-        assert!(
-            across(*on_grid) - across(*at) > 0.3,
-            "a swallowed probe went from {on_grid} to {at}, not towards the middle"
-        );
-    }
+        .filter(|(p, at)| at.distance(grid.probe_position(*p as u32)) > 1e-4)
+        .count();
+    eprintln!("box-cylinders: {moved} probes moved out of the cylinders");
+    assert!(moved > 0, "the cylinders swallow probes: some must move");
     eprintln!(
         "box-cylinders, indirect ÷ path tracer over 8×8 tiles around the cylinders (worst, median): classic probes {classic:.2?}, light field {light_field:.2?}"
     );
@@ -340,10 +324,9 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
         "a dark halo: {light_field:.2?}"
     );
     // Seen on lavapipe (session 17): classic probes left in the cylinders (0.04, 0.10), light
-    // field with relocation (0.46, 0.59; (0.39, 0.48) before its tied probes); without
-    // relocation the light field's worst tile was 0.14, black between the cylinders. (DDGI's
-    // classic weights with relocation and its tied probes read (0.62, 0.71); this baseline
-    // used relocation until session 17.)
+    // field with relocation (0.39, 0.48); without relocation the light field's worst tile was
+    // 0.14, black between the cylinders. (DDGI's classic weights with relocation and its tied
+    // probes read (0.62, 0.71); this baseline used relocation until session 17.)
     assert!(
         (1.0 - light_field.1).abs() < (1.0 - classic.1).abs(),
         "light field {light_field:.2?} against classic {classic:.2?}"
@@ -621,5 +604,46 @@ fn a_moving_object_is_lit_by_the_baked_probes() {
     assert!(
         moved > 0.5 * baked && moved < 2.0 * baked,
         "{moved} against {baked}"
+    );
+}
+
+/// `shade.self_shadow_bias` is applied between frames (`Session::set_technique` keeps the
+/// bake): the irradiance query then reads close to what a session started with the new bias
+/// reads — not exactly, since that one's bake gathered its bounces with the new bias too (seen:
+/// 0.0205 moved, 0.0024 left). Before session 17 the change did not reach the query at all.
+#[test]
+fn a_live_change_of_the_self_shadow_bias_reaches_the_query() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (32, 32);
+    let mut settings = small();
+    settings.shade.glossy = false;
+    settings.shade.irradiance_block = 1;
+    let mut changed = settings.clone();
+    changed.shade.self_shadow_bias = 1.5;
+    let mut live = render(&ctx, &scene, size, spec("lightfield", &settings), 2);
+    let before = frame_result(&live).indirect;
+    live.set_technique(spec("lightfield", &changed)).unwrap();
+    live.render().unwrap();
+    let after = frame_result(&live).indirect;
+    let fresh = frame_result(&render(&ctx, &scene, size, spec("lightfield", &changed), 1)).indirect;
+    let differ = |a: &Image, b: &Image| {
+        a.pixels
+            .iter()
+            .zip(&b.pixels)
+            .map(|(p, q)| (p[0] - q[0]).abs() + (p[1] - q[1]).abs() + (p[2] - q[2]).abs())
+            .sum::<f32>()
+            / a.pixels.len() as f32
+    };
+    let (moved, left) = (differ(&before, &after), differ(&after, &fresh));
+    eprintln!("mean |Δ| after the change {moved:.5}, against a fresh session {left:.6}");
+    assert!(
+        moved > 1e-3,
+        "a bias of 1.5 should change the light: {moved}"
+    );
+    // What is left is the bake's: its bounces gathered with the bias it was baked with.
+    assert!(
+        left < 0.25 * moved,
+        "the live change reads {left} off a fresh session, against {moved} moved"
     );
 }

@@ -597,7 +597,10 @@ impl Lightfield {
         v.min_spacing = self.grid.min_spacing();
         v.state_phase = STATES_OFF;
         v.volume_is_last = 1;
-        v.tied_probe_weight = self.settings.shade.tied_probe_weight;
+        // lightfield/relocate marks no probe tied (w of its offsets stays 0): moving the light
+        // field's swallowed probes towards the middle as DDGI's made box-cylinders' FLIP
+        // 0.1869 → 0.1921 on the H100 (docs/lightfield.md).
+        v.tied_probe_weight = 1.0;
         v
     }
 
@@ -945,7 +948,7 @@ impl Technique for Lightfield {
         }
         self.settings = settings;
         self.write_filter_passes(ctx);
-        // The irradiance query's bias and tied-probe weight.
+        // The irradiance query's self-shadow bias.
         ctx.queue.write_buffer(
             &self.resources.volume,
             0,

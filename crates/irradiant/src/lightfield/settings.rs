@@ -112,12 +112,6 @@ pub struct LightfieldShadeSettings {
     pub glossy_hysteresis: f32,
     /// DDGI's self-shadow bias for the prefiltered irradiance query (003 eq. 2).
     pub self_shadow_bias: f32,
-    /// The prefiltered irradiance query's weight (0.01 to 1) of a tied probe: one that
-    /// relocation found in a solid with no single way out (a column around its grid point)
-    /// and moved towards the grid's middle. As DDGI's `update.tied_probe_weight`: low lets the
-    /// probes with a clear view light every cell that has one, and the tied probe the cells
-    /// that have none; 1 counts it like any probe.
-    pub tied_probe_weight: f32,
     /// Pixels a side of the blocks the fast path queries irradiance once for (1, 2 or 4), the
     /// result joint-bilaterally upsampled by depth and normal (1: the exact query at every
     /// pixel). Irradiance is smooth: 2 costs about a third of 1, 4 about a sixth, with softer
@@ -171,7 +165,6 @@ impl LightfieldSettings {
                 glossy_radius: 3,
                 glossy_hysteresis: 0.75,
                 self_shadow_bias: 0.3,
-                tied_probe_weight: 0.1,
                 irradiance_block: 4,
             },
         }
@@ -296,12 +289,6 @@ impl LightfieldSettings {
             s.self_shadow_bias,
             0.0,
             2.0,
-        )?;
-        check_range(
-            "technique.shade.tied_probe_weight",
-            s.tied_probe_weight,
-            0.01,
-            1.0,
         )?;
         Ok(())
     }

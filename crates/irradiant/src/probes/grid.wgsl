@@ -31,8 +31,8 @@ fn relocation_exits_tie(d: vec3<f32>, t: f32, closest: vec3<f32>, closest_t: f32
 }
 
 // The direction from a probe (grid coordinates `coord`, moved by `offset`) towards the middle
-// of its grid, where a probe whose exits tie leaves: there it serves the cells that have no
-// other probe. (A probe at the very middle still gets a direction.)
+// of its grid, where DDGI's probe whose exits tie leaves: there it serves the cells that have
+// no other probe. (A probe at the very middle still gets a direction.)
 fn relocation_inwards(coord: vec3<u32>, counts: vec3<u32>, spacing: vec3<f32>, offset: vec3<f32>) -> vec3<f32> {
     let middle = 0.5 * spacing * vec3<f32>(counts - 1u);
     return normalize(middle - vec3<f32>(coord) * spacing - offset + vec3<f32>(1e-4, 2e-4, 3e-4));
