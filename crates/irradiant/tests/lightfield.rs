@@ -422,8 +422,9 @@ fn the_probe_view_sees_the_scene_from_the_probes_alone() {
     );
 }
 
-/// A bake is stored and read back unchanged; a changed scene or changed bake settings bake
-/// anew; a damaged entry is baked over, not read.
+/// A bake is stored and read back unchanged; a changed scene, changed bake settings or a
+/// changed self-shadow bias (the bake's bounces read it) bake anew; a damaged entry is baked
+/// over, not read.
 #[test]
 fn a_bake_is_cached_and_a_stale_one_is_never_read() {
     let Some(ctx) = gpu() else { return };
@@ -472,6 +473,12 @@ fn a_bake_is_cached_and_a_stale_one_is_never_read() {
     assert!(
         run(&scene, &shading).0,
         "shading settings do not touch the bake"
+    );
+    let mut bias = settings.clone();
+    bias.shade.self_shadow_bias = 0.6;
+    assert!(
+        !run(&scene, &bias).0,
+        "the self-shadow bias, which the bake's bounces read, bakes anew"
     );
     // Damage every entry: each is baked over.
     for entry in std::fs::read_dir(&dir).unwrap().flatten() {

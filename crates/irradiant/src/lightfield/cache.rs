@@ -21,8 +21,14 @@ use crate::probes::ProbeGrid;
 /// The first bytes of an entry, with the format's version.
 const MAGIC: &[u8; 8] = b"IRLF\0\0\0\x03";
 
-/// A hash of everything that shapes a bake.
-pub fn bake_key(scene: &Scene, grid: &ProbeGrid, bake: &LightfieldBakeSettings) -> u64 {
+/// A hash of everything that shapes a bake: the bake settings and the one shading setting
+/// the bake reads, the irradiance query's `self_shadow_bias` (its bounces gather with it).
+pub fn bake_key(
+    scene: &Scene,
+    grid: &ProbeGrid,
+    bake: &LightfieldBakeSettings,
+    self_shadow_bias: f32,
+) -> u64 {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     env!("CARGO_PKG_VERSION").hash(&mut h);
     crate::shaders::library().hash_sources(&mut h);
@@ -34,6 +40,7 @@ pub fn bake_key(scene: &Scene, grid: &ProbeGrid, bake: &LightfieldBakeSettings) 
     let pose = scene.pose_at(0.0);
     format!("{:?}{:?}", pose.lights, pose.instance_transforms).hash(&mut h);
     format!("{grid:?}{bake:?}").hash(&mut h);
+    self_shadow_bias.to_bits().hash(&mut h);
     h.finish()
 }
 

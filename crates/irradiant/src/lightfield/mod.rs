@@ -655,7 +655,12 @@ impl Lightfield {
     fn bake_or_load(&mut self, cx: &TechniqueContext) -> Result<BakeReport, RenderError> {
         let ctx = cx.ctx;
         let start = Instant::now();
-        let key = bake_key(cx.scene, &self.grid, &self.settings.bake);
+        let key = bake_key(
+            cx.scene,
+            &self.grid,
+            &self.settings.bake,
+            self.settings.shade.self_shadow_bias,
+        );
         let file = cx.cache_dir.map(|dir| cache::entry_path(dir, key));
         let bytes = self.baked_bytes();
         if let Some(file) = &file
