@@ -110,7 +110,9 @@ pub struct LightfieldShadeSettings {
     /// over surfaces with the view, so it is filtered less.
     pub glossy_radius: u32,
     pub glossy_hysteresis: f32,
-    /// DDGI's self-shadow bias for the prefiltered irradiance query (003 eq. 2).
+    /// DDGI's self-shadow bias for the prefiltered irradiance query (003 eq. 2). The bake's
+    /// bounces gather through the same query: a session started with another bias bakes anew,
+    /// while a live change reaches the query and keeps the bake.
     pub self_shadow_bias: f32,
     /// Pixels a side of the blocks the fast path queries irradiance once for (1, 2 or 4), the
     /// result joint-bilaterally upsampled by depth and normal (1: the exact query at every
