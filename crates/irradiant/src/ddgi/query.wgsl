@@ -1,7 +1,7 @@
 // ddgi: the irradiance query at any point of the volume: the 8-probe cage, trilinear (extrapolated
 // just past the outermost probes) × smooth backface (wrap) × Chebyshev visibility × low-weight
-// crush × `tied_probe_weight` for tied probes, with the self-shadow bias, normalised. Shared by the probe rays' shading (ddgi/shade)
-// and the camera (ddgi/resolve).
+// crush × `tied_probe_weight` for tied probes, with the self-shadow bias, normalised. Shared by
+// the probe rays' shading (ddgi/shade) and the camera (ddgi/resolve).
 #import ddgi_probes
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
