@@ -318,6 +318,43 @@ fn probes_on_a_columns_axis_are_tied_and_leave_towards_the_middle() {
     );
 }
 
+/// A probe in a wall's middle (two-rooms with a probe layer on its dividing wall) has two
+/// opposite exits, each into an open room. It is not tied: it crosses one side and serves that
+/// room in full. Before session 18 any tied exit more than 60° from the closest marked a probe
+/// tied, so all 17 such probes counted at a tenth of a probe's weight and the dark room's
+/// light read 5–7 % bright (`probes_in_a_walls_middle_keep_the_dark_room_right`).
+#[test]
+fn probes_in_a_walls_middle_are_not_tied_and_leave_through_one_side() {
+    let Some(ctx) = gpu() else { return };
+    let scene = two_rooms_with_probes_in_the_wall();
+    let mut session = session(
+        &ctx,
+        &scene,
+        (16, 16),
+        spec(Some(&DdgiSettings::balanced())),
+    );
+    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
+        session.render().unwrap();
+    }
+    let volume = session.technique_as::<Ddgi>().unwrap().volume();
+    let tied = volume.read_tied_probes(&ctx).unwrap();
+    let centres = volume.read_probe_centres(&ctx).unwrap();
+    let mut in_the_wall = 0;
+    for (p, (&is_tied, &(centre, on))) in tied.iter().zip(&centres).enumerate() {
+        assert!(!is_tied, "probe {p} at {centre} is tied");
+        let on_grid = volume.grid.probe_position(p as u32);
+        let in_the_door = on_grid.z.abs() < 0.5 && on_grid.y < 2.0;
+        if on_grid.x.abs() < 1e-3 && !in_the_door {
+            in_the_wall += 1;
+            assert!(
+                on && centre.x.abs() > 0.05,
+                "probe {p} at {on_grid} stayed in the wall: {centre} (on {on})"
+            );
+        }
+    }
+    assert_eq!(in_the_wall, 17, "the wall holds 17 probes of the grid");
+}
+
 /// Relocation crosses the closest backface that it may cross, and never past the grid's outer
 /// layers: the probes in the Cornell box's two boxes leave them through a side. On lavapipe
 /// the tall box's probe once dropped under the floor and, seeing too few backfaces there to

@@ -1,8 +1,8 @@
 // ddgi/relocate: one iteration of the probe-position optimiser of 003 §5 (Listing 4), run for
 // the volume's first frames. A probe that sees more than 25 % backfaces is inside geometry and
-// moves through the closest backface (towards the volume's middle when backfaces all round
-// tie, and is marked tied); a probe very close to a front face moves towards the
-// farthest front face. Offsets keep the probe in its cell and inside the box of the grid's
+// moves through the closest backface (towards the volume's middle when others tie with it,
+// and is marked tied when they surround it); a probe very close to a front face moves towards
+// the farthest front face. Offsets keep the probe in its cell and inside the box of the grid's
 // outer layers (relocation_keeps_grid).
 #import ddgi_volume
 #import ddgi_rays
@@ -62,26 +62,30 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     // start outside the geometry).
     var tied = probe_offsets[probe].w;
     if f32(backfaces) > 0.25 * f32(m) && closest_back.w < 1e30 {
-        // A tie (relocation_exits_tie; a probe on a column's axis): whichever exit it takes
-        // lights some of its eight cells and misleads the others, and a random one made the
-        // result a lottery of the ray set. It leaves towards the volume's middle among the
-        // exits nearly as close as the closest, and the query counts it at
-        // `tied_probe_weight`.
+        // A tie (relocation_exits_tie): the closest exit would be a lottery of the ray set, so
+        // the probe leaves towards the volume's middle among the exits nearly as close as the
+        // closest. Where they surround it (relocation_exits_surround; a column's axis),
+        // whichever it takes lights some of its eight cells and misleads the others: it is
+        // marked tied, and the query counts it at `tied_probe_weight`.
         let inwards = relocation_inwards(grid_coord(probe, volume.counts), volume.counts, volume.spacing, current);
         var inmost = closest_back;
+        var tie = false;
         for (var r = 0u; r < m; r++) {
             let d = directions[r].xyz;
             let t = backface_distance(samples[probe * m + r].distance);
             if t > 0.0 && t <= closest_back.w * (1.0 + RELOCATION_EXIT_TIE) && within(probe, current + d * t * 1.01) {
                 if relocation_exits_tie(d, t, closest_back.xyz, closest_back.w) {
-                    tied = 1.0;
+                    tie = true;
+                    if relocation_exits_surround(d, closest_back.xyz) {
+                        tied = 1.0;
+                    }
                 }
                 if dot(d, inwards) > dot(inmost.xyz, inwards) {
                     inmost = vec4<f32>(d, t);
                 }
             }
         }
-        if tied > 0.5 {
+        if tie || tied > 0.5 {
             closest_back = inmost;
         }
     }

@@ -30,6 +30,14 @@ fn relocation_exits_tie(d: vec3<f32>, t: f32, closest: vec3<f32>, closest_t: f32
     return t <= closest_t * (1.0 + RELOCATION_EXIT_TIE) && dot(d, closest) < 0.5;
 }
 
+// Whether a tied exit d lies across the closest (60° to 120° from it): exits in a ring or a
+// square round the probe (a column's axis), where whichever it takes misleads some of its
+// cells. Two opposite exits (a wall's middle plane) are not: either side is open, and the
+// probe serves the side it takes in full.
+fn relocation_exits_surround(d: vec3<f32>, closest: vec3<f32>) -> bool {
+    return abs(dot(d, closest)) < 0.5;
+}
+
 // The direction from a probe (grid coordinates `coord`, moved by `offset`) towards the middle
 // of its grid, where DDGI's probe whose exits tie leaves: there it serves the cells that have
 // no other probe. (A probe at the very middle still gets a direction.)

@@ -248,6 +248,15 @@ pub fn cornell_with_block(at: glam::Vec3) -> Scene {
     scene
 }
 
+/// Two-rooms with nine probes across instead of ten: the middle layer of probes stands on the
+/// dividing wall's middle plane (x = 0), where every probe outside the door has two opposite
+/// exits, one into each room.
+pub fn two_rooms_with_probes_in_the_wall() -> Scene {
+    let mut scene = irradiant_scene::load("two-rooms").unwrap().scene;
+    scene.probe_volumes[0].counts[0] = 9;
+    scene
+}
+
 /// One mip level of a frame texture (rgba32float or rgba16float) as rgba f32 texels.
 pub fn read_level(
     ctx: &GpuContext,
