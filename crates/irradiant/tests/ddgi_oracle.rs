@@ -692,6 +692,36 @@ fn probes_in_a_walls_middle_keep_the_dark_room_right() {
     );
 }
 
+/// A volume fitted to a room's walls (its box the room's inside, as a user who gives the
+/// room's bounds places it) reads the room nearly as well as one inset from them: the Cornell
+/// box's one-sided walls and two-rooms' solid ones. Before session 18 the probes in the walls'
+/// planes saw half the void beyond the Cornell box's quads (query −34 % at 128×96) and turned
+/// off in two-rooms' slabs, which lit the rooms from the probes a cell away (+45 %).
+#[test]
+fn a_volume_fitted_to_the_walls_reads_the_room() {
+    let Some(ctx) = gpu() else { return };
+    let v = glam::Vec3::new;
+    let settings = DdgiSettings::balanced();
+    for (name, lo, hi) in [
+        ("cornell", v(-1.0, 0.0, -1.0), v(1.0, 2.0, 1.0)),
+        ("two-rooms", v(-4.0, 0.0, -2.0), v(4.0, 3.0, 2.0)),
+    ] {
+        let scene = fitted_to_the_walls(name, lo, hi);
+        let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 120);
+        let oracle = frame_query_oracle(&ctx, &scene, &frames, 256);
+        eprintln!(
+            "{name}, volume on the walls: signed {:+.4}, median {:.4}, specks {:?}; regions {:?}",
+            oracle.signed_error, oracle.median_error, oracle.specks, oracle.regions
+        );
+        assert!(
+            oracle.signed_error.abs() <= 0.12 && oracle.median_error <= 0.25,
+            "{name}: the query reads {:+.1} % off the truth, median {:.1} %",
+            100.0 * oracle.signed_error,
+            100.0 * oracle.median_error
+        );
+    }
+}
+
 /// The table (built-in `table`): the floor under its top lies half a cell below the lowest probe
 /// layer, and the probes of the layer at the top's height relocate under it, 3 cm from its
 /// underside. Extrapolating from them reads that pocket as the field's trend and floods the

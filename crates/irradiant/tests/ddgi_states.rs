@@ -355,6 +355,54 @@ fn probes_in_a_walls_middle_are_not_tied_and_leave_through_one_side() {
     assert_eq!(in_the_wall, 17, "the wall holds 17 probes of the grid");
 }
 
+/// A volume fitted to a room's walls puts its outer probes in the walls' planes. From there a
+/// ray from the probe's centre misses the wall it stands in, so before session 18 such a probe
+/// saw half the void beyond a one-sided wall (the Cornell box's quads) or, in a solid wall
+/// (two-rooms' slabs), the wall's far side as a backface that it could not cross, and turned
+/// off (152 of two-rooms' 200 probes). Probe rays now start a hair behind the probe and see
+/// the wall from both sides, and relocation moves the probe a surface step into the room.
+#[test]
+fn probes_in_a_rooms_wall_planes_step_into_the_room() {
+    let Some(ctx) = gpu() else { return };
+    let v = glam::Vec3::new;
+    // (scene, the room's inside, whether its +z side is open, probes that may turn off: the
+    // Cornell box's two probes in the floor's plane under its boxes step up into the boxes,
+    // whose bottoms lie in that plane too, and stay there)
+    let rooms = [
+        ("cornell", v(-1.0, 0.0, -1.0), v(1.0, 2.0, 1.0), true, 2),
+        ("two-rooms", v(-4.0, 0.0, -2.0), v(4.0, 3.0, 2.0), false, 0),
+    ];
+    for (name, lo, hi, open_front, may_turn_off) in rooms {
+        let scene = fitted_to_the_walls(name, lo, hi);
+        let (centres, grid) = relocated_centres(&ctx, &scene, &DdgiSettings::balanced());
+        let off = centres.iter().filter(|(_, on)| !on).count();
+        assert!(off <= may_turn_off, "{name}: {off} probes are off");
+        let mut in_a_wall = 0;
+        for (p, &(centre, _)) in centres.iter().enumerate() {
+            let on_grid = grid.probe_position(p as u32);
+            if open_front && (on_grid.z - hi.z).abs() < 1e-4 {
+                // In the opening's plane: such a probe may step out into the open.
+                continue;
+            }
+            for axis in 0..3 {
+                let into_room = if (on_grid[axis] - lo[axis]).abs() < 1e-4 {
+                    centre[axis] - lo[axis]
+                } else if (on_grid[axis] - hi[axis]).abs() < 1e-4 {
+                    hi[axis] - centre[axis]
+                } else {
+                    continue;
+                };
+                in_a_wall += 1;
+                assert!(
+                    into_room > 0.01,
+                    "{name}: probe {p} from {on_grid} stands {into_room} m into the room at {centre}"
+                );
+            }
+        }
+        assert!(in_a_wall > 20, "{name}: only {in_a_wall} probes in a wall");
+    }
+}
+
 /// Relocation crosses the closest backface that it may cross, and never past the grid's outer
 /// layers: the probes in the Cornell box's two boxes leave them through a side. On lavapipe
 /// the tall box's probe once dropped under the floor and, seeing too few backfaces there to

@@ -1,8 +1,7 @@
 // ddgi/trace: m rays from every probe that updates, closest hit, into the hit buffer.
-#import ddgi_probes
+#import ddgi_trace_probe
 #import ddgi_rays
 #import ddgi_active
-#import bvh
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
@@ -16,7 +15,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         return;
     }
     let dir = directions[slot.ray].xyz;
-    let hit = trace_ray(probe_position(slot.probe), dir, volume.max_ray_distance, false);
+    let hit = trace_probe_ray(slot.probe, dir);
     var out: GpuDdgiRayHit;
     out.t = select(hit.t, -1.0, hit.triangle == INVALID);
     out.triangle = hit.triangle;

@@ -257,6 +257,16 @@ pub fn two_rooms_with_probes_in_the_wall() -> Scene {
     scene
 }
 
+/// Built-in scene `name` with its probe volume's box set to `lo`–`hi`, the room's inside: a
+/// volume fitted to a room's walls, as a user who gives the room's bounds places it, puts its
+/// outer layers of probes in the walls' planes.
+pub fn fitted_to_the_walls(name: &str, lo: glam::Vec3, hi: glam::Vec3) -> Scene {
+    let mut scene = irradiant_scene::load(name).unwrap().scene;
+    scene.probe_volumes[0].min = lo;
+    scene.probe_volumes[0].max = hi;
+    scene
+}
+
 /// One mip level of a frame texture (rgba32float or rgba16float) as rgba f32 texels.
 pub fn read_level(
     ctx: &GpuContext,
