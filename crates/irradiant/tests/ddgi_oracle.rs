@@ -694,9 +694,10 @@ fn probes_in_a_walls_middle_keep_the_dark_room_right() {
 
 /// A volume fitted to a room's walls (its box the room's inside, as a user who gives the
 /// room's bounds places it) reads the room nearly as well as one inset from them: the Cornell
-/// box's one-sided walls and two-rooms' solid ones. Before session 18 the probes in the walls'
-/// planes saw half the void beyond the Cornell box's quads (query −34 % at 128×96) and turned
-/// off in two-rooms' slabs, which lit the rooms from the probes a cell away (+45 %).
+/// box's one-sided walls and two-rooms' solid ones (−7.9 and +4.5 % here). Before session 18
+/// the probes in the walls' planes saw half the void beyond the Cornell box's quads (−40.7 %
+/// here) and turned off in two-rooms' slabs, which lit the rooms from the probes a cell away
+/// (+45 % at 128×96).
 #[test]
 fn a_volume_fitted_to_the_walls_reads_the_room() {
     let Some(ctx) = gpu() else { return };

@@ -11,10 +11,6 @@ irradiant_gpu::wgsl_constants! {
     WEIGHT_BACKFACE_HITS: u32 = 4;
     /// How much of a backface hit's distance is kept (003 §4.1: 80 % shorter).
     BACKFACE_DEPTH_SCALE: f32 = 0.2;
-    /// How far behind its probe a probe ray starts, as a share of the smallest spacing
-    /// (`trace_probe_ray`): far enough past f32's rounding for a surface through the probe to
-    /// be hit from both sides, near enough that no surface a probe may stand by is.
-    PROBE_RAY_LEAD: f32 = 1e-4;
     /// The perceptual exponent (003 §4.2) under which the convergence heuristics judge how
     /// much a texel's light changed (25 % and 80 % of value^(1/5)), whatever encoding the
     /// atlas stores (`irradiance_gamma`).

@@ -1,9 +1,10 @@
 // ddgi/relocate: one iteration of the probe-position optimiser of 003 §5 (Listing 4), run for
 // the volume's first frames. A probe that sees more than 25 % backfaces is inside geometry and
 // moves through the closest backface (towards the volume's middle when others tie with it,
-// and is marked tied when they surround it); a probe standing in a surface steps off it; a
-// probe very close to a front face moves towards the farthest front face. Offsets keep the
-// probe in its cell and inside the box of the grid's outer layers (relocation_keeps_grid).
+// and is marked tied when they surround it); a probe very close to a front face moves towards
+// the farthest front face; a probe of the grid's outer layers first moves a hair inwards.
+// Offsets keep the probe in its cell and inside the box of the grid's outer layers
+// (relocation_keeps_grid).
 #import ddgi_volume
 #import ddgi_rays
 
@@ -30,11 +31,17 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     }
     let m = volume.rays_per_probe;
     let current = probe_offsets[probe].xyz;
-    // A surface through the probe (trace_probe_ray hits it from both sides, at no distance):
-    // its backfaces are no way out of a solid, and are counted apart.
-    let lead = PROBE_RAY_LEAD * volume.min_spacing;
-    let inwards = relocation_inwards(grid_coord(probe, volume.counts), volume.counts, volume.spacing, current);
-    var surface_back = vec3<f32>(0.0);
+    // First, a probe of the outer layers moves a hair inwards (OUTER_PROBE_INSET): in a wall's
+    // plane its rays miss the wall, so this iteration's are no guide, and the next ones see
+    // the wall's face.
+    let coord = grid_coord(probe, volume.counts);
+    let low = coord == vec3<u32>(0u) & volume.counts > vec3<u32>(1u);
+    let high = coord == volume.counts - 1u & volume.counts > vec3<u32>(1u);
+    let inset = OUTER_PROBE_INSET * volume.spacing * (select(vec3<f32>(0.0), vec3<f32>(1.0), low) - select(vec3<f32>(0.0), vec3<f32>(1.0), high));
+    if all(current == vec3<f32>(0.0)) && any(inset != vec3<f32>(0.0)) {
+        probe_offsets[probe] = vec4<f32>(inset, probe_offsets[probe].w);
+        return;
+    }
     var backfaces = 0u;
     var closest_back = vec4<f32>(0.0, 0.0, 0.0, 1e30);
     var closest_front = vec4<f32>(0.0, 0.0, 0.0, 1e30);
@@ -42,12 +49,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     for (var r = 0u; r < m; r++) {
         let d = directions[r].xyz;
         let distance = samples[probe * m + r].distance;
-        if distance < 0.0 && backface_distance(distance) <= lead {
-            // Of the surface's backfaces, the one most towards the volume's middle.
-            if dot(d, inwards) > dot(surface_back, inwards) || all(surface_back == vec3<f32>(0.0)) {
-                surface_back = d;
-            }
-        } else if distance < 0.0 {
+        if distance < 0.0 {
             backfaces++;
             let t = backface_distance(distance);
             // The closest backface the probe may cross: one whose far side lies outside the
@@ -77,12 +79,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         // closest. Where they surround it (relocation_exits_surround; a column's axis),
         // whichever it takes lights some of its eight cells and misleads the others: it is
         // marked tied, and the query counts it at `tied_probe_weight`.
+        let inwards = relocation_inwards(grid_coord(probe, volume.counts), volume.counts, volume.spacing, current);
         var inmost = closest_back;
         var tie = false;
         for (var r = 0u; r < m; r++) {
             let d = directions[r].xyz;
             let t = backface_distance(samples[probe * m + r].distance);
-            if t > lead && t <= closest_back.w * (1.0 + RELOCATION_EXIT_TIE) && within(probe, current + d * t * 1.01) {
+            if t > 0.0 && t <= closest_back.w * (1.0 + RELOCATION_EXIT_TIE) && within(probe, current + d * t * 1.01) {
                 if relocation_exits_tie(d, t, closest_back.xyz, closest_back.w) {
                     tie = true;
                     if relocation_exits_surround(d, closest_back.xyz) {
@@ -103,16 +106,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         // (up to twice its distance). With none that may be crossed it stays, and turns off.
         for (var i = 0u; i < 100u && closest_back.w < 1e30; i++) {
             let candidate = current + closest_back.xyz * closest_back.w * (2.0 - f32(i) * 0.01);
-            if within(probe, candidate) {
-                next = candidate;
-                break;
-            }
-        }
-    } else if any(surface_back != vec3<f32>(0.0)) {
-        // Standing in a surface (a volume fitted to a room's walls): a surface step off it,
-        // through its back towards the volume's middle, into the open space it faces.
-        for (var i = 0u; i < 100u; i++) {
-            let candidate = current + surface_back * RELOCATION_SURFACE_STEP * volume.min_spacing * (1.0 - f32(i) * 0.01);
             if within(probe, candidate) {
                 next = candidate;
                 break;

@@ -4,7 +4,6 @@
 // direct pass samples every emitter already, so the probes hold indirect light only.
 #import ddgi_query
 #import ddgi_rays
-#import ddgi_trace_probe
 #import ddgi_active
 #import lights
 #import random
@@ -67,7 +66,7 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
     // ddgi/trace's hit: no hit buffer round trip and one dispatch fewer.
     var hit: GpuDdgiRayHit;
     if FUSED_TRACE == 1u {
-        let found = trace_probe_ray(probe, dir);
+        let found = trace_ray(probe_position(probe), dir, volume.max_ray_distance, false);
         hit.t = select(found.t, -1.0, found.triangle == INVALID);
         hit.triangle = found.triangle;
         hit.instance = found.instance;

@@ -1,7 +1,8 @@
 // ddgi/trace: m rays from every probe that updates, closest hit, into the hit buffer.
-#import ddgi_trace_probe
+#import ddgi_probes
 #import ddgi_rays
 #import ddgi_active
+#import bvh
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
@@ -15,7 +16,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         return;
     }
     let dir = directions[slot.ray].xyz;
-    let hit = trace_probe_ray(slot.probe, dir);
+    let hit = trace_ray(probe_position(slot.probe), dir, volume.max_ray_distance, false);
     var out: GpuDdgiRayHit;
     out.t = select(hit.t, -1.0, hit.triangle == INVALID);
     out.triangle = hit.triangle;

@@ -10,6 +10,13 @@ irradiant_gpu::wgsl_constants! {
     RELOCATION_SURFACE_STEP: f32 = 0.05;
     /// A swallowed probe's exits tie (`relocation_exits_tie`) when a backface within this share
     /// of the closest one's distance lies more than 60° from it: the probe stands on a column's
-    /// axis, or in a wall's very middle, and no exit is the right one.
+    /// axis, or in a wall's very middle, and the ray set would pick its exit.
     RELOCATION_EXIT_TIE: f32 = 0.02;
+    /// Relocation's first step moves a probe of the grid's outer layers this share of the
+    /// spacing inwards. A volume's box fitted to a room's walls puts those layers in the
+    /// walls' planes, where a ray from the probe misses the wall it starts in: the probe saw
+    /// half the void behind a one-sided wall, or a solid wall's far side, and relocation could
+    /// not tell. A hair inside, it sees the wall's face and steps off it (docs/ddgi.md, "A
+    /// volume fitted to the walls").
+    OUTER_PROBE_INSET: f32 = 1e-4;
 }

@@ -41,7 +41,6 @@ pub fn library() -> &'static ShaderLibrary {
             .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
             .with("ddgi_states", include_str!("../ddgi/states.wgsl"))
             .with("ddgi_active", include_str!("../ddgi/active.wgsl"))
-            .with("ddgi_trace_probe", include_str!("../ddgi/trace_probe.wgsl"))
             .with("ssil_common", include_str!("../ssil/common.wgsl"))
             .with("lightfield_constants", crate::lightfield::constants::wgsl())
             .with("lightfield", include_str!("../lightfield/lightfield.wgsl"))
