@@ -79,7 +79,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         // closest. Where they surround it (relocation_exits_surround; a column's axis),
         // whichever it takes lights some of its eight cells and misleads the others: it is
         // marked tied, and the query counts it at `tied_probe_weight`.
-        let inwards = relocation_inwards(grid_coord(probe, volume.counts), volume.counts, volume.spacing, current);
+        let inwards = relocation_inwards(coord, volume.counts, volume.spacing, current);
         var inmost = closest_back;
         var tie = false;
         for (var r = 0u; r < m; r++) {
