@@ -250,15 +250,25 @@ fn outer_probes_stay_awake_for_the_walls_beyond_them() {
 
 /// Each probe's centre and whether it updates, past the relocation frames and the
 /// classification on the last of them, with the grid they were placed on.
+/// A 16×16 DDGI session of `scene` past its relocation frames.
+fn relocated(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &Scene,
+    settings: &DdgiSettings,
+) -> irradiant::Session {
+    let mut session = session(ctx, scene, (16, 16), spec(Some(settings)));
+    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
+        session.render().unwrap();
+    }
+    session
+}
+
 fn relocated_centres(
     ctx: &std::sync::Arc<irradiant::GpuContext>,
     scene: &Scene,
     settings: &DdgiSettings,
 ) -> (Vec<(glam::Vec3, bool)>, irradiant::probes::ProbeGrid) {
-    let mut session = session(ctx, scene, (16, 16), spec(Some(settings)));
-    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
-        session.render().unwrap();
-    }
+    let session = relocated(ctx, scene, settings);
     let volume = session.technique_as::<Ddgi>().unwrap().volume();
     (volume.read_probe_centres(ctx).unwrap(), volume.grid.clone())
 }
@@ -276,10 +286,7 @@ fn probes_on_a_columns_axis_are_tied_and_leave_towards_the_middle() {
     for seed in [0, 1] {
         let mut settings = DdgiSettings::balanced();
         settings.update.seed = seed;
-        let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
-        for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
-            session.render().unwrap();
-        }
+        let session = relocated(&ctx, &scene, &settings);
         let volume = session.technique_as::<Ddgi>().unwrap().volume();
         let tied = volume.read_tied_probes(&ctx).unwrap();
         let centres = volume.read_probe_centres(&ctx).unwrap();
@@ -302,15 +309,7 @@ fn probes_on_a_columns_axis_are_tied_and_leave_towards_the_middle() {
         }
     }
     let cornell = irradiant_scene::load("cornell").unwrap().scene;
-    let mut session = session(
-        &ctx,
-        &cornell,
-        (16, 16),
-        spec(Some(&DdgiSettings::balanced())),
-    );
-    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
-        session.render().unwrap();
-    }
+    let session = relocated(&ctx, &cornell, &DdgiSettings::balanced());
     let volume = session.technique_as::<Ddgi>().unwrap().volume();
     assert!(
         !volume.read_tied_probes(&ctx).unwrap().contains(&true),
@@ -327,15 +326,7 @@ fn probes_on_a_columns_axis_are_tied_and_leave_towards_the_middle() {
 fn probes_in_a_walls_middle_are_not_tied_and_leave_through_one_side() {
     let Some(ctx) = gpu() else { return };
     let scene = two_rooms_with_probes_in_the_wall();
-    let mut session = session(
-        &ctx,
-        &scene,
-        (16, 16),
-        spec(Some(&DdgiSettings::balanced())),
-    );
-    for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
-        session.render().unwrap();
-    }
+    let session = relocated(&ctx, &scene, &DdgiSettings::balanced());
     let volume = session.technique_as::<Ddgi>().unwrap().volume();
     let tied = volume.read_tied_probes(&ctx).unwrap();
     let centres = volume.read_probe_centres(&ctx).unwrap();
