@@ -697,7 +697,9 @@ fn probes_in_a_walls_middle_keep_the_dark_room_right() {
 /// box's one-sided walls and two-rooms' solid ones (−7.9 and +4.5 % here). Before session 18
 /// the probes in the walls' planes saw half the void beyond the Cornell box's quads (−40.7 %
 /// here) and turned off in two-rooms' slabs, which lit the rooms from the probes a cell away
-/// (+45 % at 128×96).
+/// (+45 % at 128×96). A box 5 cm outside the Cornell box's walls leaves 9.1 % of the pixels
+/// under half the truth (16.7 % before its edge and corner probes, which see only the walls'
+/// backs and the void, learnt to cross a backface into the room).
 #[test]
 fn a_volume_fitted_to_the_walls_reads_the_room() {
     let Some(ctx) = gpu() else { return };
@@ -706,6 +708,8 @@ fn a_volume_fitted_to_the_walls_reads_the_room() {
     for (name, lo, hi) in [
         ("cornell", v(-1.0, 0.0, -1.0), v(1.0, 2.0, 1.0)),
         ("two-rooms", v(-4.0, 0.0, -2.0), v(4.0, 3.0, 2.0)),
+        // 5 cm outside the Cornell box's one-sided walls.
+        ("cornell", v(-1.05, -0.05, -1.05), v(1.05, 2.05, 1.05)),
     ] {
         let scene = fitted_to_the_walls(name, lo, hi);
         let frames = render_frames(&ctx, &scene, (64, 48), Some(&settings), 120);
@@ -715,10 +719,13 @@ fn a_volume_fitted_to_the_walls_reads_the_room() {
             oracle.signed_error, oracle.median_error, oracle.specks, oracle.regions
         );
         assert!(
-            oracle.signed_error.abs() <= 0.12 && oracle.median_error <= 0.25,
-            "{name}: the query reads {:+.1} % off the truth, median {:.1} %",
+            oracle.signed_error.abs() <= 0.12
+                && oracle.median_error <= 0.25
+                && oracle.specks.1 <= 0.12,
+            "{name}: the query reads {:+.1} % off the truth, median {:.1} %, {:.1} % of the pixels under half the truth",
             100.0 * oracle.signed_error,
-            100.0 * oracle.median_error
+            100.0 * oracle.median_error,
+            100.0 * oracle.specks.1
         );
     }
 }

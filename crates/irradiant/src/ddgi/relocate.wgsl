@@ -43,6 +43,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         return;
     }
     var backfaces = 0u;
+    var fronts = 0u;
     var closest_back = vec4<f32>(0.0, 0.0, 0.0, 1e30);
     var closest_front = vec4<f32>(0.0, 0.0, 0.0, 1e30);
     var farthest_front = vec4<f32>(0.0, 0.0, 0.0, -1.0);
@@ -60,6 +61,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
                 closest_back = vec4<f32>(d, t);
             }
         } else {
+            fronts += select(0u, 1u, distance < volume.max_ray_distance);
             // A miss counts as a front face at the ray's full length.
             if distance < closest_front.w {
                 closest_front = vec4<f32>(d, distance);
@@ -73,7 +75,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     // Once tied, a probe stays tied until the relocation starts over (its later iterations
     // start outside the geometry).
     var tied = probe_offsets[probe].w;
-    if f32(backfaces) > 0.25 * f32(m) && closest_back.w < 1e30 {
+    // Outside a room of one-sided walls a probe sees their backs and the void, no face at all:
+    // it is outside the scene's geometry, and a backface leads in.
+    let inside = f32(backfaces) > 0.25 * f32(m) || (fronts == 0u && backfaces > 0u);
+    if inside && closest_back.w < 1e30 {
         // A tie (relocation_exits_tie): the closest exit would be a lottery of the ray set, so
         // the probe leaves towards the volume's middle among the exits nearly as close as the
         // closest. Where they surround it (relocation_exits_surround; a column's axis),
@@ -101,7 +106,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
             closest_back = inmost;
         }
     }
-    if f32(backfaces) > 0.25 * f32(m) {
+    if inside {
         // Inside something: cross the closest backface, as far beyond it as the limit allows
         // (up to twice its distance). With none that may be crossed it stays, and turns off.
         for (var i = 0u; i < 100u && closest_back.w < 1e30; i++) {
