@@ -35,15 +35,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     // plane its rays miss the wall, so this iteration's are no guide, and the next ones see
     // the wall's face.
     let coord = grid_coord(probe, volume.counts);
-    let low = coord == vec3<u32>(0u) & volume.counts > vec3<u32>(1u);
-    let high = coord == volume.counts - 1u & volume.counts > vec3<u32>(1u);
-    let inset = OUTER_PROBE_INSET * volume.spacing * (select(vec3<f32>(0.0), vec3<f32>(1.0), low) - select(vec3<f32>(0.0), vec3<f32>(1.0), high));
+    let inset = OUTER_PROBE_INSET * volume.spacing * outer_layer_inwards(coord, volume.counts);
     if all(current == vec3<f32>(0.0)) && any(inset != vec3<f32>(0.0)) {
         probe_offsets[probe] = vec4<f32>(inset, probe_offsets[probe].w);
         return;
     }
     var backfaces = 0u;
-    var fronts = 0u;
     var closest_back = vec4<f32>(0.0, 0.0, 0.0, 1e30);
     var closest_front = vec4<f32>(0.0, 0.0, 0.0, 1e30);
     var farthest_front = vec4<f32>(0.0, 0.0, 0.0, -1.0);
@@ -61,7 +58,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
                 closest_back = vec4<f32>(d, t);
             }
         } else {
-            fronts += select(0u, 1u, distance < volume.max_ray_distance);
             // A miss counts as a front face at the ray's full length.
             if distance < closest_front.w {
                 closest_front = vec4<f32>(d, distance);
@@ -75,9 +71,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     // Once tied, a probe stays tied until the relocation starts over (its later iterations
     // start outside the geometry).
     var tied = probe_offsets[probe].w;
-    // Outside a room of one-sided walls a probe sees their backs and the void, no face at all:
-    // it is outside the scene's geometry, and a backface leads in.
-    let inside = f32(backfaces) > 0.25 * f32(m) || (fronts == 0u && backfaces > 0u);
+    // Outside a room of one-sided walls a probe sees their backs and the void, no face at all
+    // (its closest front face is a miss): it is outside the scene's geometry, and a backface
+    // leads in.
+    let sees_no_face = closest_front.w >= volume.max_ray_distance;
+    let inside = f32(backfaces) > 0.25 * f32(m) || (sees_no_face && backfaces > 0u);
     if inside && closest_back.w < 1e30 {
         // A tie (relocation_exits_tie): the closest exit would be a lottery of the ray set, so
         // the probe leaves towards the volume's middle among the exits nearly as close as the

@@ -38,6 +38,13 @@ fn relocation_exits_surround(d: vec3<f32>, closest: vec3<f32>) -> bool {
     return abs(dot(d, closest)) < 0.5;
 }
 
+// Per axis, which way is inwards from the grid's outer layers: +1 on the first layer, −1 on the
+// last, 0 between them and along a flat axis.
+fn outer_layer_inwards(coord: vec3<u32>, counts: vec3<u32>) -> vec3<f32> {
+    let spread = counts > vec3<u32>(1u);
+    return vec3<f32>((coord == vec3<u32>(0u)) & spread) - vec3<f32>((coord == counts - 1u) & spread);
+}
+
 // The direction from a probe (grid coordinates `coord`, moved by `offset`) towards the middle
 // of its grid, where DDGI's probe whose exits tie leaves: there it serves the cells that have
 // no other probe. (A probe at the very middle still gets a direction.)
