@@ -124,9 +124,10 @@ fn a_moving_view_leaves_no_ghost() {
 }
 
 /// While DDGI's probes converge from dark, a still view's history must follow them to the end
-/// however long it is. An f16 history of 1/blend = 100 frames stopped once a frame's share of
-/// the step fell under half its last bit: the image stalled short of the light (H100, the
-/// Cornell box at blend 0.01: FLIP 0.096 against 0.063 at the default 0.1).
+/// however long it is. An f16 history of 1/blend = 100 frames rounded to nearest stopped once a
+/// frame's share of the step fell under half its last bit: the image stalled short of the
+/// light (H100, the Cornell box at blend 0.01: FLIP 0.096 against 0.063 at the default 0.1).
+/// frame/taa rounds the f16 history stochastically instead.
 #[test]
 fn a_long_history_follows_the_probes_to_convergence() {
     let Some(ctx) = gpu() else { return };
@@ -134,7 +135,7 @@ fn a_long_history_follows_the_probes_to_convergence() {
     let image_after = |blend: f32| {
         let mut frame = FrameSettings::default();
         frame.taa.blend = blend;
-        let ddgi = TechniqueSpec::new("ddgi", Preset::Fast);
+        let ddgi = TechniqueSpec::new("ddgi", Preset::Balanced);
         let mut s = session_with(&ctx, &scene, (32, 32), ddgi, frame);
         for _ in 0..600 {
             s.render().unwrap();
@@ -144,7 +145,9 @@ fn a_long_history_follows_the_probes_to_convergence() {
     let (short, long) = (image_after(0.2), image_after(0.01));
     // Pixel by pixel, and the median: edge pixels depend on how each blend weighs the jitter
     // positions, the rest only on the light. After 600 frames the first 100 weigh
-    // 0.99^500 < 1 % in the long history, and the probes converge in under a hundred.
+    // 0.99^500 < 1 % in the long history, and the probes converge in under a hundred. The
+    // balanced preset's probes are quiet enough for nearest rounding to stall (lavapipe:
+    // 0.9922 with it, 0.9999 stochastic; the fast preset's noise kicks it along, 0.9942).
     let mut ratios: Vec<f32> = long
         .pixels
         .iter()
@@ -155,5 +158,5 @@ fn a_long_history_follows_the_probes_to_convergence() {
     ratios.sort_by(f32::total_cmp);
     let median = ratios[ratios.len() / 2];
     eprintln!("blend 0.01 against 0.2 after 600 frames: median pixel ratio {median:.4}");
-    assert!((median - 1.0).abs() < 0.01, "median ratio {median}");
+    assert!((median - 1.0).abs() < 0.004, "median ratio {median}");
 }

@@ -331,16 +331,19 @@ impl Frame {
 
     /// The last frame's final linear radiance (after TAA).
     pub fn image(&self, ctx: &GpuContext) -> Result<Image, RenderError> {
-        let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&read_texture(
+        let texels: Vec<[half::f16; 4]> = bytemuck::pod_collect_to_vec(&read_texture(
             ctx,
             self.resources.texture("resolved"),
-            16,
+            8,
         )?);
         let (width, height) = self.size();
         Ok(Image {
             width,
             height,
-            pixels: texels.iter().map(|p| [p[0], p[1], p[2]]).collect(),
+            pixels: texels
+                .iter()
+                .map(|p| [p[0].to_f32(), p[1].to_f32(), p[2].to_f32()])
+                .collect(),
         })
     }
 

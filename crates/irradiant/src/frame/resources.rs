@@ -38,12 +38,13 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64)] = &[
     ("gbuffer_motion", wgpu::TextureFormat::Rgba32Float, 16),
     // compose's linear radiance, before TAA
     ("radiance", wgpu::TextureFormat::Rgba32Float, 16),
-    // TAA's output: this frame's final linear image. f32, as the history it becomes must be: a
-    // still view's history is a running mean over up to 1/blend frames, whose steps f16's 11
-    // bits would round away (at blend 0.01 a still view stalled 3.4 % short of the light).
-    ("resolved", wgpu::TextureFormat::Rgba32Float, 16),
+    // TAA's output: this frame's final linear image. f16, so that the history it becomes is
+    // sampled bilinearly (f32 does not filter everywhere) at half the bytes; frame/taa rounds
+    // it stochastically, since a still view's history is a running mean over up to 1/blend
+    // frames whose steps f16's nearest rounding drops (at blend 0.01 it stalled 3.4 % short).
+    ("resolved", wgpu::TextureFormat::Rgba16Float, 8),
     // last frame's `resolved`
-    ("previous_radiance", wgpu::TextureFormat::Rgba32Float, 16),
+    ("previous_radiance", wgpu::TextureFormat::Rgba16Float, 8),
     // tonemapped sRGB, what a window presents
     ("output", wgpu::TextureFormat::Rgba8Unorm, 4),
 ];
@@ -81,6 +82,8 @@ pub struct FrameResources {
     /// vec4: radiance of rays that leave the scene
     pub sky: wgpu::Buffer,
     pub(crate) textures: Vec<FrameTexture>,
+    /// Bilinear, clamped to the edge: TAA's history taps.
+    linear_clamp: wgpu::Sampler,
 }
 
 impl FrameResources {
@@ -153,6 +156,12 @@ impl FrameResources {
             params: buffer("frame/params", size_of::<GpuFrameParams>() as u64, uniform),
             sky: buffer("frame/sky", 16, uniform),
             textures,
+            linear_clamp: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("frame/linear_clamp"),
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
         };
         ctx.queue.write_buffer(
             &resources.sky,
@@ -166,7 +175,8 @@ impl FrameResources {
     pub fn table(&self) -> ResourceTable<'_> {
         let mut table = ResourceTable::new()
             .buffer("frame", &self.params)
-            .buffer("sky", &self.sky);
+            .buffer("sky", &self.sky)
+            .sampler("linear_clamp", &self.linear_clamp);
         for t in &self.textures {
             table = table.texture(t.name, &t.view);
             for (name, view) in &t.levels {

@@ -9,10 +9,12 @@
 // running mean, so a still view converges to the pixel's box-filtered value, as the path
 // tracer's is.
 #import gbuffer
+#import random
 
 @group(2) @binding(0) var radiance: texture_2d<f32>;
 @group(2) @binding(1) var previous_radiance: texture_2d<f32>;
-@group(2) @binding(2) var resolved: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(2) var linear_clamp: sampler;
+@group(2) @binding(3) var resolved: texture_storage_2d<rgba16float, write>;
 
 fn rgb_to_ycocg(c: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
@@ -30,36 +32,65 @@ fn catmull_rom_weights(f: f32) -> vec4<f32> {
 }
 
 // The history at a point (in pixels, centres at .5) by Catmull-Rom over the 4×4 texels about
-// it less the four corners, whose weights are the smallest (Jimenez 2016 takes the same twelve
-// in five bilinear taps; the history is f32, which not every adapter filters, so it is loaded
-// texel by texel). At a pixel centre it returns that texel.
+// it less the four corners, whose weights are the smallest, in five bilinear taps (Jimenez
+// 2016). At a pixel centre it returns that texel.
 fn sample_history(position: vec2<f32>) -> vec3<f32> {
     let last = vec2<i32>(i32(frame.width) - 1, i32(frame.height) - 1);
     // A still view's history is the pixel itself (within a thousandth of a pixel): one load
-    // instead of twelve.
+    // instead of five taps.
     let nearest = round(position - 0.5);
     if all(abs(position - 0.5 - nearest) < vec2<f32>(1e-3)) {
         return textureLoad(previous_radiance, clamp(vec2<i32>(nearest), vec2<i32>(0), last), 0).rgb;
     }
-    let corner = floor(position - 0.5);
-    let f = position - 0.5 - corner;
+    let size = frame_size();
+    let centre = floor(position - 0.5) + 0.5;
+    let f = position - centre;
     let wx = catmull_rom_weights(f.x);
     let wy = catmull_rom_weights(f.y);
-    var sum = vec3<f32>(0.0);
-    var weight = 0.0;
-    for (var j = 0; j < 4; j++) {
-        for (var i = 0; i < 4; i++) {
-            if (i == 0 || i == 3) && (j == 0 || j == 3) {
-                continue;
-            }
-            let w = wx[i] * wy[j];
-            let texel = clamp(vec2<i32>(corner) + vec2<i32>(i - 1, j - 1), vec2<i32>(0), last);
-            sum += textureLoad(previous_radiance, texel, 0).rgb * w;
-            weight += w;
-        }
-    }
+    let w0 = vec2<f32>(wx.x, wy.x);
+    let w12 = vec2<f32>(wx.y + wx.z, wy.y + wy.z);
+    let w3 = vec2<f32>(wx.w, wy.w);
+    // The middle two texels of each axis in one bilinear tap, placed by their weights.
+    let t0 = (centre - 1.0) / size;
+    let t12 = (centre + vec2<f32>(wx.z, wy.z) / w12) / size;
+    let t3 = (centre + 2.0) / size;
+    var sum = textureSampleLevel(previous_radiance, linear_clamp, vec2<f32>(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y);
+    sum += textureSampleLevel(previous_radiance, linear_clamp, vec2<f32>(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y);
+    sum += textureSampleLevel(previous_radiance, linear_clamp, t12, 0.0).rgb * (w12.x * w12.y);
+    sum += textureSampleLevel(previous_radiance, linear_clamp, vec2<f32>(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y);
+    sum += textureSampleLevel(previous_radiance, linear_clamp, vec2<f32>(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
+    let weight = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
     // Catmull-Rom overshoots at edges; negative radiance would poison the history.
     return max(sum / weight, vec3<f32>(0.0));
+}
+
+// The largest finite f16.
+const F16_MAX: f32 = 65504.0;
+
+// `v` (≥ 0) rounded to one of the two f16 values about it, the upper with probability equal
+// to v's share of the way to it, so that the stored history is right on average: nearest
+// rounding drops every step of a long running mean under half of f16's last bit, and the
+// history stalls short of the light. The result is exactly an f16, so the texture's own
+// rounding (nearest or towards zero, by adapter) leaves it alone. `u` is uniform in [0, 1).
+fn round_to_f16_stochastically(v: f32, u: f32) -> f32 {
+    let x = clamp(v, 0.0, F16_MAX);
+    // f16's spacing where x lies: 2^(exponent − 10), and 2^−24 among its subnormals.
+    let exponent = max(i32((bitcast<u32>(x) >> 23u) & 0xffu) - 127, -14);
+    let spacing = bitcast<f32>(u32(exponent - 10 + 127) << 23u);
+    return min(floor(x / spacing + u) * spacing, F16_MAX);
+}
+
+fn store_resolved(pixel: vec2<i32>, c: vec3<f32>) {
+    // One hash, ten bits a channel: a stream apart from the direct light's samples of the same
+    // pixel and frame. Ten bits bias the rounding by at most 2^−11 of f16's last bit.
+    let bits = pcg_hash((u32(pixel.y) * frame.width + u32(pixel.x)) ^ pcg_hash(frame.frame_index ^ 0x7f4a7c15u));
+    let u = (vec3<f32>(vec3<u32>(bits, bits >> 10u, bits >> 20u) & vec3<u32>(1023u)) + 0.5) / 1024.0;
+    let rounded = vec3<f32>(
+        round_to_f16_stochastically(c.r, u.x),
+        round_to_f16_stochastically(c.g, u.y),
+        round_to_f16_stochastically(c.b, u.z),
+    );
+    textureStore(resolved, pixel, vec4<f32>(rounded, 1.0));
 }
 
 // Moves `history` towards the box centre until it lies inside the box.
@@ -96,7 +127,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = vec2<i32>(id.xy);
     let current = textureLoad(radiance, pixel, 0).rgb;
     if frame.taa_blend >= 1.0 || frame.history_frames == 0u {
-        textureStore(resolved, pixel, vec4<f32>(current, 1.0));
+        store_resolved(pixel, current);
         return;
     }
     let previous = vec2<f32>(id.xy) + 0.5 + gbuffer_motion_at(id.xy);
@@ -112,5 +143,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         // Off screen last frame: nothing to blend with.
         alpha = 1.0;
     }
-    textureStore(resolved, pixel, vec4<f32>(mix(history, current, alpha), 1.0));
+    store_resolved(pixel, mix(history, current, alpha));
 }
