@@ -161,10 +161,11 @@ fn a_long_history_follows_the_probes_to_convergence() {
     assert!((median - 1.0).abs() < 0.004, "median ratio {median}");
 }
 
-/// A NaN that reaches TAA's history stays a NaN in the image, where `irradiant soak` looks for
-/// it: the stochastic f16 rounding clamps to f16's range, and a clamp would turn it into black.
+/// A NaN or an infinity that reaches TAA's history stays one in the image, where `irradiant
+/// soak` looks for it: the stochastic f16 rounding clamps finite light to f16's range, and a
+/// clamp would turn a NaN into black and an infinity into 65 504.
 #[test]
-fn a_nan_in_the_history_reaches_the_image() {
+fn a_nan_or_an_infinity_in_the_history_reaches_the_image() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let mut s = session_with(
@@ -177,32 +178,34 @@ fn a_nan_in_the_history_reaches_the_image() {
     for _ in 0..4 {
         s.render().unwrap();
     }
-    // Pixel (5, 7) of the history: rgba16float, NaN in every channel.
-    let nan = half::f16::NAN.to_bits().to_le_bytes();
-    let texel: Vec<u8> = (0..4).flat_map(|_| nan).collect();
-    ctx.queue.write_texture(
-        irradiant_gpu::wgpu::TexelCopyTextureInfo {
-            texture: s.frame().resources.texture("previous_radiance"),
-            mip_level: 0,
-            origin: irradiant_gpu::wgpu::Origin3d { x: 5, y: 7, z: 0 },
-            aspect: irradiant_gpu::wgpu::TextureAspect::All,
-        },
-        &texel,
-        irradiant_gpu::wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: None,
-            rows_per_image: None,
-        },
-        irradiant_gpu::wgpu::Extent3d {
-            width: 1,
-            height: 1,
-            depth_or_array_layers: 1,
-        },
-    );
+    // History texels (rgba16float) set to a value in every channel: NaN at (5, 7), +∞ at (9, 2).
+    let history = s.frame().resources.texture("previous_radiance");
+    for (value, (x, y)) in [(half::f16::NAN, (5, 7)), (half::f16::INFINITY, (9, 2))] {
+        let texel: Vec<u8> = (0..4).flat_map(|_| value.to_bits().to_le_bytes()).collect();
+        ctx.queue.write_texture(
+            irradiant_gpu::wgpu::TexelCopyTextureInfo {
+                texture: history,
+                mip_level: 0,
+                origin: irradiant_gpu::wgpu::Origin3d { x, y, z: 0 },
+                aspect: irradiant_gpu::wgpu::TextureAspect::All,
+            },
+            &texel,
+            irradiant_gpu::wgpu::TexelCopyBufferLayout::default(),
+            irradiant_gpu::wgpu::Extent3d {
+                width: 1,
+                height: 1,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
     s.render().unwrap();
     let image = s.image().unwrap();
     let not_finite: Vec<usize> = (0..image.pixels.len())
         .filter(|&i| image.pixels[i].iter().any(|v| !v.is_finite()))
         .collect();
-    assert_eq!(not_finite, vec![7 * 16 + 5], "pixels that are not finite");
+    assert_eq!(
+        not_finite,
+        vec![2 * 16 + 9, 7 * 16 + 5],
+        "pixels that are not finite"
+    );
 }

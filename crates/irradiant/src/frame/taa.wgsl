@@ -73,9 +73,9 @@ const F16_MAX: f32 = 65504.0;
 // history stalls short of the light. The result is exactly an f16, so the texture's own
 // rounding (nearest or towards zero, by adapter) leaves it alone. `u` is uniform in [0, 1).
 fn round_to_f16_stochastically(v: f32, u: f32) -> f32 {
-    // A NaN stays one, for `irradiant soak` and the tests to find (a bit test: compilers may
-    // fold v != v away); infinity saturates below.
-    if (bitcast<u32>(v) & 0x7fffffffu) > 0x7f800000u {
+    // A NaN or an infinity stays one, for `irradiant soak` and the tests to find (a bit test:
+    // compilers may fold v != v away); finite light past f16's range saturates below.
+    if (bitcast<u32>(v) & 0x7fffffffu) >= 0x7f800000u {
         return v;
     }
     let x = clamp(v, 0.0, F16_MAX);
