@@ -23,16 +23,16 @@ bench() { # binary, tag, extra flags...
         echo "== $tag $scene $*" | tee -a "$log"
         $b bench --scene scenes/$scene/$scene.toml --size 1920x1080 --iterations 30 \
             --warmup-ms 500 --ddgi-probes $probes --ddgi-rays 256 --ddgi-probe-states on "$@" \
-            2>&1 | grep -E "^scene +technique|^(sibenik|sponza) +ddgi +[0-9]" | tee -a "$log"
+            2>&1 | { grep -E "^scene +technique|^(sibenik|sponza) +ddgi +[0-9]" || true; } | tee -a "$log"
     done
 }
 if [ "${MODE:-speed}" = speed ]; then
-    [ -x ../baseline ] && IRRADIANT_BENCH_MOVING=1 bench ../baseline baseline-moving
+    if [ -x ../baseline ]; then IRRADIANT_BENCH_MOVING=1 bench ../baseline baseline-moving; fi
     for b in ../before ../irradiant ../irradiant ../before; do
         bench $b "$(basename $b)-moving" --moving-camera
         bench $b "$(basename $b)-still"
     done
-    [ -x ../baseline ] && IRRADIANT_BENCH_MOVING=1 bench ../baseline baseline-moving
+    if [ -x ../baseline ]; then IRRADIANT_BENCH_MOVING=1 bench ../baseline baseline-moving; fi
 else
     res=$(mktemp -d)
     for b in ../before ../irradiant; do
@@ -41,7 +41,7 @@ else
             echo "== $(basename $b) cornell blend ${bf%%:*}, ${bf##*:} frames" | tee -a "$log"
             $b compare --scene cornell --size 256x192 --reference-spp 4096 --frames "${bf##*:}" \
                 --settings "$res/blend.toml" --cache "$res/cache" --techniques ddgi \
-                --out "$res/cornell" 2>&1 | grep -E "FLIP" | tee -a "$log"
+                --out "$res/cornell" 2>&1 | { grep -E "FLIP" || true; } | tee -a "$log"
         done
     done
     rm -rf "$res"
