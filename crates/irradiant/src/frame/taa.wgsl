@@ -67,22 +67,27 @@ fn sample_history(position: vec2<f32>) -> vec3<f32> {
 // The largest finite f16.
 const F16_MAX: f32 = 65504.0;
 
-// `v` (≥ 0) rounded to one of the two f16 values about it, the upper with probability equal
-// to v's share of the way to it, so that the stored history is right on average: nearest
+// `v` rounded at random to one of the two f16 values about it so that the mean is v (the one
+// farther from zero with probability equal to |v|'s share of the way to it from the nearer
+// one), so that the stored history is right on average: nearest
 // rounding drops every step of a long running mean under half of f16's last bit, and the
 // history stalls short of the light. The result is exactly an f16, so the texture's own
 // rounding (nearest or towards zero, by adapter) leaves it alone. `u` is uniform in [0, 1).
 fn round_to_f16_stochastically(v: f32, u: f32) -> f32 {
     // A NaN or an infinity stays one, for `irradiant soak` and the tests to find (a bit test:
     // compilers may fold v != v away); finite light past f16's range saturates below.
-    if (bitcast<u32>(v) & 0x7fffffffu) >= 0x7f800000u {
+    let bits = bitcast<u32>(v);
+    if (bits & 0x7fffffffu) >= 0x7f800000u {
         return v;
     }
-    let x = clamp(v, 0.0, F16_MAX);
-    // f16's spacing where x lies: 2^(exponent − 10), and 2^−24 among its subnormals.
-    let exponent = max(i32((bitcast<u32>(x) >> 23u) & 0xffu) - 127, -14);
-    let spacing = bitcast<f32>(u32(exponent - 10 + 127) << 23u);
-    return min(floor(x / spacing + u) * spacing, F16_MAX);
+    let x = min(abs(v), F16_MAX);
+    // f16's spacing where x lies, 2^(exponent − 10) (2^−24 among its subnormals), and its
+    // inverse: powers of two, so that scaling by them is exact (a division need not be).
+    let exponent = max(i32((bitcast<u32>(x) >> 23u) & 0xffu) - 127, -14) - 10;
+    let spacing = bitcast<f32>(u32(exponent + 127) << 23u);
+    let inverse = bitcast<f32>(u32(127 - exponent) << 23u);
+    // Below 65504 = 2047 · 32 the sum stays under 2048, so the floor never passes f16's largest.
+    return select(1.0, -1.0, v < 0.0) * floor(x * inverse + u) * spacing;
 }
 
 fn store_resolved(pixel: vec2<i32>, c: vec3<f32>) {
