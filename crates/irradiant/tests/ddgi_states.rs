@@ -248,8 +248,6 @@ fn outer_probes_stay_awake_for_the_walls_beyond_them() {
     );
 }
 
-/// Each probe's centre and whether it updates, past the relocation frames and the
-/// classification on the last of them, with the grid they were placed on.
 /// A 16×16 DDGI session of `scene` past its relocation frames.
 fn relocated(
     ctx: &std::sync::Arc<irradiant::GpuContext>,
@@ -263,6 +261,8 @@ fn relocated(
     session
 }
 
+/// Each probe's centre and whether it updates, past the relocation frames and the
+/// classification on the last of them, with the grid they were placed on.
 fn relocated_centres(
     ctx: &std::sync::Arc<irradiant::GpuContext>,
     scene: &Scene,
