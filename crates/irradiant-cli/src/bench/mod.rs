@@ -151,6 +151,13 @@ impl Warmup {
     }
 }
 
+/// A warm-up, then `iterations` timed runs.
+#[derive(Clone, Copy, Debug)]
+struct Timing {
+    warmup: Warmup,
+    iterations: u32,
+}
+
 #[derive(Serialize)]
 struct PassRecord {
     scene: String,
@@ -311,8 +318,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 &scene,
                 &gpu_scene,
                 size,
-                warmup,
-                iterations,
+                Timing { warmup, iterations },
                 order,
                 &mut record,
             )?;
@@ -466,8 +472,7 @@ fn time_rays(
     scene: &irradiant_scene::Scene,
     gpu_scene: &GpuScene,
     size: (u32, u32),
-    warmup: Warmup,
-    iterations: u32,
+    timing: Timing,
     order: &'static str,
     record: &mut BenchRecord,
 ) -> Result<(), CliError> {
@@ -481,7 +486,7 @@ fn time_rays(
         ("raycast/trace (diffuse, any hit)", &diffuse, true),
     ] {
         let batch = caster.upload(ctx, gpu_scene, rays, any_hit)?;
-        let times = time_pass(ctx, warmup, iterations, |encoder, profiler| {
+        let times = time_pass(ctx, timing, |encoder, profiler| {
             caster.record(encoder, &batch, profiler);
             Ok(())
         })?;
@@ -499,7 +504,7 @@ fn time_rays(
         samples_per_dispatch: 1,
         ..PathTraceSettings::balanced()
     };
-    let times = time_pass(ctx, warmup, iterations, |encoder, profiler| {
+    let times = time_pass(ctx, timing, |encoder, profiler| {
         tracer.record(
             ctx,
             encoder,
@@ -630,8 +635,7 @@ fn variant_name(s: &DdgiSettings) -> String {
 /// durations in milliseconds (GPU timestamps, or wall clock around a wait without them).
 fn time_pass(
     ctx: &GpuContext,
-    warmup: Warmup,
-    iterations: u32,
+    timing: Timing,
     mut record_pass: impl FnMut(
         &mut wgpu::CommandEncoder,
         Option<&mut Profiler>,
@@ -641,8 +645,8 @@ fn time_pass(
     let mut times = Vec::new();
     let warm_start = Instant::now();
     let mut warm_runs = 0;
-    while times.len() < iterations as usize {
-        let warming = !warmup.done(warm_runs, warm_start);
+    while times.len() < timing.iterations as usize {
+        let warming = !timing.warmup.done(warm_runs, warm_start);
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
