@@ -211,18 +211,7 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
             )));
         }
     }
-    let mut warnings = run.warnings.clone();
-    for (_, spec) in &specs {
-        let kind = spec.kind()?;
-        warnings.extend(kind.check(spec)?);
-        warnings.extend(kind.scene_warnings(spec, &scene));
-    }
-    // Techniques that share a part (ssil and ssil+ddgi) share its warnings: each once.
-    let mut seen = std::collections::HashSet::new();
-    warnings.retain(|w| seen.insert(w.clone()));
-    for w in &warnings {
-        eprintln!("warning: {w}");
-    }
+    run.check_and_warn(specs.iter().map(|(_, spec)| spec), &scene)?;
     // Everything goes into a sibling folder first, renamed into place only when complete.
     let partial = args.out.with_extension("partial");
     let _ = std::fs::remove_dir_all(&partial);

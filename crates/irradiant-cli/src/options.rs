@@ -307,6 +307,28 @@ impl RunSettings {
         })
     }
 
+    /// Checks each technique's settings before any GPU work, so that a bad value is an error
+    /// before anything runs, and prints every warning once: the settings files' (unknown keys),
+    /// then each technique's and what it finds in the scene. Techniques that share a part
+    /// (`ssil` and `ssil+ddgi`) share its warnings.
+    pub fn check_and_warn<'a>(
+        &self,
+        specs: impl IntoIterator<Item = &'a TechniqueSpec>,
+        scene: &Scene,
+    ) -> Result<(), CliError> {
+        let mut warnings = self.warnings.clone();
+        for spec in specs {
+            let kind = spec.kind()?;
+            warnings.extend(kind.check(spec)?);
+            warnings.extend(kind.scene_warnings(spec, scene));
+        }
+        let mut seen = std::collections::HashSet::new();
+        for w in warnings.iter().filter(|w| seen.insert(*w)) {
+            eprintln!("warning: {w}");
+        }
+        Ok(())
+    }
+
     /// The technique the settings file or the manifest names, if any.
     pub fn named_technique(&self) -> Option<String> {
         self.file.technique.as_ref().map(|t| t.name.clone())

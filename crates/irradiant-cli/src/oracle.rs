@@ -69,9 +69,10 @@ pub struct OracleArgs {
 }
 
 pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
-    if args.probe_samples == 0 || args.frames == 0 {
+    // --average 0 would read one frame's atlases while the header said none were averaged.
+    if args.probe_samples == 0 || args.frames == 0 || args.average == 0 {
         return Err(CliError::Usage(
-            "--probe-samples and --frames must be positive".into(),
+            "--probe-samples, --frames and --average must be positive".into(),
         ));
     }
     crate::options::check_folder(&args.out)?;
@@ -94,6 +95,11 @@ pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             other.label
         )));
     }
+    let specs = techniques
+        .iter()
+        .map(|choice| run.choice(choice, &args.settings, 0))
+        .collect::<Result<Vec<_>, _>>()?;
+    run.check_and_warn(&specs, &scene)?;
     let ctx = Arc::new(GpuContext::new(adapter)?);
     let truth = |samples: u32| PathTraceSettings {
         samples_per_pixel: samples,
@@ -129,8 +135,7 @@ pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let mut results = Vec::new();
     // The G-buffer is the same for every variant: its truth is gathered once.
     let mut query_truth: Option<(Vec<[f32; 3]>, QueryOracle)> = None;
-    for choice in &techniques {
-        let spec = run.choice(choice, &args.settings, 0)?;
+    for (choice, spec) in techniques.iter().zip(specs) {
         let mut session = Session::new(
             ctx.clone(),
             scene.clone(),

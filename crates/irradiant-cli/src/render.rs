@@ -132,17 +132,7 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         .or_else(|| run_settings.named_technique())
         .unwrap_or_else(|| "ddgi".into());
     let spec = run_settings.technique(&technique, &args.settings, args.seed)?;
-    if technique != PATH {
-        // Settings errors come before any GPU work.
-        let kind = spec.kind()?;
-        run_settings.warnings.extend(kind.check(&spec)?);
-        run_settings
-            .warnings
-            .extend(kind.scene_warnings(&spec, &scene));
-    }
-    for w in &run_settings.warnings {
-        eprintln!("warning: {w}");
-    }
+    run_settings.check_and_warn((technique != PATH).then_some(&spec), &scene)?;
     let ctx = Arc::new(GpuContext::new(adapter)?);
     let (width, height) = args.size;
     let (image, what) = if technique == PATH {

@@ -992,3 +992,66 @@ fn oracle_measures_ddgi_probes_and_query_and_draws_the_worst() {
     let (ok, _, stderr) = irradiant(&["oracle", "--techniques", "ssil", "--out", out_text]);
     assert!(!ok && stderr.contains("'ssil' is not DDGI"), "{stderr}");
 }
+
+/// Needs the test adapter. `oracle` and `soak` read the same settings as `render` and
+/// `compare`: a misspelt key is a warning, not a silent default, and a bad value in any variant
+/// is refused before the first one runs.
+#[test]
+fn oracle_and_soak_warn_of_unknown_settings_and_refuse_bad_ones_first() {
+    let out = scratch("oracle-settings");
+    let out_text = out.to_str().unwrap();
+    let tiny_oracle = |techniques: &str| {
+        irradiant(&[
+            "oracle",
+            "--size",
+            "8x8",
+            "--frames",
+            "1",
+            "--average",
+            "1",
+            "--probe-samples",
+            "1",
+            "--query-samples",
+            "1",
+            "--probes",
+            "2x2x2",
+            "--techniques",
+            techniques,
+            "--out",
+            out_text,
+        ])
+    };
+    let unknown = "unknown setting technique.update.bogus is ignored";
+    let (ok, stdout, stderr) = tiny_oracle("ddgi{update.bogus=3}");
+    assert!(ok, "{stdout}\n{stderr}");
+    assert!(stderr.contains(unknown), "{stderr}");
+    let (ok, stdout, stderr) = tiny_oracle("ddgi,ddgi{volume.rays_per_probe=0}");
+    assert!(!ok, "{stdout}");
+    assert!(
+        stderr.contains("technique.volume.rays_per_probe = 0"),
+        "{stderr}"
+    );
+    assert!(
+        !stdout.contains("oracle:"),
+        "the first variant ran before the second's settings were checked:\n{stdout}"
+    );
+    fails_with(
+        &["oracle", "--average", "0", "--out", out_text],
+        "--average must be positive",
+    );
+    let (ok, stdout, stderr) = irradiant(&[
+        "soak",
+        "--scene",
+        "cornell",
+        "--size",
+        "8x8",
+        "--frames",
+        "1",
+        "--every",
+        "1",
+        "--techniques",
+        "ddgi{update.bogus=3}",
+    ]);
+    assert!(ok, "{stdout}\n{stderr}");
+    assert!(stderr.contains(unknown), "{stderr}");
+}
