@@ -38,7 +38,7 @@ pub struct CompareArgs {
     #[arg(long, default_value = "320x240", value_parser = parse_size)]
     pub size: (u32, u32),
     /// Samples per pixel of the path-traced reference.
-    #[arg(long, default_value = "2048")]
+    #[arg(long, default_value = "2048", value_parser = crate::options::parse_samples)]
     pub reference_spp: u32,
     /// Also show every other technique's image minus this one's (a label from --techniques):
     /// what a technique or a setting adds and removes, e.g. visibility with
@@ -76,7 +76,7 @@ pub struct CompareArgs {
     #[arg(long, default_value = "4")]
     pub every: u32,
     /// Samples per pixel of the per-frame references over time.
-    #[arg(long, default_value = "256")]
+    #[arg(long, default_value = "256", value_parser = crate::options::parse_samples)]
     pub sequence_spp: u32,
     /// After a light switches, the lag is the frames until FLIP against that frame's reference
     /// is back under this (0.05: differences hard to spot side by side).
@@ -134,23 +134,10 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
             "--reference-bounces {bounces} is out of range: use 0…1023, or leave it out for every bounce"
         )));
     }
-    if args.reference_spp == 0 || args.frames == 0 {
-        return Err(CliError::Usage(
-            "--reference-spp and --frames must be at least 1".into(),
-        ));
+    if args.frames == 0 {
+        return Err(CliError::Usage("--frames must be at least 1".into()));
     }
-    let parent = args
-        .out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !parent.is_dir() {
-        return Err(CliError::Io {
-            path: parent.to_owned(),
-            message: "the folder that should hold the report does not exist; create it first"
-                .into(),
-        });
-    }
+    crate::options::check_report_folder(&args.out)?;
     let loaded = irradiant_scene::load(&args.scene)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");

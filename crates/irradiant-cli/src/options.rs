@@ -196,6 +196,41 @@ pub fn check_output(path: &Path, extensions: &[&str]) -> Result<(), CliError> {
     check_folder(path)
 }
 
+/// The most path-traced samples a pixel, a probe texel or a G-buffer point may take: a million
+/// puts the noise near 0.1 %, and more would run for hours on a software adapter.
+pub const MAX_SAMPLES: u32 = 1 << 20;
+
+/// A sample count for a flag: 1 to [`MAX_SAMPLES`].
+pub fn parse_samples(text: &str) -> Result<u32, String> {
+    match text.parse::<u32>() {
+        Ok(n) if (1..=MAX_SAMPLES).contains(&n) => Ok(n),
+        _ => Err(format!("use a whole number from 1 to {MAX_SAMPLES}")),
+    }
+}
+
+/// [`parse_samples`], where 0 leaves the measurement out.
+pub fn parse_samples_or_none(text: &str) -> Result<u32, String> {
+    match text {
+        "0" => Ok(0),
+        _ => parse_samples(text).map_err(|e| format!("{e}, or 0 to leave it out")),
+    }
+}
+
+/// Checks, before any work, that a report can go to `path`: its folder exists, and `path` is a
+/// folder (replaced by the new report) or nothing yet, not a file.
+pub fn check_report_folder(path: &Path) -> Result<(), CliError> {
+    check_folder(path)?;
+    if path.exists() && !path.is_dir() {
+        return Err(CliError::Io {
+            path: path.to_owned(),
+            message:
+                "is a file, and a report is a folder; name a new folder or an earlier report's"
+                    .into(),
+        });
+    }
+    Ok(())
+}
+
 /// Checks that the folder a file or folder goes into exists.
 pub fn check_folder(path: &Path) -> Result<(), CliError> {
     let dir = path

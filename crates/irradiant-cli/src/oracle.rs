@@ -46,10 +46,10 @@ pub struct OracleArgs {
     pub average: u32,
     /// Path-traced samples a probe texel: the truth's noise falls as 1/√samples (the oracle
     /// prints its own precision).
-    #[arg(long, default_value = "4096")]
+    #[arg(long, default_value = "4096", value_parser = crate::options::parse_samples)]
     pub probe_samples: u32,
     /// Path-traced samples a G-buffer point (0: no query oracle).
-    #[arg(long, default_value = "1024")]
+    #[arg(long, default_value = "1024", value_parser = crate::options::parse_samples_or_none)]
     pub query_samples: u32,
     /// Probes drawn in worst-probes.png and circled in probe-view.png.
     #[arg(long, default_value = "8")]
@@ -70,12 +70,19 @@ pub struct OracleArgs {
 
 pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     // --average 0 would read one frame's atlases while the header said none were averaged.
-    if args.probe_samples == 0 || args.frames == 0 || args.average == 0 {
+    if args.frames == 0 || args.average == 0 {
         return Err(CliError::Usage(
-            "--probe-samples, --frames and --average must be positive".into(),
+            "--frames and --average must be positive".into(),
         ));
     }
-    crate::options::check_folder(&args.out)?;
+    // No bounce leaves the truth the emitters seen directly, which DDGI's probes never hold
+    // alone: every figure would be the probes' direct light against nothing.
+    if args.truth_bounces == Some(0) {
+        return Err(CliError::Usage(
+            "--truth-bounces 0 leaves the truth without the direct light DDGI's probes hold: use 1 or more, or leave it out for every bounce".into(),
+        ));
+    }
+    crate::options::check_report_folder(&args.out)?;
     std::fs::create_dir_all(&args.out).map_err(|e| CliError::Io {
         path: args.out.clone(),
         message: e.to_string(),

@@ -36,7 +36,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(technique_values()))]
     pub technique: Option<String>,
     /// Samples per pixel (path tracer).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::options::parse_samples)]
     pub spp: Option<u32>,
     #[arg(long)]
     pub max_bounces: Option<u32>,
@@ -262,11 +262,6 @@ fn path_settings(args: &RenderArgs) -> Result<PathTraceSettings, CliError> {
         Preset::Quality => PathTraceSettings::quality(),
     };
     if let Some(spp) = args.spp {
-        if spp == 0 || spp > 1 << 20 {
-            return Err(CliError::Usage(format!(
-                "--spp {spp} is out of range: use 1…1048576"
-            )));
-        }
         settings.samples_per_pixel = spp;
     }
     if let Some(b) = args.max_bounces {

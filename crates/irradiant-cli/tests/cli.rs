@@ -82,7 +82,7 @@ fn bad_outputs_are_refused_before_rendering() {
 
 #[test]
 fn absurd_settings_are_refused() {
-    fails_with(&["render", "--spp", "0"], "--spp 0");
+    fails_with(&["render", "--spp", "0"], "'0' for '--spp");
     fails_with(&["render", "--exposure=-1"], "--exposure");
     fails_with(&["render", "--max-bounces", "99999"], "--max-bounces");
 }
@@ -349,6 +349,24 @@ fn compare_refuses_bad_input_and_leaves_nothing_half_written() {
         &["compare", "--out", "/nonexistent-dir/report"],
         "does not exist",
     );
+    fails_with(
+        &[
+            "compare",
+            "--reference-spp",
+            "4000000000",
+            "--out",
+            &out_text,
+        ],
+        "from 1 to 1048576",
+    );
+    // A file where the report would go is refused before the reference is rendered, and kept.
+    let file = dir.join("notes.txt");
+    std::fs::write(&file, "keep me").unwrap();
+    fails_with(
+        &["compare", "--out", file.to_str().unwrap()],
+        "is a file, and a report is a folder",
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep me");
     assert!(
         !out.exists() && !out.with_extension("partial").exists(),
         "a refused comparison must leave no folder behind"
@@ -995,9 +1013,10 @@ fn oracle_measures_ddgi_probes_and_query_and_draws_the_worst() {
 
 /// Needs the test adapter. `oracle` and `soak` read the same settings as `render` and
 /// `compare`: a misspelt key is a warning, not a silent default, and a bad value in any variant
-/// is refused before the first one runs.
+/// is refused before the first one runs; so are absurd sample counts, a truth without
+/// bounces and a file where the report's folder would go.
 #[test]
-fn oracle_and_soak_warn_of_unknown_settings_and_refuse_bad_ones_first() {
+fn oracle_and_soak_warn_of_unknown_settings_and_refuse_bad_input_first() {
     let out = scratch("oracle-settings");
     let out_text = out.to_str().unwrap();
     let tiny_oracle = |techniques: &str| {
@@ -1038,6 +1057,19 @@ fn oracle_and_soak_warn_of_unknown_settings_and_refuse_bad_ones_first() {
     fails_with(
         &["oracle", "--average", "0", "--out", out_text],
         "--average must be positive",
+    );
+    fails_with(
+        &["oracle", "--probe-samples", "4000000000", "--out", out_text],
+        "from 1 to 1048576",
+    );
+    fails_with(
+        &["oracle", "--truth-bounces", "0", "--out", out_text],
+        "--truth-bounces 0",
+    );
+    let file = out.join("oracle.json");
+    fails_with(
+        &["oracle", "--out", file.to_str().unwrap()],
+        "is a file, and a report is a folder",
     );
     let (ok, stdout, stderr) = irradiant(&[
         "soak",
