@@ -55,8 +55,8 @@ pub struct OracleArgs {
     #[arg(long, default_value = "8")]
     pub worst: usize,
     /// A diagnostic: the truth counts only light that reflected at most this many times on
-    /// its way to the probe or the surface point (1: the emitters' light off one surface).
-    /// Default: every bounce.
+    /// its way to the probe or the surface point (1: the emitters' light off one surface; at
+    /// least 1, as DDGI's probes hold that light). Default: every bounce.
     #[arg(long)]
     pub truth_bounces: Option<u32>,
     /// A diagnostic: how the truth finds emitted light — both (multiple importance, the
@@ -75,18 +75,14 @@ pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             "--frames and --average must be positive".into(),
         ));
     }
-    // No bounce leaves the truth the emitters seen directly, which DDGI's probes never hold
-    // alone: every figure would be the probes' direct light against nothing.
+    // With no bounce the truth is the emitters seen directly, which DDGI's probes never hold
+    // alone: every figure would compare the probes' light with nearly nothing.
     if args.truth_bounces == Some(0) {
         return Err(CliError::Usage(
             "--truth-bounces 0 leaves the truth without the direct light DDGI's probes hold: use 1 or more, or leave it out for every bounce".into(),
         ));
     }
     crate::options::check_report_folder(&args.out)?;
-    std::fs::create_dir_all(&args.out).map_err(|e| CliError::Io {
-        path: args.out.clone(),
-        message: e.to_string(),
-    })?;
     let loaded = irradiant_scene::load(&args.scene)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
@@ -107,6 +103,11 @@ pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         .map(|choice| run.choice(choice, &args.settings, 0))
         .collect::<Result<Vec<_>, _>>()?;
     run.check_and_warn(&specs, &scene)?;
+    // Made only once the input is known good, so that a refused run leaves no folder.
+    std::fs::create_dir_all(&args.out).map_err(|e| CliError::Io {
+        path: args.out.clone(),
+        message: e.to_string(),
+    })?;
     let ctx = Arc::new(GpuContext::new(adapter)?);
     let truth = |samples: u32| PathTraceSettings {
         samples_per_pixel: samples,

@@ -1054,6 +1054,18 @@ fn oracle_and_soak_warn_of_unknown_settings_and_refuse_bad_input_first() {
         !stdout.contains("oracle:"),
         "the first variant ran before the second's settings were checked:\n{stdout}"
     );
+    let fresh = out.join("refused");
+    let (ok, _, _) = irradiant(&[
+        "oracle",
+        "--techniques",
+        "ddgi{volume.rays_per_probe=0}",
+        "--out",
+        fresh.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && !fresh.exists(),
+        "a refused oracle left its folder behind"
+    );
     fails_with(
         &["oracle", "--average", "0", "--out", out_text],
         "--average must be positive",
