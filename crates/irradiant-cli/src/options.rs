@@ -246,6 +246,29 @@ pub fn check_folder(path: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// [`RunSettings::check_and_warn`] for commands that take no settings file (`bench`): checks
+/// each spec and prints `earlier` warnings and the techniques' own once, with what each finds
+/// in `scene` where one is given.
+pub fn check_techniques<'a>(
+    earlier: &[String],
+    specs: impl IntoIterator<Item = &'a TechniqueSpec>,
+    scene: Option<&Scene>,
+) -> Result<(), CliError> {
+    let mut warnings = earlier.to_vec();
+    for spec in specs {
+        let kind = spec.kind()?;
+        warnings.extend(kind.check(spec)?);
+        if let Some(scene) = scene {
+            warnings.extend(kind.scene_warnings(spec, scene));
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    for w in warnings.iter().filter(|w| seen.insert(*w)) {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
+}
+
 /// The DDGI paper's Figure 7 ladder, as a flag.
 #[derive(Clone, Copy, Debug, PartialEq, clap::ValueEnum)]
 pub enum Weights {
@@ -351,17 +374,7 @@ impl RunSettings {
         specs: impl IntoIterator<Item = &'a TechniqueSpec>,
         scene: &Scene,
     ) -> Result<(), CliError> {
-        let mut warnings = self.warnings.clone();
-        for spec in specs {
-            let kind = spec.kind()?;
-            warnings.extend(kind.check(spec)?);
-            warnings.extend(kind.scene_warnings(spec, scene));
-        }
-        let mut seen = std::collections::HashSet::new();
-        for w in warnings.iter().filter(|w| seen.insert(*w)) {
-            eprintln!("warning: {w}");
-        }
-        Ok(())
+        check_techniques(&self.warnings, specs, Some(scene))
     }
 
     /// The technique the settings file or the manifest names, if any.

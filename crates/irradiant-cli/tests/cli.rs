@@ -1099,3 +1099,37 @@ fn oracle_and_soak_warn_of_unknown_settings_and_refuse_bad_input_first() {
     assert!(ok, "{stdout}\n{stderr}");
     assert!(stderr.contains(unknown), "{stderr}");
 }
+
+/// Needs the test adapter. `bench --techniques` checks each technique's settings before any
+/// timing: an unknown key is a warning (it was ignored without a word until session 20), a bad
+/// value an error before the adapter is opened.
+#[test]
+fn bench_checks_technique_settings_before_timing() {
+    let (ok, stdout, stderr) = irradiant(&[
+        "bench",
+        "--smoke",
+        "--scene",
+        "cornell",
+        "--techniques",
+        "none{bogus=1}",
+    ]);
+    assert!(ok, "{stdout}\n{stderr}");
+    assert!(
+        stderr.contains("unknown setting technique.bogus is ignored"),
+        "{stderr}"
+    );
+    let (ok, stdout, stderr) = irradiant(&[
+        "bench",
+        "--smoke",
+        "--scene",
+        "cornell",
+        "--techniques",
+        "none,ssil{samples=0}",
+    ]);
+    assert!(!ok, "{stdout}");
+    assert!(stderr.contains("technique.samples = 0"), "{stderr}");
+    assert!(
+        !stdout.contains("adapter:"),
+        "the bench started before the settings were checked:\n{stdout}"
+    );
+}

@@ -15,7 +15,7 @@ use clap::Args;
 use irradiant::ddgi::DdgiSettings;
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant::raycast::RayCaster;
-use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings};
+use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings, TechniqueSpec};
 use irradiant_gpu::{Profiler, wgpu};
 use serde::Serialize;
 
@@ -240,6 +240,17 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         )));
     }
     let techniques = crate::options::technique_list(&args.techniques)?;
+    // Each technique's balanced settings with its own in braces over them, checked (and its
+    // unknown keys warned of) before the GPU is touched.
+    let technique_specs: Vec<TechniqueSpec> = techniques
+        .iter()
+        .map(|choice| {
+            let mut spec = TechniqueSpec::new(&choice.name, irradiant::Preset::Balanced);
+            spec.settings = choice.overrides.clone();
+            spec
+        })
+        .collect();
+    crate::options::check_techniques(&[], &technique_specs, None)?;
     let ddgi_variants = ddgi_variants(args)?;
     let ssil_variants = ssil::variants(&args.ssil);
     for v in &ssil_variants {
@@ -372,11 +383,8 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 r.variant = ssil::variant_name(settings);
                 record.ssil.push(r);
             }
-            for choice in &techniques {
-                let mut spec =
-                    irradiant::TechniqueSpec::new(&choice.name, irradiant::Preset::Balanced);
-                spec.settings = choice.overrides.clone();
-                let mut r = frames.time(&spec, frame_warmup)?;
+            for (choice, spec) in techniques.iter().zip(&technique_specs) {
+                let mut r = frames.time(spec, frame_warmup)?;
                 r.technique = choice.label.clone();
                 r.variant = choice.label.clone();
                 record.techniques.push(r);
