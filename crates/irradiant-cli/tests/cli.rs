@@ -1105,27 +1105,23 @@ fn oracle_and_soak_warn_of_unknown_settings_and_refuse_bad_input_first() {
 /// value an error before the adapter is opened.
 #[test]
 fn bench_checks_technique_settings_before_timing() {
-    let (ok, stdout, stderr) = irradiant(&[
-        "bench",
-        "--smoke",
-        "--scene",
-        "cornell",
-        "--techniques",
-        "none{bogus=1}",
-    ]);
+    let smoke_bench = |techniques: &str| {
+        irradiant(&[
+            "bench",
+            "--smoke",
+            "--scene",
+            "cornell",
+            "--techniques",
+            techniques,
+        ])
+    };
+    let (ok, stdout, stderr) = smoke_bench("none{bogus=1}");
     assert!(ok, "{stdout}\n{stderr}");
     assert!(
         stderr.contains("unknown setting technique.bogus is ignored"),
         "{stderr}"
     );
-    let (ok, stdout, stderr) = irradiant(&[
-        "bench",
-        "--smoke",
-        "--scene",
-        "cornell",
-        "--techniques",
-        "none,ssil{samples=0}",
-    ]);
+    let (ok, stdout, stderr) = smoke_bench("none,ssil{samples=0}");
     assert!(!ok, "{stdout}");
     assert!(stderr.contains("technique.samples = 0"), "{stderr}");
     assert!(
