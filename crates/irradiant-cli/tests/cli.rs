@@ -1129,3 +1129,102 @@ fn bench_checks_technique_settings_before_timing() {
         "the bench started before the settings were checked:\n{stdout}"
     );
 }
+
+/// Chromium's command, if installed: Debian names it `chromium`, others `chromium-browser`.
+fn chromium() -> Option<&'static str> {
+    ["chromium", "chromium-browser"].into_iter().find(|name| {
+        Command::new(name)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    })
+}
+
+/// Needs the test adapter and Chromium (`.ci/run` installs it; under `CI=true` its absence
+/// fails the test). A report with images and plots, opened as a person would open it: in a
+/// browser, from disk. The page marks on load how many of its images decoded and how many plots
+/// it has (`report.rs`); every image must decode and every plot be there.
+#[test]
+fn the_report_opens_in_headless_chromium_with_every_image_decoded() {
+    let Some(browser) = chromium() else {
+        assert_ne!(
+            std::env::var("CI").as_deref(),
+            Ok("true"),
+            "Chromium is needed for the report's test under CI: apt-get install chromium"
+        );
+        eprintln!("SKIPPED: no Chromium (apt-get install chromium)");
+        return;
+    };
+    let dir = scratch("report-browser");
+    let out = dir.join("report");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/two-rooms/switch.toml"
+    );
+    let (ok, stdout, stderr) = irradiant(&[
+        "compare",
+        "--scene",
+        scene,
+        "--size",
+        "24x18",
+        "--reference-spp",
+        "4",
+        "--frames",
+        "2",
+        "--techniques",
+        "none,ddgi",
+        "--over-time",
+        "4",
+        "--every",
+        "2",
+        "--sequence-spp",
+        "2",
+        "--cache",
+        dir.join("cache").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{stdout}\n{stderr}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let images = html.matches("<img").count();
+    let plots = html.matches("<svg").count();
+    assert!(images >= 5 && plots >= 2, "{images} images, {plots} plots");
+    // --virtual-time-budget lets the page's load event run before the DOM is printed.
+    let page = Command::new("timeout")
+        .arg("120")
+        .arg(browser)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--virtual-time-budget=10000",
+            "--dump-dom",
+        ])
+        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
+        .arg(format!("file://{}", out.join("report.html").display()))
+        .output()
+        .unwrap();
+    let dom = String::from_utf8_lossy(&page.stdout);
+    assert!(
+        page.status.success(),
+        "Chromium failed: {}",
+        String::from_utf8_lossy(&page.stderr)
+    );
+    // The body's opening tag, where the page's marks are.
+    let body = dom
+        .find("<body")
+        .map(|at| &dom[at..at + dom[at..].find('>').map_or(0, |end| end + 1)])
+        .unwrap_or("no <body>");
+    assert!(
+        body.contains(&format!("data-images-loaded=\"{images}\"")),
+        "not every one of the {images} images decoded: {body}"
+    );
+    assert!(
+        body.contains(&format!("data-plots=\"{plots}\"")),
+        "not every one of the {plots} plots is there: {body}"
+    );
+}
