@@ -21,6 +21,12 @@ fn irradiant(args: &[&str]) -> (bool, String, String) {
     )
 }
 
+/// Two-rooms with its lamp switching off: a scene that animates.
+const TWO_ROOMS_SWITCH: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../scenes/two-rooms/switch.toml"
+);
+
 /// An empty folder of its own for one test.
 fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("irradiant-cli-{name}-{}", std::process::id()));
@@ -461,10 +467,7 @@ fn compare_follows_an_animation_and_plots_it() {
     let dir = scratch("compare-time");
     let out = dir.join("report").to_string_lossy().into_owned();
     let cache = dir.join("cache").to_string_lossy().into_owned();
-    let manifest = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenes/two-rooms/switch.toml"
-    );
+    let manifest = TWO_ROOMS_SWITCH;
     let args = [
         "compare",
         "--scene",
@@ -819,10 +822,7 @@ fn compare_pans_the_camera_against_one_bounce_references() {
 fn soak_checks_frames_for_non_finite_values_memory_and_drift() {
     let techniques =
         "ddgi,ssil,lightfield{bake.probe_counts=[2,2,2],bake.resolution=32,bake.bounces=1}";
-    let scene = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenes/two-rooms/switch.toml"
-    );
+    let scene = TWO_ROOMS_SWITCH;
     let (ok, stdout, stderr) = irradiant(&[
         "soak",
         "--scene",
@@ -1157,14 +1157,10 @@ fn the_report_opens_in_headless_chromium_with_every_image_decoded() {
     };
     let dir = scratch("report-browser");
     let out = dir.join("report");
-    let scene = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenes/two-rooms/switch.toml"
-    );
     let (ok, stdout, stderr) = irradiant(&[
         "compare",
         "--scene",
-        scene,
+        TWO_ROOMS_SWITCH,
         "--size",
         "24x18",
         "--reference-spp",
