@@ -183,8 +183,9 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
     let run = RunSettings::new(&args.settings, &scene, 0)?;
     let specs: Vec<(String, TechniqueSpec)> = techniques
         .iter()
-        .map(|t| Ok((t.label.clone(), run.choice(t, &args.settings, 0)?)))
-        .collect::<Result<_, CliError>>()?;
+        .map(|t| t.label.clone())
+        .zip(run.checked_specs(&techniques, &args.settings, &scene)?)
+        .collect();
     if let Some(base) = &args.difference_from {
         let base = crate::options::TechniqueChoice::parse(base)?.label;
         if !specs.iter().any(|(label, _)| *label == base) {
@@ -198,7 +199,6 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
             )));
         }
     }
-    run.check_and_warn(specs.iter().map(|(_, spec)| spec), &scene)?;
     // Everything goes into a sibling folder first, renamed into place only when complete.
     let partial = args.out.with_extension("partial");
     let _ = std::fs::remove_dir_all(&partial);

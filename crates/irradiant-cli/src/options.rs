@@ -377,6 +377,22 @@ impl RunSettings {
         check_techniques(&self.warnings, specs, Some(scene))
     }
 
+    /// The specs of `choices` (seed 0), checked and their warnings printed
+    /// ([`Self::check_and_warn`]): what the commands that run several techniques start from.
+    pub fn checked_specs(
+        &self,
+        choices: &[TechniqueChoice],
+        args: &SettingsArgs,
+        scene: &Scene,
+    ) -> Result<Vec<TechniqueSpec>, CliError> {
+        let specs = choices
+            .iter()
+            .map(|choice| self.choice(choice, args, 0))
+            .collect::<Result<Vec<_>, _>>()?;
+        self.check_and_warn(&specs, scene)?;
+        Ok(specs)
+    }
+
     /// The technique the settings file or the manifest names, if any.
     pub fn named_technique(&self) -> Option<String> {
         self.file.technique.as_ref().map(|t| t.name.clone())

@@ -98,11 +98,7 @@ pub fn run(args: &OracleArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             other.label
         )));
     }
-    let specs = techniques
-        .iter()
-        .map(|choice| run.choice(choice, &args.settings, 0))
-        .collect::<Result<Vec<_>, _>>()?;
-    run.check_and_warn(&specs, &scene)?;
+    let specs = run.checked_specs(&techniques, &args.settings, &scene)?;
     // Made only once the input is known good, so that a refused run leaves no folder.
     std::fs::create_dir_all(&args.out).map_err(|e| CliError::Io {
         path: args.out.clone(),

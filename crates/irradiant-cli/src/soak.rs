@@ -88,11 +88,7 @@ pub fn run(args: &SoakArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let scene = loaded.scene;
     let run = RunSettings::new(&args.settings, &scene, 0)?;
     let techniques = crate::options::technique_list(&args.techniques)?;
-    let specs = techniques
-        .iter()
-        .map(|choice| run.choice(choice, &args.settings, 0))
-        .collect::<Result<Vec<_>, _>>()?;
-    run.check_and_warn(&specs, &scene)?;
+    let specs = run.checked_specs(&techniques, &args.settings, &scene)?;
     let ctx = Arc::new(GpuContext::new(adapter)?);
     // The animation loops a second after its last key, so that the end state is seen too.
     let period = scene.animation_end() + 1.0;
