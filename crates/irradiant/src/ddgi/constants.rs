@@ -35,7 +35,8 @@ irradiant_gpu::wgsl_constants! {
 
     /// `GpuDdgiVolume::state_phase`: probe states are off (every probe updates).
     STATES_OFF: u32 = 0;
-    /// Probes are being classified (the relocation frames).
+    /// Probes are being classified (the relocation frames); with states off, only for the
+    /// near-geometry bit, which the query's extrapolation reads.
     STATES_CLASSIFYING: u32 = 1;
     /// The last classification frame: states are set.
     STATES_CLASSIFY_LAST: u32 = 2;

@@ -81,7 +81,7 @@ fn list_if_updating(probe: u32, updates: bool, li: u32) {
 fn next_state(probe: u32) -> u32 {
     let word = probe_states[probe];
     var state = probe_state(word);
-    var near = (word & PROBE_NEAR_GEOMETRY) != 0u;
+    var near = probe_near_geometry(word);
     var blends = probe_blends(word);
     if probe_updates(word) {
         // It traced and blended this frame.

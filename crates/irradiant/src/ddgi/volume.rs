@@ -275,9 +275,15 @@ impl DdgiVolume {
 
     /// STATES_* of ddgi::constants for this frame: probes are classified on the relocation
     /// frames (the optimiser has moved them by the last one) and sleep or wake after.
+    /// With states off the relocation frames still classify, for the near-geometry bit alone:
+    /// the query's extrapolation reads it (ddgi_states' probe_near_geometry).
     fn state_phase(&self) -> u32 {
         if !self.settings.speed.probe_states {
-            STATES_OFF
+            if self.frame < RELOCATION_FRAMES {
+                STATES_CLASSIFYING
+            } else {
+                STATES_OFF
+            }
         } else if self.frame + 1 < RELOCATION_FRAMES {
             STATES_CLASSIFYING
         } else if self.frame + 1 == RELOCATION_FRAMES {
