@@ -140,9 +140,8 @@ pub struct DdgiSpeedSettings {
     /// Probe states (003 §6): after the first frames, probes stuck in walls switch off and
     /// probes with no static geometry within a grid cell sleep; neither traces, blends nor
     /// shades. Sleeping probes near animated instances wake. Saves the work of every probe no
-    /// surface reads, for the same image inside the grid; past the outermost probes the query
-    /// then extrapolates less (a sleeping inner layer drops out of the trend: up to 3 % of the
-    /// light, docs/ddgi.md "Known issues").
+    /// surface reads, for the same image: past the outermost probes the query takes its trend
+    /// only from inner probes that states keep awake, on or off (docs/ddgi.md, "Probe states").
     pub probe_states: bool,
     /// Trace the ray set in an order where neighbouring rays point in neighbouring directions
     /// (probes::rays::probe_ray_set), so that a GPU warp's rays walk the same BVH nodes. The
