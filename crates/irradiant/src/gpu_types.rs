@@ -213,8 +213,8 @@ pub fn all_layouts() -> Vec<Expected> {
             bounce_hysteresis,
             extrapolation,
             tied_probe_weight,
-            _pad0,
-            _pad1,
+            every_probe_updates,
+            shade_probes_in_geometry,
             _pad2
         }),
         gpu_layout!(GpuDdgiRayHit {

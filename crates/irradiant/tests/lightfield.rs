@@ -299,7 +299,7 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
     // The figure's classic probes stay where the grid puts them, in the cylinders, and every
     // one of them shades.
     classic.update.relocation = false;
-    classic.speed.probe_states = false;
+    classic.update.shade_probes_in_geometry = true;
     let classic = tiles(TechniqueSpec::with_settings("classic-probes", &classic), 60);
     let mut lf = small();
     lf.bake.probe_counts = [0, 0, 0];

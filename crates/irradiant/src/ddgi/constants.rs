@@ -35,8 +35,7 @@ irradiant_gpu::wgsl_constants! {
 
     /// `GpuDdgiVolume::state_phase`: probe states are off (every probe updates).
     STATES_OFF: u32 = 0;
-    /// Probes are being classified (the relocation frames); with states off, only for the
-    /// near-geometry bit, which the query's extrapolation reads.
+    /// Probes are being classified (the relocation frames).
     STATES_CLASSIFYING: u32 = 1;
     /// The last classification frame: states are set.
     STATES_CLASSIFY_LAST: u32 = 2;

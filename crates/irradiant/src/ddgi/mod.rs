@@ -306,7 +306,10 @@ impl Technique for Ddgi {
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let probes: u32 = self.volumes.iter().map(|v| v.grid.probe_count).sum();
         let rays = self.settings.volume.rays_per_probe as f64;
-        let updating = self.read_state_counts(ctx)?.updating();
+        let mut updating = 0;
+        for v in &self.volumes {
+            updating += v.read_updating_probes(ctx)?;
+        }
         Ok(vec![
             Counter {
                 name: "probes",

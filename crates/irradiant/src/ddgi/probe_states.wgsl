@@ -6,9 +6,12 @@
 // outwards (the query clamps points beyond the grid to its outer cells: an empty room whose
 // walls stood more than a cell past its outer probes went black, docs/ddgi.md). On the last
 // of those frames a
-// probe still seeing more than 25 % backfaces turns off, one near geometry stays vigilant, and
+// probe still seeing more than 25 % backfaces turns off (or, with shade_probes_in_geometry,
+// stays vigilant), one near geometry stays vigilant, and
 // the rest sleep. From then on, sleeping probes inside a wake box (an animated instance's
-// bounds grown by a cell and the self-shadow bias) wake, and sleep again when it leaves.
+// bounds grown by a cell and the self-shadow bias) wake, and sleep again when it leaves. With
+// `every_probe_updates` (probe states off) the states are the same and decide what the query
+// reads, but every probe is listed to trace and blend.
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
@@ -34,7 +37,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     if probe < volume.probe_count {
         let word = next_state(probe);
         probe_states[probe] = word;
-        updates = probe_updates(word);
+        updates = probe_updates(word) || volume.every_probe_updates != 0u;
     }
     list_if_updating(probe, updates, li);
 }
@@ -81,9 +84,9 @@ fn list_if_updating(probe: u32, updates: bool, li: u32) {
 fn next_state(probe: u32) -> u32 {
     let word = probe_states[probe];
     var state = probe_state(word);
-    var near = probe_near_geometry(word);
+    var near = (word & PROBE_NEAR_GEOMETRY) != 0u;
     var blends = probe_blends(word);
-    if probe_updates(word) {
+    if probe_updates(word) || volume.every_probe_updates != 0u {
         // It traced and blended this frame.
         blends = min(blends + 1u, 0xffffffu);
     }
@@ -110,9 +113,10 @@ fn next_state(probe: u32) -> u32 {
             }
         }
         if phase == STATES_CLASSIFY_LAST {
-            if f32(backfaces) > 0.25 * f32(m) {
+            let in_geometry = f32(backfaces) > 0.25 * f32(m);
+            if in_geometry && volume.shade_probes_in_geometry == 0u {
                 state = PROBE_OFF;
-            } else if near {
+            } else if near || in_geometry {
                 state = PROBE_VIGILANT;
             } else {
                 state = PROBE_SLEEPING;
@@ -124,7 +128,7 @@ fn next_state(probe: u32) -> u32 {
         for (var b = 0u; b < volume.wake_box_count; b++) {
             woken = woken || (all(position >= wake_boxes[2u * b].xyz) && all(position <= wake_boxes[2u * b + 1u].xyz));
         }
-        if woken && state == PROBE_SLEEPING {
+        if woken && state == PROBE_SLEEPING && volume.every_probe_updates == 0u {
             // Whatever it held is stale: its first blend starts it from scratch.
             blends = 0u;
         }

@@ -17,11 +17,10 @@ fn probe_position_at(coord: vec3<u32>, probe: u32) -> vec3<f32> {
     return grid_position_at(coord) + probe_offsets[probe].xyz;
 }
 
-// The probe's state word (ddgi_states): whether its stored light is live (probe_updates;
-// sleeping and switched-off probes are skipped by the query, 003 §6) and whether it has static
-// geometry near it (probe_near_geometry).
-fn probe_state_word(probe: u32) -> u32 {
-    return probe_states[probe];
+// Whether the probe's stored light is live: sleeping and switched-off probes are skipped by
+// the query (003 §6).
+fn probe_shades(probe: u32) -> bool {
+    return probe_updates(probe_states[probe]);
 }
 
 // Whether relocation found the probe inside geometry with no single way out (ddgi/relocate):

@@ -73,8 +73,7 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         let offset = vec3<u32>(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u);
         let coord = min(vec3<u32>(base) + offset, volume.counts - 1u);
         let probe = probe_index(coord);
-        let state_word = probe_state_word(probe);
-        if !probe_updates(state_word) {
+        if !probe_shades(probe) {
             continue;
         }
         let probe_pos = probe_position_at(coord, probe);
@@ -121,17 +120,10 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
         if outside {
             let trilinear_out = mix(1.0 - alpha_out, alpha_out, vec3<f32>(offset));
             let w_out = w_visible * trilinear_out.x * trilinear_out.y * trilinear_out.z;
-            let far_layer = any(trilinear_out < vec3<f32>(0.0));
-            // A far-layer probe with no static surface within a cell gives no trend (its
-            // weight inside the grid is 0 here): probe states put it to sleep, and the image
-            // must not depend on them (probe_near_geometry).
-            if far_layer && !probe_near_geometry(state_word) {
-                continue;
-            }
             // A far-layer probe with a surface nearer than the smallest probe spacing along n
             // (one relocated under a table top) reads a pocket, not the field's trend: the
             // trend is not extrapolated.
-            if !trend_broken && far_layer && nearest_mean_distance(cell, n_uv) < volume.min_spacing {
+            if !trend_broken && any(trilinear_out < vec3<f32>(0.0)) && nearest_mean_distance(cell, n_uv) < volume.min_spacing {
                 trend_broken = true;
             }
             sum_out += w_out * blendable;

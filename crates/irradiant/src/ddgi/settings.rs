@@ -115,6 +115,11 @@ pub struct DdgiUpdateSettings {
     /// probes swallowed by geometry darken everything around them. A change restarts the
     /// probes.
     pub relocation: bool,
+    /// Let probes still inside geometry after relocation (more than 25 % backfaces; 003 §6's
+    /// off state) shade, as classic irradiance probes' do. Each then darkens every surface
+    /// near its solid (000's dark halos): for comparisons with that baseline only; off in
+    /// every preset. A change restarts the probes.
+    pub shade_probes_in_geometry: bool,
     /// Seed of the per-frame random rotation of the ray set.
     pub seed: u32,
 }
@@ -197,6 +202,7 @@ impl DdgiSettings {
                 weights: ProbeWeights::Full,
                 convergence_heuristics: true,
                 relocation: true,
+                shade_probes_in_geometry: false,
                 seed: 0,
             },
             speed: DdgiSpeedSettings {

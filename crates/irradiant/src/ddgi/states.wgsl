@@ -23,14 +23,6 @@ fn probe_updates(word: u32) -> bool {
     return state == PROBE_VIGILANT || state == PROBE_AWAKE;
 }
 
-// Whether a classification frame saw static geometry within a cell of the probe (outwards
-// without limit for the outermost layer). The query takes the trend it extrapolates past the
-// grid only from such probes, so that probe states, which put the others to sleep, leave the
-// image as it is with every probe tracing; with states off the relocation frames still note it.
-fn probe_near_geometry(word: u32) -> bool {
-    return (word & PROBE_NEAR_GEOMETRY) != 0u;
-}
-
 // Frames blended since the probe last started updating.
 fn probe_blends(word: u32) -> u32 {
     return word >> PROBE_AGE_SHIFT;

@@ -48,8 +48,11 @@ pub struct GpuDdgiVolume {
     pub extrapolation: f32,
     /// Query weight of a probe that left geometry by a tied exit (ddgi/relocate).
     pub tied_probe_weight: f32,
-    pub _pad0: u32,
-    pub _pad1: u32,
+    /// 1 with `speed.probe_states` off: every probe traces and blends; the states still
+    /// decide which probes the query reads, so that the image is the same.
+    pub every_probe_updates: u32,
+    /// 1: probes left inside geometry stay on and shade (classic probes' baseline).
+    pub shade_probes_in_geometry: u32,
     pub _pad2: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiVolume>() == 192);

@@ -244,9 +244,13 @@ impl DdgiVolume {
     }
 
     /// Takes settings that differ from the current ones only in `update` (the caller checks
-    /// [`DdgiSettings::same_build`]); switching relocation restarts the probes.
+    /// [`DdgiSettings::same_build`]); switching relocation, or whether probes in geometry
+    /// shade, restarts the probes (both act on the first frames' classification).
     pub fn set_settings(&mut self, settings: &DdgiSettings) {
-        if settings.update.relocation != self.settings.update.relocation {
+        let (new, old) = (&settings.update, &self.settings.update);
+        if new.relocation != old.relocation
+            || new.shade_probes_in_geometry != old.shade_probes_in_geometry
+        {
             self.reset();
         }
         self.settings = settings.clone();
@@ -274,17 +278,11 @@ impl DdgiVolume {
     }
 
     /// STATES_* of ddgi::constants for this frame: probes are classified on the relocation
-    /// frames (the optimiser has moved them by the last one) and sleep or wake after.
-    /// With states off the relocation frames still classify, for the near-geometry bit alone:
-    /// the query's extrapolation reads it (ddgi_states' probe_near_geometry).
+    /// frames (the optimiser has moved them by the last one) and sleep or wake after. With
+    /// `speed.probe_states` off too: the states then decide only what the query reads, and
+    /// every probe still updates (`every_probe_updates`).
     fn state_phase(&self) -> u32 {
-        if !self.settings.speed.probe_states {
-            if self.frame < RELOCATION_FRAMES {
-                STATES_CLASSIFYING
-            } else {
-                STATES_OFF
-            }
-        } else if self.frame + 1 < RELOCATION_FRAMES {
+        if self.frame + 1 < RELOCATION_FRAMES {
             STATES_CLASSIFYING
         } else if self.frame + 1 == RELOCATION_FRAMES {
             STATES_CLASSIFY_LAST
@@ -372,8 +370,8 @@ impl DdgiVolume {
             bounce_hysteresis: u.bounce_hysteresis * irradiance_boost,
             extrapolation: u.extrapolation,
             tied_probe_weight: u.tied_probe_weight,
-            _pad0: 0,
-            _pad1: 0,
+            every_probe_updates: !self.settings.speed.probe_states as u32,
+            shade_probes_in_geometry: u.shade_probes_in_geometry as u32,
             _pad2: 0,
         }
     }
@@ -539,8 +537,13 @@ impl DdgiVolume {
         if self.passes.shadow.is_none() {
             return Ok(0);
         }
-        let count = irradiant_gpu::read_buffer(ctx, &self.resources.shadow_queue, 0, 4)?;
-        Ok(u32::from_le_bytes([count[0], count[1], count[2], count[3]]))
+        read_count(ctx, &self.resources.shadow_queue)
+    }
+
+    /// Probes listed to trace and blend in the next frame (ddgi/probe_states' list): the
+    /// vigilant and awake ones, or every probe with `speed.probe_states` off.
+    pub fn read_updating_probes(&self, ctx: &GpuContext) -> Result<u32, RenderError> {
+        read_count(ctx, &self.resources.active_probes)
     }
 
     /// How many probes are in each state (003 §6), read back from the GPU.
@@ -647,6 +650,12 @@ impl Atlases {
         }
         Some(mean)
     }
+}
+
+/// The count a list buffer starts with (the shadow queue's, the active probes').
+fn read_count(ctx: &GpuContext, list: &wgpu::Buffer) -> Result<u32, RenderError> {
+    let count = irradiant_gpu::read_buffer(ctx, list, 0, 4)?;
+    Ok(u32::from_le_bytes([count[0], count[1], count[2], count[3]]))
 }
 
 #[cfg(test)]

@@ -55,8 +55,11 @@ struct GpuDdgiVolume {
     extrapolation: f32,
     // query weight of a probe that left geometry by a tied exit (DdgiUpdateSettings)
     tied_probe_weight: f32,
-    _pad0: u32,
-    _pad1: u32,
+    // 1 with `speed.probe_states` off: every probe traces and blends, while the states still
+    // decide which probes the query reads, so that the image is the same
+    every_probe_updates: u32,
+    // 1: probes left inside geometry stay on and shade (DdgiUpdateSettings)
+    shade_probes_in_geometry: u32,
     _pad2: u32,
 }
 
