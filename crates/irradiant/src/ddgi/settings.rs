@@ -145,8 +145,8 @@ pub struct DdgiSpeedSettings {
     /// Probe states (003 §6): after the first frames, probes stuck in walls switch off and
     /// probes with no static geometry within a grid cell sleep; neither traces, blends nor
     /// shades. Sleeping probes near animated instances wake. Saves the work of every probe no
-    /// surface reads, for the same image: past the outermost probes the query takes its trend
-    /// only from inner probes that states keep awake, on or off (docs/ddgi.md, "Probe states").
+    /// surface reads, for the same image: off, the probes are classified alike and the query
+    /// reads the same ones, but every probe traces and blends (for measuring what states save).
     pub probe_states: bool,
     /// Trace the ray set in an order where neighbouring rays point in neighbouring directions
     /// (probes::rays::probe_ray_set), so that a GPU warp's rays walk the same BVH nodes. The
