@@ -100,6 +100,61 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
     );
 }
 
+/// With probe states off every probe traces and blends, the sleeping and switched-off ones too
+/// (the query still skips them, so the image is the same): each probe's distance tile (f32)
+/// changes from one frame to the next. With states on the sleeping ones' tiles stay as they
+/// were, which shows the test can tell.
+#[test]
+fn with_probe_states_off_every_probe_blends() {
+    use irradiant::ddgi::constants::{PROBE_STATE_MASK, PROBE_VIGILANT};
+    let Some(ctx) = gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    scene.probe_volumes[0].counts = [7, 7, 7];
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.rays_per_probe = 32;
+    for probe_states in [false, true] {
+        settings.speed.probe_states = probe_states;
+        let mut session = relocated(&ctx, &scene, &settings);
+        let before = session
+            .technique_as::<Ddgi>()
+            .unwrap()
+            .volume()
+            .read_atlases(&ctx)
+            .unwrap();
+        session.render().unwrap();
+        let volume = session.technique_as::<Ddgi>().unwrap().volume();
+        let after = volume.read_atlases(&ctx).unwrap();
+        let words: Vec<u32> = read_buffer_as(&ctx, &volume.resources.states).unwrap();
+        let texels = volume.settings().volume.distance_texels;
+        let width = volume.atlas.size(texels).0;
+        let (mut blended, mut idle_blended, mut idle) = (0, 0, 0);
+        for probe in 0..volume.grid.probe_count {
+            let changed = (0..texels * texels).any(|t| {
+                let (x, y) = volume
+                    .atlas
+                    .texel(probe, texels, t % texels + 1, t / texels + 1);
+                let i = (y * width + x) as usize;
+                before.distance[i] != after.distance[i]
+            });
+            blended += changed as u32;
+            if words[probe as usize] & PROBE_STATE_MASK != PROBE_VIGILANT {
+                idle += 1;
+                idle_blended += changed as u32;
+            }
+        }
+        eprintln!(
+            "probe states {probe_states}: {blended} of {} tiles changed, {idle_blended} of the {idle} probes not vigilant",
+            volume.grid.probe_count
+        );
+        assert!(idle > 0, "the test needs probes that sleep or are off");
+        if probe_states {
+            assert_eq!(idle_blended, 0, "sleeping and off probes keep their tiles");
+        } else {
+            assert_eq!(blended, volume.grid.probe_count, "every probe blends");
+        }
+    }
+}
+
 /// Trace, shade and the blends run only for the probes that update: ddgi/probe_states lists
 /// them for the next frame, with the indirect dispatches that cover them. The list must hold
 /// each updating probe once and nothing else, in grid order within each 64 probes, and the

@@ -37,7 +37,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     if probe < volume.probe_count {
         let word = next_state(probe);
         probe_states[probe] = word;
-        updates = probe_updates(word) || volume.every_probe_updates != 0u;
+        updates = probe_traces(word, volume.every_probe_updates);
     }
     list_if_updating(probe, updates, li);
 }
@@ -86,7 +86,7 @@ fn next_state(probe: u32) -> u32 {
     var state = probe_state(word);
     var near = (word & PROBE_NEAR_GEOMETRY) != 0u;
     var blends = probe_blends(word);
-    if probe_updates(word) || volume.every_probe_updates != 0u {
+    if probe_traces(word, volume.every_probe_updates) {
         // It traced and blended this frame.
         blends = min(blends + 1u, 0xffffffu);
     }

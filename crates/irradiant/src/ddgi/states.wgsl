@@ -23,6 +23,13 @@ fn probe_updates(word: u32) -> bool {
     return state == PROBE_VIGILANT || state == PROBE_AWAKE;
 }
 
+// Whether the probe traces and blends this frame: the vigilant and awake ones, or every probe
+// with probe states off (`every_probe_updates`, the volume's), while the query still reads
+// only those that update by their state (probe_updates).
+fn probe_traces(word: u32, every_probe_updates: u32) -> bool {
+    return probe_updates(word) || every_probe_updates != 0u;
+}
+
 // Frames blended since the probe last started updating.
 fn probe_blends(word: u32) -> u32 {
     return word >> PROBE_AGE_SHIFT;
