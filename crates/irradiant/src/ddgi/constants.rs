@@ -33,7 +33,9 @@ irradiant_gpu::wgsl_constants! {
     /// started updating.
     PROBE_AGE_SHIFT: u32 = 8;
 
-    /// `GpuDdgiVolume::state_phase`: probe states are off (every probe updates).
+    /// `GpuDdgiVolume::state_phase`: no classification; the states stay as written (the light
+    /// field's prefiltered volume, whose own pass writes them). DDGI's volumes always classify,
+    /// with `speed.probe_states` off too (`every_probe_updates`).
     STATES_OFF: u32 = 0;
     /// Probes are being classified (the relocation frames).
     STATES_CLASSIFYING: u32 = 1;

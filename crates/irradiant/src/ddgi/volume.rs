@@ -34,7 +34,8 @@ pub struct ProbeStateCounts {
 }
 
 impl ProbeStateCounts {
-    /// Probes that trace rays this frame.
+    /// Probes whose state updates (vigilant and awake): those the query reads, and with probe
+    /// states on those that trace (with them off every probe traces).
     pub fn updating(&self) -> u32 {
         self.vigilant + self.awake
     }
