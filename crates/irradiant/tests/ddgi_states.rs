@@ -55,15 +55,20 @@ fn render_ddgi(
     }
 }
 
+/// The Cornell box with a dense grid (7×7×7, 0.3 apart) and 32 rays a probe: probes in mid-air
+/// sleep, probes in the tall block switch off, probes near walls and blocks stay vigilant.
+fn dense_cornell() -> (Scene, DdgiSettings) {
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    scene.probe_volumes[0].counts = [7, 7, 7];
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.rays_per_probe = 32;
+    (scene, settings)
+}
+
 #[test]
 fn probes_no_surface_reads_stop_without_changing_the_image() {
     let Some(ctx) = gpu() else { return };
-    // The Cornell box with a dense grid (0.3 apart): probes in mid-air sleep, probes in the
-    // tall block switch off, probes near walls and blocks stay vigilant.
-    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
-    scene.probe_volumes[0].counts = [7, 7, 7];
-    let mut on = DdgiSettings::balanced();
-    on.volume.rays_per_probe = 32;
+    let (scene, on) = dense_cornell();
     let mut off = on.clone();
     off.speed.probe_states = false;
     // Classification ends at frame 5; a few more frames blend with the states in force.
@@ -108,10 +113,7 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
 fn with_probe_states_off_every_probe_blends() {
     use irradiant::ddgi::constants::{PROBE_STATE_MASK, PROBE_VIGILANT};
     let Some(ctx) = gpu() else { return };
-    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
-    scene.probe_volumes[0].counts = [7, 7, 7];
-    let mut settings = DdgiSettings::balanced();
-    settings.volume.rays_per_probe = 32;
+    let (scene, mut settings) = dense_cornell();
     for probe_states in [false, true] {
         settings.speed.probe_states = probe_states;
         let mut session = relocated(&ctx, &scene, &settings);
@@ -163,11 +165,8 @@ fn with_probe_states_off_every_probe_blends() {
 fn only_the_probes_that_update_are_listed_and_dispatched() {
     use irradiant::ddgi::constants::{PROBE_AWAKE, PROBE_STATE_MASK, PROBE_VIGILANT};
     let Some(ctx) = gpu() else { return };
-    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
-    scene.probe_volumes[0].counts = [7, 7, 7];
+    let (scene, mut settings) = dense_cornell();
     for probes_per_group in [1, 4] {
-        let mut settings = DdgiSettings::balanced();
-        settings.volume.rays_per_probe = 32;
         settings.speed.probes_per_group = probes_per_group;
         let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
         for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
