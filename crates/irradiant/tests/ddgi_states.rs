@@ -532,11 +532,7 @@ fn probe_states_leave_the_extrapolated_light_alone() {
             .read_state_counts(&ctx)
             .unwrap();
         let image = session.indirect().unwrap();
-        let luminance: Vec<f64> = image
-            .pixels
-            .iter()
-            .map(|p| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64)
-            .collect();
+        let luminance: Vec<f64> = image.pixels.iter().map(pixel_luminance).collect();
         (luminance, states)
     };
     let (with_states, states) = indirect(&settings);

@@ -143,12 +143,17 @@ pub fn region_mask(gbuffer: &[GBufferSample], region: &Region) -> Vec<bool> {
         .collect()
 }
 
+/// A linear-RGB pixel's luminance (Rec. 709 weights).
+pub fn pixel_luminance(p: &[f32; 3]) -> f64 {
+    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
+}
+
 /// Mean luminance of an image over the masked pixels.
 pub fn masked_mean(image: &Image, mask: &[bool]) -> f64 {
     let (mut sum, mut n) = (0.0f64, 0usize);
     for (p, &m) in image.pixels.iter().zip(mask) {
         if m {
-            sum += 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
+            sum += pixel_luminance(p);
             n += 1;
         }
     }
@@ -183,7 +188,6 @@ pub fn path_traced_indirect(total: &Image, frame: &FrameResult) -> Image {
 /// Ratio of two images' mean luminance over each `block`×`block` tile of the masked pixels
 /// (tiles at least half inside the mask): where a technique is locally too dark or too bright.
 pub fn block_ratios(test: &Image, reference: &Image, mask: &[bool], block: u32) -> Vec<f64> {
-    let lum = |p: &[f32; 3]| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64;
     let mut ratios = Vec::new();
     for by in 0..test.height / block {
         for bx in 0..test.width / block {
@@ -192,8 +196,8 @@ pub fn block_ratios(test: &Image, reference: &Image, mask: &[bool], block: u32) 
                 for x in bx * block..(bx + 1) * block {
                     let i = (y * test.width + x) as usize;
                     if mask[i] {
-                        t += lum(&test.pixels[i]);
-                        r += lum(&reference.pixels[i]);
+                        t += pixel_luminance(&test.pixels[i]);
+                        r += pixel_luminance(&reference.pixels[i]);
                         n += 1;
                     }
                 }
