@@ -215,7 +215,7 @@ pub fn all_layouts() -> Vec<Expected> {
             tied_probe_weight,
             every_probe_updates,
             shade_probes_in_geometry,
-            _pad2
+            gather_history_frames
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,

@@ -8,10 +8,13 @@
 //! ddgi/blend_distance → ddgi/probe_states` (the blends fill their tiles' borders; trace, shade
 //! and the blends are dispatched indirectly over the probes that update, which
 //! ddgi/probe_states lists for the next frame), and `ddgi/resolve` blends its indirect diffuse
-//! light into the frame's, finest volume first. The pipelines are compiled once
-//! ([`pipelines`]) and shared by every volume ([`volume`]).
+//! light into the frame's, finest volume first. With the final gather (`gather.rays_per_pixel`)
+//! each pixel's light is traced rays whose hits the probes light, and `ddgi/temporal` averages
+//! it over frames ([`gather`]). The pipelines are compiled once ([`pipelines`]) and shared by
+//! every volume ([`volume`]).
 
 pub mod constants;
+mod gather;
 pub mod oracle;
 mod pipelines;
 mod resources;
@@ -24,8 +27,8 @@ pub use resources::{
     MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER,
 };
 pub use settings::{
-    DdgiSettings, DdgiSpeedSettings, DdgiUpdateSettings, DdgiVolumeSettings, ProbeWeights,
-    RELOCATION_FRAMES,
+    DdgiGatherSettings, DdgiSettings, DdgiSpeedSettings, DdgiUpdateSettings, DdgiVolumeSettings,
+    ProbeWeights, RELOCATION_FRAMES,
 };
 pub use volume::{Atlases, DdgiDispatches, DdgiVolume, ProbeStateCounts, VolumePlace};
 
@@ -106,13 +109,17 @@ impl TechniqueKind for DdgiKind {
         &self,
         spec: &TechniqueSpec,
         scene: &Scene,
-        _size: (u32, u32),
+        size: (u32, u32),
     ) -> Result<Vec<Allocation>, RenderError> {
         let settings = self.settings(spec, &mut Vec::new())?;
-        Ok(volume_descs(scene, &settings)
+        let mut all: Vec<Allocation> = volume_descs(scene, &settings)
             .iter()
             .flat_map(|desc| resources::plan(&crate::probes::ProbeGrid::new(desc), &settings))
-            .collect())
+            .collect();
+        if settings.gather.rays_per_pixel > 0 {
+            all.extend(gather::plan(size));
+        }
+        Ok(all)
     }
     fn dispatches(
         &self,
@@ -121,12 +128,19 @@ impl TechniqueKind for DdgiKind {
         size: (u32, u32),
     ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
         let settings = self.settings(spec, &mut Vec::new())?;
-        Ok(volume_descs(scene, &settings)
+        let mut all: Vec<(&'static str, Workgroups)> = volume_descs(scene, &settings)
             .iter()
             .flat_map(|desc| {
                 DdgiDispatches::new(&crate::probes::ProbeGrid::new(desc), &settings, size).all()
             })
-            .collect())
+            .collect();
+        if settings.gather.rays_per_pixel > 0 {
+            all.push((
+                "ddgi/temporal",
+                Workgroups::for_image(size.0, size.1, crate::frame::IMAGE_TILE),
+            ));
+        }
+        Ok(all)
     }
     fn build(
         &self,
@@ -144,6 +158,8 @@ pub struct Ddgi {
     settings: DdgiSettings,
     /// Finest first: the order ddgi/resolve blends them in.
     pub volumes: Vec<DdgiVolume>,
+    /// The final gather's running mean, with `gather.rays_per_pixel` > 0.
+    gather: Option<gather::GatherHistory>,
 }
 
 impl Ddgi {
@@ -176,11 +192,26 @@ impl Ddgi {
                     cx.gpu_scene.dynamic_bounds(),
                 )
             })
-            .collect::<Result<_, _>>()?;
+            .collect::<Result<Vec<DdgiVolume>, _>>()?;
+        let gather = match &pipelines.temporal {
+            Some(temporal) => {
+                let first = volumes[0].resources.table();
+                let size = cx.frame.size();
+                Some(gather::GatherHistory::new(
+                    cx.ctx,
+                    temporal,
+                    &[&scene_table, &frame_table, &first],
+                    size,
+                    Workgroups::for_image(size.0, size.1, crate::frame::IMAGE_TILE),
+                )?)
+            }
+            None => None,
+        };
         Ok(Self {
             name,
             settings: settings.clone(),
             volumes,
+            gather,
         })
     }
 
@@ -241,10 +272,11 @@ impl Technique for Ddgi {
             "ddgi/blend_distance",
             "ddgi/probe_states",
         ]);
-        TechniquePasses {
-            update,
-            resolve: vec!["ddgi/resolve"],
+        let mut resolve = vec!["ddgi/resolve"];
+        if s.gather.rays_per_pixel > 0 {
+            resolve.push("ddgi/temporal");
         }
+        TechniquePasses { update, resolve }
     }
     fn prepare(&mut self, ctx: &GpuContext, _camera: &irradiant_scene::Camera) {
         for v in &mut self.volumes {
@@ -259,6 +291,9 @@ impl Technique for Ddgi {
     fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
         for v in &self.volumes {
             v.record_resolve(encoder, profiler.as_deref_mut());
+        }
+        if let Some(gather) = &mut self.gather {
+            gather.record(encoder, profiler);
         }
     }
     fn visualize(&self, encoder: &mut wgpu::CommandEncoder) {

@@ -26,6 +26,8 @@ pub struct DdgiPipelines {
     pub blend_irradiance: Arc<ComputePass>,
     pub blend_distance: Arc<ComputePass>,
     pub resolve: Arc<ComputePass>,
+    /// Present with the final gather (`gather.rays_per_pixel` > 0): its running mean.
+    pub temporal: Option<Arc<ComputePass>>,
     pub visualize: Arc<ComputePass>,
 }
 
@@ -113,7 +115,23 @@ impl DdgiPipelines {
                 include_str!("blend_distance.wgsl"),
                 blend_constants(v.distance_texels),
             )?,
-            resolve: compile("ddgi/resolve", include_str!("resolve.wgsl"), vec![])?,
+            resolve: compile(
+                "ddgi/resolve",
+                include_str!("resolve.wgsl"),
+                vec![(
+                    "GATHER_RAYS",
+                    format!("{}u", settings.gather.rays_per_pixel),
+                )],
+            )?,
+            temporal: if settings.gather.rays_per_pixel > 0 {
+                Some(compile_plain(
+                    "ddgi/temporal",
+                    include_str!("temporal.wgsl"),
+                    vec![],
+                )?)
+            } else {
+                None
+            },
             visualize: compile("ddgi/visualize", include_str!("visualize.wgsl"), vec![])?,
         })
     }

@@ -1,12 +1,9 @@
-// ddgi/shade: the radiance each probe ray brings back: direct light (punctual lights with
-// shadow rays, one emitter sample) and indirect light from last frame's probes, so that
-// bounces accumulate over frames. Misses take the sky. Emission is left out: the frame's
-// direct pass samples every emitter already, so the probes hold indirect light only.
-#import ddgi_query
+// ddgi/shade: the radiance each probe ray brings back (ddgi_hit_light): direct light and
+// indirect light from last frame's probes, so that bounces accumulate over frames. Misses
+// take the sky. The probes hold indirect light only.
+#import ddgi_hit_light
 #import ddgi_rays
 #import ddgi_active
-#import lights
-#import random
 
 @group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
 @group(2) @binding(4) var<storage, read> hits: array<GpuDdgiRayHit>;
@@ -98,29 +95,21 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
     var rng = ray_rng(index);
     var l = vec3<f32>(0.0);
     var queued = false;
-    if volume.all_lights != 0u {
-        l = direct_punctual(s, wo);
-    } else if scene_info.light_count > 0u {
+    if SHADOW_QUEUE == 1u && volume.all_lights == 0u && scene_info.light_count > 0u {
         let light = pick_light(light_u);
-        let weight = f32(scene_info.light_count);
-        if SHADOW_QUEUE == 1u {
-            let shadow_from = shadow_origin(s);
-            let contribution = unshadowed_light(s, wo, light_ray(light, shadow_from)) * weight;
-            if any(contribution != vec3<f32>(0.0)) {
-                (*shadow).origin = shadow_from;
-                (*shadow).sample = index;
-                (*shadow).contribution = contribution;
-                (*shadow).light = light;
-                queued = true;
-            }
-        } else {
-            l = direct_from_light(s, wo, light) * weight;
+        let shadow_from = shadow_origin(s);
+        let contribution = unshadowed_light(s, wo, light_ray(light, shadow_from)) * f32(scene_info.light_count);
+        if any(contribution != vec3<f32>(0.0)) {
+            (*shadow).origin = shadow_from;
+            (*shadow).sample = index;
+            (*shadow).contribution = contribution;
+            (*shadow).light = light;
+            queued = true;
         }
+    } else {
+        l = hit_punctual_light(s, wo, light_u);
     }
-    if scene_info.emitter_count > 0u {
-        l += emitter_light(s, wo, &rng);
-    }
-    l += diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, wo);
+    l += hit_emitter_and_probe_light(s, wo, NO_VIEWER_LIMIT, &rng);
     out.radiance = l;
     // The sign marks backfaces for relocation, whatever the weights.
     out.distance = select(hit.t, -hit.t, backface);

@@ -53,7 +53,8 @@ pub struct GpuDdgiVolume {
     pub every_probe_updates: u32,
     /// 1: probes left inside geometry stay on and shade (classic probes' baseline).
     pub shade_probes_in_geometry: u32,
-    pub _pad2: u32,
+    /// Frames the final gather's running mean holds at most (ddgi/temporal).
+    pub gather_history_frames: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiVolume>() == 192);
 

@@ -373,7 +373,7 @@ impl DdgiVolume {
             tied_probe_weight: u.tied_probe_weight,
             every_probe_updates: !self.settings.speed.probe_states as u32,
             shade_probes_in_geometry: u.shade_probes_in_geometry as u32,
-            _pad2: 0,
+            gather_history_frames: self.settings.gather.history_frames,
         }
     }
 

@@ -60,7 +60,8 @@ struct GpuDdgiVolume {
     every_probe_updates: u32,
     // 1: probes left inside geometry stay on and shade (DdgiUpdateSettings)
     shade_probes_in_geometry: u32,
-    _pad2: u32,
+    // frames the final gather's running mean holds at most (DdgiGatherSettings)
+    gather_history_frames: u32,
 }
 
 fn probe_index(coord: vec3<u32>) -> u32 {

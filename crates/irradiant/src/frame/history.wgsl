@@ -5,6 +5,12 @@
 // depth seen from last frame's camera and the normals agree.
 #import gbuffer
 
+// How far a stored depth may differ, as a share of the expected one, and the smallest cosine
+// between the normals, for a pixel to hold the same surface as last frame (the filters that
+// keep no settings of their own).
+const HISTORY_DEPTH_TOLERANCE: f32 = 0.05;
+const HISTORY_NORMAL_TOLERANCE: f32 = 0.8;
+
 // The geometry a filter stores with its light: the shading normal and the view depth (along
 // the camera's forward axis); w < 0 where the pixel saw no surface.
 fn history_geometry(pixel: vec2<u32>) -> vec4<f32> {

@@ -35,7 +35,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         if all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
             let p = vec2<i32>(previous);
             let x = gbuffer_position(id.xy, gbuffer_depth_at(id.xy));
-            if same_surface(textureLoad(geometry_history, p, 0), x, here.xyz, 0.05, 0.8) {
+            if same_surface(textureLoad(geometry_history, p, 0), x, here.xyz, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
                 if with_lambert {
                     lambert = mix(lambert, textureLoad(lambert_history, p, 0), lightfield.lambert_hysteresis);
                 }

@@ -1,0 +1,46 @@
+// ddgi/temporal: with the final gather (DdgiGatherSettings), the frame's indirect light as a
+// running mean of up to `gather_history_frames` frames, reprojected along the motion vectors
+// where last frame's pixel held the same surface (the module `history`); elsewhere, and after
+// the frame's history resets, it starts over. The mean, the frames in it (a) and the geometry
+// it was taken on are next frame's history (two sets, ping-ponged). f32, so that a long mean
+// does not stall on f16's rounding.
+#import ddgi_volume
+#import gbuffer
+#import history
+
+@group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
+@group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
+@group(2) @binding(20) var gather_history: texture_2d<f32>;
+@group(2) @binding(21) var gather_history_geometry: texture_2d<f32>;
+@group(2) @binding(22) var gather_mean: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(23) var gather_mean_geometry: texture_storage_2d<rgba32float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let pixel = vec2<i32>(id.xy);
+    let here = history_geometry(id.xy);
+    textureStore(gather_mean_geometry, pixel, here);
+    if here.w < 0.0 {
+        textureStore(gather_mean, pixel, vec4<f32>(0.0));
+        return;
+    }
+    // What frame/compose would read: the volumes' weighted sum over its weight.
+    let now = textureLoad(indirect, pixel);
+    var light = now.rgb / max(now.a, 1.0);
+    var frames = 1.0;
+    let previous = history_position(id.xy);
+    if frame.history_frames > 0u && all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
+        let p = vec2<i32>(previous);
+        let x = gbuffer_position(id.xy, gbuffer_depth_at(id.xy));
+        if same_surface(textureLoad(gather_history_geometry, p, 0), x, here.xyz, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
+            let old = textureLoad(gather_history, p, 0);
+            frames = min(old.a + 1.0, f32(volume.gather_history_frames));
+            light = mix(old.rgb, light, 1.0 / frames);
+        }
+    }
+    textureStore(gather_mean, pixel, vec4<f32>(light, frames));
+    textureStore(indirect, pixel, vec4<f32>(light, 1.0));
+}
