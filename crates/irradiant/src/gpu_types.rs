@@ -215,7 +215,11 @@ pub fn all_layouts() -> Vec<Expected> {
             tied_probe_weight,
             every_probe_updates,
             shade_probes_in_geometry,
-            gather_history_frames
+            gather_history_frames,
+            gather_interval,
+            _pad0,
+            _pad1,
+            _pad2
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,

@@ -3,8 +3,9 @@
 // the weight the finer ones left where the point lies inside it (fading out over the last
 // grid cell before its outermost probes), and the coarsest takes all that is left, so that one
 // volume alone lights everything, as it always did. With GATHER_RAYS > 0 (DdgiGatherSettings::
-// rays_per_pixel) the light is a final gather: that many cosine-distributed rays a pixel,
-// each hit shaded as a probe ray's (ddgi_hit_light), ddgi/temporal averaging it over frames.
+// rays_per_pixel) the light is a final gather where the pixel's tile gathers this frame
+// (gather_tile_traces): that many cosine-distributed rays a pixel, each hit shaded as a probe
+// ray's (ddgi_hit_light); ddgi/temporal averages it over frames.
 #import ddgi_hit_light
 #import gbuffer
 
@@ -20,7 +21,7 @@ fn volume_weight(p: vec3<f32>) -> f32 {
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) tile: vec3<u32>) {
     bvh_thread(local_index);
     if !in_frame(id.xy) {
         return;
@@ -43,10 +44,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         return;
     }
     var light: vec3<f32>;
-    if GATHER_RAYS == 0u {
-        light = ddgi_irradiance(s.position, s.normal, view_dir(s.position));
-    } else {
+    if GATHER_RAYS > 0u && gather_tile_traces(tile.xy, frame.frame_index) {
         light = gathered_light(s, id.xy);
+    } else {
+        light = ddgi_irradiance(s.position, s.normal, view_dir(s.position));
     }
     light *= diffuse_weight(s);
     textureStore(indirect, id.xy, sum + vec4<f32>(light * weight, weight));

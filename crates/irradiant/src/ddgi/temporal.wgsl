@@ -1,9 +1,10 @@
 // ddgi/temporal: with the final gather (DdgiGatherSettings), the frame's indirect light as a
-// running mean of up to `gather_history_frames` frames, reprojected along the motion vectors
-// where last frame's pixel held the same surface (the module `history`); elsewhere, and after
-// the frame's history resets, it starts over. The mean, the frames in it (a) and the geometry
-// it was taken on are next frame's history (two sets, ping-ponged). f32, so that a long mean
-// does not stall on f16's rounding.
+// running mean of the gathers of up to `gather_history_frames` frames, reprojected along the
+// motion vectors where last frame's pixel held the same surface (the module `history`);
+// elsewhere, and after the frame's history resets, it starts over, from the probes' query
+// until the pixel's tile gathers. The mean, the gathers in it (a) and the geometry it was
+// taken on are next frame's history (two sets, ping-ponged). f32, so that a long mean does
+// not stall on f16's rounding.
 #import ddgi_volume
 #import gbuffer
 #import history
@@ -16,7 +17,7 @@
 @group(2) @binding(23) var gather_mean_geometry: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) tile: vec3<u32>) {
     if !in_frame(id.xy) {
         return;
     }
@@ -27,20 +28,29 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(gather_mean, pixel, vec4<f32>(0.0));
         return;
     }
-    // What frame/compose would read: the volumes' weighted sum over its weight.
+    // What frame/compose would read: the volumes' weighted sum over its weight. It is this
+    // frame's gather where the tile traced (ddgi/resolve), else the probes' query.
     let now = textureLoad(indirect, pixel);
     var light = now.rgb / max(now.a, 1.0);
-    var frames = 1.0;
+    let traced = gather_tile_traces(tile.xy, frame.frame_index);
+    // Gathers in the mean (0: it holds the query alone), at most those of history_frames.
+    var gathers = select(0.0, 1.0, traced);
+    let most = max(f32(volume.gather_history_frames / max(volume.gather_interval, 1u)), 1.0);
     let previous = history_position(id.xy);
     if frame.history_frames > 0u && all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
         let p = vec2<i32>(previous);
         let x = gbuffer_position(id.xy, gbuffer_depth_at(id.xy));
         if same_surface(textureLoad(gather_history_geometry, p, 0), x, here.xyz, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
             let old = textureLoad(gather_history, p, 0);
-            frames = min(old.a + 1.0, f32(volume.gather_history_frames));
-            light = mix(old.rgb, light, 1.0 / frames);
+            if traced {
+                gathers = min(old.a + 1.0, most);
+                light = mix(old.rgb, light, 1.0 / gathers);
+            } else if old.a > 0.0 {
+                gathers = old.a;
+                light = old.rgb;
+            }
         }
     }
-    textureStore(gather_mean, pixel, vec4<f32>(light, frames));
+    textureStore(gather_mean, pixel, vec4<f32>(light, gathers));
     textureStore(indirect, pixel, vec4<f32>(light, 1.0));
 }

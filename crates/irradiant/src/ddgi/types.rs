@@ -53,10 +53,15 @@ pub struct GpuDdgiVolume {
     pub every_probe_updates: u32,
     /// 1: probes left inside geometry stay on and shade (classic probes' baseline).
     pub shade_probes_in_geometry: u32,
-    /// Frames the final gather's running mean holds at most (ddgi/temporal).
+    /// Frames the final gather's running mean spans at most (ddgi/temporal).
     pub gather_history_frames: u32,
+    /// Frames between a pixel's gathers (`DdgiGatherSettings::pixel_interval`).
+    pub gather_interval: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
-const _: () = assert!(size_of::<GpuDdgiVolume>() == 192);
+const _: () = assert!(size_of::<GpuDdgiVolume>() == 208);
 
 /// A probe ray's closest hit; `t` < 0 for a miss; `bary` is `pack2x16unorm`.
 #[repr(C)]

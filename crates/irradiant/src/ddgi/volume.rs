@@ -374,6 +374,10 @@ impl DdgiVolume {
             every_probe_updates: !self.settings.speed.probe_states as u32,
             shade_probes_in_geometry: u.shade_probes_in_geometry as u32,
             gather_history_frames: self.settings.gather.history_frames,
+            gather_interval: self.settings.gather.pixel_interval,
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         }
     }
 

@@ -60,8 +60,20 @@ struct GpuDdgiVolume {
     every_probe_updates: u32,
     // 1: probes left inside geometry stay on and shade (DdgiUpdateSettings)
     shade_probes_in_geometry: u32,
-    // frames the final gather's running mean holds at most (DdgiGatherSettings)
+    // frames the final gather's running mean spans at most (DdgiGatherSettings)
     gather_history_frames: u32,
+    // frames between a pixel's gathers (DdgiGatherSettings::pixel_interval)
+    gather_interval: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+// Whether the pixels of image tile `tile` (IMAGE_TILE pixels a side: one workgroup, so that
+// no warp waits on a few tracing lanes) gather in frame `frame_index`: one tile in every
+// `gather_interval`, in turn, neighbours on different frames.
+fn gather_tile_traces(tile: vec2<u32>, frame_index: u32) -> bool {
+    return (tile.x + 3u * tile.y + frame_index) % max(volume.gather_interval, 1u) == 0u;
 }
 
 fn probe_index(coord: vec3<u32>) -> u32 {

@@ -1,0 +1,114 @@
+//! DDGI's final gather (`DdgiSettings::gather`): rays traced from the pixels, their hits lit by
+//! the probes, averaged over frames by ddgi/temporal. Against the path tracer on lavapipe-sized
+//! built-in scenes, with figures printed for docs/ddgi.md.
+
+mod common;
+
+use common::*;
+use irradiant::ddgi::DdgiSettings;
+use irradiant::frame::Image;
+
+/// The balanced settings, converging quickly on a CPU adapter (as ddgi_quality.rs's), with the
+/// gather at `rays` a pixel every `interval` frames (0: the query alone).
+fn gathering(rays: u32, interval: u32) -> DdgiSettings {
+    let mut s = DdgiSettings::balanced();
+    s.update.hysteresis = 0.9;
+    s.gather.rays_per_pixel = rays;
+    s.gather.pixel_interval = interval;
+    s.gather.history_frames = 32;
+    s
+}
+
+fn flip(reference: &Image, test: &Image, size: (u32, u32)) -> f64 {
+    irradiant_eval::flip(
+        &reference.to_srgb8(1.0, true),
+        &test.to_srgb8(1.0, true),
+        size.0,
+        size.1,
+    )
+    .unwrap()
+    .mean as f64
+}
+
+/// The Cornell box's error at its 4×4×4 probes lies in the query's interpolation between probe
+/// layers (docs/ddgi.md, "Targets"); traced rays from the pixels take the first bounce off it.
+/// Four rays a pixel, so that the gather's noise at 32 frames of history stays under the
+/// reference's own at 64×64 (one ray: 0.0649 against the query's 0.0817 on lavapipe).
+#[test]
+fn the_gather_brings_the_cornell_box_closer_to_the_path_tracer() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (64, 64);
+    let reference = path_trace(&ctx, &scene, size, 1024);
+    let query = render_frames(&ctx, &scene, size, Some(&gathering(0, 1)), 150);
+    let gather = render_frames(&ctx, &scene, size, Some(&gathering(4, 1)), 150);
+    let (q, g) = (
+        flip(&reference, &query.total, size),
+        flip(&reference, &gather.total, size),
+    );
+    eprintln!("cornell FLIP against the path tracer: query {q:.4}, gather {g:.4}");
+    assert!(
+        g < 0.8 * q,
+        "the gather must take a fifth of the query's FLIP off at least"
+    );
+}
+
+/// Traced rays see the dividing wall, so no light may leak through it; and a ray's hit beside
+/// the wall it left from must not read the probes beyond it (the bias towards the viewer, which
+/// is capped at half the ray's length: without the cap the wall's seams with the floor, the
+/// ceiling and the outer walls read bright).
+#[test]
+fn the_gather_keeps_the_dark_room_dark_to_its_seams() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("two-rooms").unwrap().scene;
+    let size = (64, 48);
+    let gather = render_frames(&ctx, &scene, size, Some(&gathering(1, 1)), 150);
+    let reference = path_trace(&ctx, &scene, size, 1024);
+    let truth = path_traced_indirect(&reference, &gather);
+    let mask = region_mask(&gather.gbuffer, scene.region("dark-room").unwrap());
+    let (pt, g) = (
+        masked_mean(&truth, &mask),
+        masked_mean(&gather.indirect, &mask),
+    );
+    let tiles = block_ratios(&gather.indirect, &truth, &mask, 4);
+    let worst = tiles.iter().cloned().fold(0.0, f64::max);
+    eprintln!(
+        "two-rooms dark room with the gather: {:+.1} % against the path tracer; brightest 4×4 tile {worst:.2} of the truth",
+        (g / pt - 1.0) * 100.0
+    );
+    assert!(
+        (g / pt - 1.0).abs() < 0.1,
+        "the dark room must stay within 10 % of the path tracer"
+    );
+    assert!(
+        worst < 1.5,
+        "a tile of the dark room reads {worst:.2} of the truth"
+    );
+}
+
+/// With a pixel interval the tiles gather in turn and keep their mean in between: the image
+/// converges to the one every pixel gathers for, tile by tile.
+#[test]
+fn tiles_that_gather_in_turn_converge_to_the_every_frame_gather() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (64, 64);
+    let every = render_frames(&ctx, &scene, size, Some(&gathering(1, 1)), 120);
+    let mut in_turn = gathering(1, 4);
+    in_turn.gather.history_frames = 128;
+    let turns = render_frames(&ctx, &scene, size, Some(&in_turn), 120);
+    let query = render_frames(&ctx, &scene, size, Some(&gathering(0, 1)), 120);
+    let mask: Vec<bool> = every.gbuffer.iter().map(|g| g.depth >= 0.0).collect();
+    let against_every = block_ratios(&turns.indirect, &every.indirect, &mask, 8);
+    let query_against_every = block_ratios(&query.indirect, &every.indirect, &mask, 8);
+    let spread = |ratios: &[f64]| ratios.iter().map(|r| (r - 1.0).abs()).fold(0.0, f64::max);
+    eprintln!(
+        "8×8 tiles, largest departure from the every-frame gather: in turn (1 in 4) {:.3}, the query {:.3}",
+        spread(&against_every),
+        spread(&query_against_every)
+    );
+    assert!(
+        spread(&against_every) < 0.5 * spread(&query_against_every),
+        "every tile must have gathered: the image still reads the query somewhere"
+    );
+}
