@@ -18,11 +18,17 @@ fn hit_punctual_light(s: Surface, wo: vec3<f32>, u: f32) -> vec3<f32> {
 }
 
 // The rest: one emitter sample and the probes' irradiance, seen from `viewer_distance` away
-// (ddgi_irradiance_seen_from).
+// (ddgi_irradiance_seen_from; NO_VIEWER_LIMIT: the plain query).
 fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, viewer_distance: f32, rng: ptr<function, u32>) -> vec3<f32> {
     var l = vec3<f32>(0.0);
     if scene_info.emitter_count > 0u {
         l = emitter_light(s, wo, rng);
     }
-    return l + diffuse_weight(s) * ddgi_irradiance_seen_from(s.position, s.normal, wo, viewer_distance);
+    var probes: vec3<f32>;
+    if viewer_distance == NO_VIEWER_LIMIT {
+        probes = ddgi_irradiance(s.position, s.normal, wo);
+    } else {
+        probes = ddgi_irradiance_seen_from(s.position, s.normal, wo, viewer_distance);
+    }
+    return l + diffuse_weight(s) * probes;
 }

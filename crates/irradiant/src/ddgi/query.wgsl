@@ -44,11 +44,15 @@ fn nearest_mean_distance(cell: vec2<u32>, uv: vec2<f32>) -> f32 {
 // Cosine-weighted mean radiance arriving at p around normal n (irradiance / π): a Lambertian
 // surface of albedo ρ reflects ρ times this. `wo` points from p towards the viewer.
 fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
-    return ddgi_irradiance_seen_from(p, n, wo, NO_VIEWER_LIMIT);
+    // 003's bias scales with the smallest spacing; here each axis with its own, so that on a
+    // grid of tall cells (Sibenik's 4 m layers) the bias is the same share of the cell that
+    // the visibility test has to reach across along that axis.
+    let bias = (n * 0.2 + wo * 0.8) * volume.spacing * (0.75 * volume.self_shadow_bias);
+    return irradiance_at_biased(p, n, p + bias);
 }
 
-// No limit on the bias towards the viewer: the camera and probe rays, whose viewers stand
-// far from the surfaces they look at.
+// No limit on the bias towards the viewer: probe rays, whose viewers (the probes) stand off
+// the surfaces they see.
 const NO_VIEWER_LIMIT: f32 = 3.0e38;
 
 // ddgi_irradiance seen from a viewer `viewer_distance` away along `wo` (the final gather's
@@ -56,16 +60,17 @@ const NO_VIEWER_LIMIT: f32 = 3.0e38;
 // that a hit next to the ray's own surface is not moved through it (a 10 cm wall lit on its
 // other side read bright along its seams).
 fn ddgi_irradiance_seen_from(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>, viewer_distance: f32) -> vec3<f32> {
-    // 003's bias scales with the smallest spacing; here each axis with its own, so that on a
-    // grid of tall cells (Sibenik's 4 m layers) the bias is the same share of the cell that
-    // the visibility test has to reach across along that axis.
     let scale = volume.spacing * (0.75 * volume.self_shadow_bias);
     var view_bias = wo * 0.8 * scale;
     let view_length = length(view_bias);
     if view_length > 0.5 * viewer_distance {
         view_bias *= 0.5 * viewer_distance / view_length;
     }
-    let biased = p + n * 0.2 * scale + view_bias;
+    return irradiance_at_biased(p, n, p + n * 0.2 * scale + view_bias);
+}
+
+// The query at p around n, its cage, weights and visibility taken at `biased`.
+fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> vec3<f32> {
     let max_base = vec3<i32>(volume.counts) - vec3<i32>(2);
     let grid = (biased - volume.origin) / volume.spacing;
     let base = clamp(vec3<i32>(floor(grid)), vec3<i32>(0), max(max_base, vec3<i32>(0)));
