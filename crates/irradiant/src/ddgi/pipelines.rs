@@ -58,6 +58,17 @@ impl DdgiPipelines {
                     .constants(extra);
                 crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
             };
+        // The light at a pixel: the query, or the final gather (resolve.wgsl's `pixel_light`).
+        let gather_rays = settings.gather.rays_per_pixel;
+        let (light_source, gather_constants) = if gather_rays > 0 {
+            (
+                include_str!("resolve_gather.wgsl"),
+                vec![("GATHER_RAYS", format!("{gather_rays}u"))],
+            )
+        } else {
+            (include_str!("resolve_query.wgsl"), vec![])
+        };
+        let resolve_source = format!("{}\n{light_source}", include_str!("resolve.wgsl"));
         Ok(Self {
             ray_directions: compile_plain(
                 "ddgi/ray_directions",
@@ -115,15 +126,8 @@ impl DdgiPipelines {
                 include_str!("blend_distance.wgsl"),
                 blend_constants(v.distance_texels),
             )?,
-            resolve: compile(
-                "ddgi/resolve",
-                include_str!("resolve.wgsl"),
-                vec![(
-                    "GATHER_RAYS",
-                    format!("{}u", settings.gather.rays_per_pixel),
-                )],
-            )?,
-            temporal: if settings.gather.rays_per_pixel > 0 {
+            resolve: compile("ddgi/resolve", &resolve_source, gather_constants)?,
+            temporal: if gather_rays > 0 {
                 Some(compile_plain(
                     "ddgi/temporal",
                     include_str!("temporal.wgsl"),

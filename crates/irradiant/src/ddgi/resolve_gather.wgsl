@@ -1,0 +1,35 @@
+// ddgi/resolve's light at a pixel (`pixel_light`) with the final gather (GATHER_RAYS =
+// DdgiGatherSettings::rays_per_pixel): where the pixel's tile gathers this frame
+// (gather_tile_traces), that many cosine-distributed rays, each hit shaded as a probe ray's
+// (ddgi_hit_light); elsewhere the query. ddgi/temporal averages it over frames.
+#import ddgi_hit_light
+
+fn pixel_light(s: Surface, pixel: vec2<u32>, tile: vec2<u32>, local_index: u32) -> vec3<f32> {
+    if !gather_tile_traces(tile, frame.frame_index) {
+        return ddgi_irradiance(s.position, s.normal, view_dir(s.position));
+    }
+    bvh_thread(local_index);
+    return gathered_light(s, pixel);
+}
+
+// The cosine-weighted mean radiance GATHER_RAYS rays from the pixel's surface bring back. A ray
+// that leaves the scene takes the sky; one that meets a back face is shaded from that side,
+// as the path tracer does.
+fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
+    var rng = rng_seed(pixel.y * frame.width + pixel.x, frame.frame_index, frame.seed ^ 0x3c6ef372u ^ volume.volume_index);
+    let origin = offset_ray(s.position, s.geometric_normal);
+    let around = basis(s.normal);
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < GATHER_RAYS; i++) {
+        let dir = normalize(around * cosine_hemisphere(rand2(&rng)));
+        let hit = trace_ray(origin, dir, RAY_FAR, false);
+        if hit.triangle == INVALID {
+            sum += scene_info.sky;
+            continue;
+        }
+        let h = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
+        let wo = -dir;
+        sum += hit_punctual_light(h, wo, rand(&rng)) + hit_emitter_and_probe_light(h, wo, hit.t, &rng);
+    }
+    return sum / f32(GATHER_RAYS);
+}
