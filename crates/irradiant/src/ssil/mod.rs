@@ -81,9 +81,13 @@ impl HybridSettings {
         }
     }
     pub fn quality() -> Self {
+        let mut ddgi = DdgiSettings::quality();
+        // The screen-space light stands in for the probes where the screen sees; DDGI's traced
+        // final gather would only be replaced there, at its full cost (docs/ddgi.md).
+        ddgi.gather.rays_per_pixel = 0;
         Self {
             ssil: SsilSettings::quality(),
-            ddgi: DdgiSettings::quality(),
+            ddgi,
         }
     }
 }
