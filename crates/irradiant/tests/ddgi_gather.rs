@@ -6,7 +6,6 @@ mod common;
 
 use common::*;
 use irradiant::ddgi::DdgiSettings;
-use irradiant::frame::Image;
 
 /// The balanced settings, converging quickly on a CPU adapter (as ddgi_quality.rs's), with the
 /// gather at `rays` a pixel every `interval` frames (0: the query alone).
@@ -17,17 +16,6 @@ fn gathering(rays: u32, interval: u32) -> DdgiSettings {
     s.gather.pixel_interval = interval;
     s.gather.history_frames = 32;
     s
-}
-
-fn flip(reference: &Image, test: &Image, size: (u32, u32)) -> f64 {
-    irradiant_eval::flip(
-        &reference.to_srgb8(1.0, true),
-        &test.to_srgb8(1.0, true),
-        size.0,
-        size.1,
-    )
-    .unwrap()
-    .mean as f64
 }
 
 /// The Cornell box's error at its 4×4×4 probes lies in the query's interpolation between probe
@@ -43,8 +31,8 @@ fn the_gather_brings_the_cornell_box_closer_to_the_path_tracer() {
     let query = render_frames(&ctx, &scene, size, Some(&gathering(0, 1)), 150);
     let gather = render_frames(&ctx, &scene, size, Some(&gathering(4, 1)), 150);
     let (q, g) = (
-        flip(&reference, &query.total, size),
-        flip(&reference, &gather.total, size),
+        flip_mean(&reference, &query.total),
+        flip_mean(&reference, &gather.total),
     );
     eprintln!("cornell FLIP against the path tracer: query {q:.4}, gather {g:.4}");
     assert!(

@@ -45,17 +45,6 @@ fn render(
     s
 }
 
-fn flip(reference: &Image, image: &Image) -> f64 {
-    irradiant_eval::flip(
-        &reference.to_srgb8(1.0, true),
-        &image.to_srgb8(1.0, true),
-        reference.width,
-        reference.height,
-    )
-    .unwrap()
-    .mean as f64
-}
-
 /// Every texel of a probe's distance map is the BVH's distance in the texel's direction (to
 /// f16's precision), or "no surface" where the BVH's ray leaves; the normals face the probe;
 /// the min-mip holds each 16×16 block's nearest distance.
@@ -168,7 +157,7 @@ fn the_three_algorithms_approach_the_path_tracer() {
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let size = (64, 64);
     let reference = path_trace(&ctx, &scene, size, 256);
-    let none = flip(
+    let none = flip_mean(
         &reference,
         &render(
             &ctx,
@@ -182,7 +171,7 @@ fn the_three_algorithms_approach_the_path_tracer() {
     );
     let mut figures = vec![("none", none)];
     for name in ["lightfield", "lightfield-traced", "lightfield-naive"] {
-        let f = flip(
+        let f = flip_mean(
             &reference,
             &render(&ctx, &scene, size, spec(name, &small()), 20)
                 .image()
@@ -210,14 +199,14 @@ fn the_glossy_ray_reflects_indirect_light() {
     let size = (64, 64);
     let reference = path_trace(&ctx, &scene, size, 256);
     let mut settings = small();
-    let glossy = flip(
+    let glossy = flip_mean(
         &reference,
         &render(&ctx, &scene, size, spec("lightfield", &settings), 20)
             .image()
             .unwrap(),
     );
     settings.shade.glossy = false;
-    let lambertian = flip(
+    let lambertian = flip_mean(
         &reference,
         &render(&ctx, &scene, size, spec("lightfield", &settings), 20)
             .image()

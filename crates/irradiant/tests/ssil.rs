@@ -316,16 +316,7 @@ fn screen_space_light_brings_the_cornell_box_closer_to_the_path_tracer() {
         }
         s.image().unwrap()
     };
-    let flip = |image: &irradiant::frame::Image| {
-        irradiant_eval::flip(
-            &reference.to_srgb8(1.0, true),
-            &image.to_srgb8(1.0, true),
-            size.0,
-            size.1,
-        )
-        .unwrap()
-        .mean
-    };
+    let flip = |image: &irradiant::frame::Image| flip_mean(&reference, image);
     let none = flip(&render(spec(None)));
     let ssil = flip(&render(ssil_spec(&SsilSettings::balanced())));
     let hybrid = flip(&render(TechniqueSpec::with_settings(

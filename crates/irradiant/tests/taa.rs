@@ -12,17 +12,6 @@ fn direct_only() -> TechniqueSpec {
     TechniqueSpec::new("none", Preset::Balanced)
 }
 
-fn flip(reference: &Image, test: &Image) -> f32 {
-    irradiant_eval::flip(
-        &reference.to_srgb8(1.0, true),
-        &test.to_srgb8(1.0, true),
-        reference.width,
-        reference.height,
-    )
-    .unwrap()
-    .mean
-}
-
 /// Direct light only against the path tracer limited to direct light (one bounce), whose pixels
 /// average their whole footprint: with TAA the frame's edges are that average too.
 #[test]
@@ -57,7 +46,10 @@ fn a_still_view_converges_to_the_antialiased_reference() {
             |_, _| {},
         )
         .unwrap();
-    let (f_with, f_without) = (flip(&reference, &with), flip(&reference, &without));
+    let (f_with, f_without) = (
+        flip_mean(&reference, &with),
+        flip_mean(&reference, &without),
+    );
     let mean = |i: &Image| i.mean().iter().sum::<f64>();
     let (m_ref, m_with, m_without) = (mean(&reference), mean(&with), mean(&without));
     eprintln!(
@@ -113,7 +105,10 @@ fn a_moving_view_leaves_no_ghost() {
     first.set_camera(start);
     first.render().unwrap();
     let old_view = first.image().unwrap();
-    let (ghost, moved) = (flip(&converged, &after_move), flip(&converged, &old_view));
+    let (ghost, moved) = (
+        flip_mean(&converged, &after_move),
+        flip_mean(&converged, &old_view),
+    );
     eprintln!(
         "two frames after a pan: FLIP against the converged new view {ghost:.4}; the old view scores {moved:.4}"
     );

@@ -132,6 +132,18 @@ pub fn path_trace(ctx: &GpuContext, scene: &Scene, size: (u32, u32), spp: u32) -
         .unwrap()
 }
 
+/// Mean FLIP of `test` against `reference`, both tonemapped to sRGB as reports show them.
+pub fn flip_mean(reference: &Image, test: &Image) -> f64 {
+    irradiant_eval::flip(
+        &reference.to_srgb8(1.0, true),
+        &test.to_srgb8(1.0, true),
+        reference.width,
+        reference.height,
+    )
+    .unwrap()
+    .mean as f64
+}
+
 /// Pixels whose visible surface lies inside the region.
 pub fn region_mask(gbuffer: &[GBufferSample], region: &Region) -> Vec<bool> {
     gbuffer
