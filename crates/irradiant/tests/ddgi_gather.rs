@@ -100,3 +100,32 @@ fn tiles_that_gather_in_turn_converge_to_the_every_frame_gather() {
         "every tile must have gathered: the image still reads the query somewhere"
     );
 }
+
+/// Each volume gathers with its own probes at the rays' hits and weighs in as its query did:
+/// inside a finer volume over part of the Cornell box, the gathered light is what one volume
+/// gathers (the weights are tested with the query in platform.rs).
+#[test]
+fn the_gather_lights_two_volumes_as_one() {
+    let Some(ctx) = gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (32, 32);
+    let coarse = scene.probe_volumes[0].clone();
+    let mut fine = coarse.clone();
+    fine.name = "fine".into();
+    fine.counts = [6, 6, 6];
+    fine.max = (coarse.min + coarse.max) * 0.5 + (coarse.max - coarse.min) * 0.25;
+    let inside = irradiant_scene::Region::new("fine", fine.min, fine.max);
+    let single = render_frames(&ctx, &scene, size, Some(&gathering(1, 1)), 60);
+    scene.probe_volumes.push(fine);
+    let two = render_frames(&ctx, &scene, size, Some(&gathering(1, 1)), 60);
+    let mask = region_mask(&single.gbuffer, &inside);
+    let (one, both) = (
+        masked_mean(&single.indirect, &mask),
+        masked_mean(&two.indirect, &mask),
+    );
+    eprintln!(
+        "mean indirect with the gather inside the finer volume ({} pixels): one volume {one:.5}, two volumes {both:.5}",
+        mask.iter().filter(|&&m| m).count()
+    );
+    assert!((both / one - 1.0).abs() < 0.1, "{both} against {one}");
+}
