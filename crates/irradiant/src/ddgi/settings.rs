@@ -183,7 +183,8 @@ pub struct DdgiGatherSettings {
     /// running mean, reprojected along the motion vectors, of the gathers in up to this many
     /// frames): more, less noise, and as many frames of lag after the light changes (the
     /// probes' own convergence included: after 300 frames 128 reads a few per cent darker than
-    /// 32 on most scenes); disoccluded pixels start over.
+    /// 32 on most scenes); disoccluded pixels start over. After a scene change it shortens as
+    /// the probes' hysteresis does (`convergence_heuristics`).
     pub history_frames: u32,
 }
 

@@ -169,6 +169,15 @@ pub struct DdgiVolume {
     wake_box_count: u32,
 }
 
+/// The final gather's history this frame: `history_frames`, shortened after a scene change as
+/// the probes' memory is (the boosted hysteresis's time constant, 1/(1 − h·boost), against the
+/// set one's), so that the gathered light follows a switched-off lamp as fast as the probes
+/// its rays read.
+fn gather_history(history_frames: u32, hysteresis: f32, boost: f32) -> u32 {
+    let memory = (1.0 - hysteresis) / (1.0 - hysteresis * boost).max(1e-6);
+    ((history_frames as f32 * memory).round() as u32).max(1)
+}
+
 /// Where a volume sits among its technique's volumes.
 pub struct VolumePlace {
     pub index: u32,
@@ -373,7 +382,11 @@ impl DdgiVolume {
             tied_probe_weight: u.tied_probe_weight,
             every_probe_updates: !self.settings.speed.probe_states as u32,
             shade_probes_in_geometry: u.shade_probes_in_geometry as u32,
-            gather_history_frames: self.settings.gather.history_frames,
+            gather_history_frames: gather_history(
+                self.settings.gather.history_frames,
+                u.hysteresis,
+                irradiance_boost,
+            ),
             gather_interval: self.settings.gather.pixel_interval,
             _pad0: 0,
             _pad1: 0,
