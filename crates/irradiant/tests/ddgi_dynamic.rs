@@ -30,11 +30,9 @@ fn indirect_over_time(
     means
 }
 
-#[test]
-fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag() {
-    let Some(ctx) = gpu() else { return };
+/// Two-rooms with its lamp on for one second and off from 1 s (frame 60 at 60 frames a second).
+fn two_rooms_lamp_off_after_a_second() -> Scene {
     let mut scene = irradiant_scene::load("two-rooms").unwrap().scene;
-    // On for one second, off from 1 s (frame 60).
     scene.animations.push(Animation {
         target: AnimationTarget::Light("lamp".into()),
         tracks: Tracks {
@@ -42,6 +40,13 @@ fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag(
             ..Default::default()
         },
     });
+    scene
+}
+
+#[test]
+fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag() {
+    let Some(ctx) = gpu() else { return };
+    let scene = two_rooms_lamp_off_after_a_second();
     let mut with = DdgiSettings::balanced();
     with.volume.rays_per_probe = 128;
     let mut without = with.clone();
@@ -90,14 +95,7 @@ fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag(
 #[test]
 fn the_gather_follows_a_switched_off_light_as_the_probes_do() {
     let Some(ctx) = gpu() else { return };
-    let mut scene = irradiant_scene::load("two-rooms").unwrap().scene;
-    scene.animations.push(Animation {
-        target: AnimationTarget::Light("lamp".into()),
-        tracks: Tracks {
-            intensity_scale: vec![(0.0, 1.0), (0.999, 1.0), (1.0, 0.0)],
-            ..Default::default()
-        },
-    });
+    let scene = two_rooms_lamp_off_after_a_second();
     let mut query = DdgiSettings::balanced();
     query.volume.rays_per_probe = 128;
     let mut gather = query.clone();
