@@ -91,7 +91,7 @@ fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag(
 /// The final gather's running mean (DdgiSettings::gather) is shortened after a lighting change
 /// as the probes' hysteresis is, so the gathered light falls nearly as fast as the query's.
 /// Seen on lavapipe 15 frames after the switch: the query 0.172 of its lit value, the gather
-/// 0.273, and 0.882 with its 64 frames of history kept through the change.
+/// 0.270, and 0.883 with its 64 frames of history kept through the change.
 #[test]
 fn the_gather_follows_a_switched_off_light_as_the_probes_do() {
     let Some(ctx) = gpu() else { return };

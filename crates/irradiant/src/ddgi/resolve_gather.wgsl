@@ -16,12 +16,20 @@ fn pixel_light(s: Surface, pixel: vec2<u32>, tile: vec2<u32>, local_index: u32) 
 // that leaves the scene takes the sky; one that meets a back face is shaded from that side,
 // as the path tracer does.
 fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
-    var rng = rng_seed(pixel.y * frame.width + pixel.x, frame.frame_index, frame.seed ^ 0x3c6ef372u ^ volume.volume_index);
+    let index = pixel.y * frame.width + pixel.x;
+    var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x3c6ef372u ^ volume.volume_index);
+    // The directions walk the R2 sequence (Roberts 2018) frame after frame, from a place of
+    // the pixel's own: the running mean's rays cover the hemisphere evenly instead of
+    // clumping at random.
+    var pixel_rng = rng_seed(index, frame.seed, 0x9e3779b9u ^ volume.volume_index);
+    let start = rand2(&pixel_rng);
+    // A tile gathers every gather_interval-th frame: its gathers are consecutive points.
+    let gather = frame.frame_index / max(volume.gather_interval, 1u);
     let origin = offset_ray(s.position, s.geometric_normal);
     let around = basis(s.normal);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < GATHER_RAYS; i++) {
-        let dir = normalize(around * cosine_hemisphere(rand2(&rng)));
+        let dir = normalize(around * cosine_hemisphere(r2_point(gather * GATHER_RAYS + i, start)));
         let hit = trace_ray(origin, dir, RAY_FAR, false);
         if hit.triangle == INVALID {
             sum += scene_info.sky;
@@ -32,4 +40,11 @@ fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
         sum += hit_punctual_light(h, wo, rand(&rng)) + hit_emitter_and_probe_light(h, wo, hit.t, &rng);
     }
     return sum / f32(GATHER_RAYS);
+}
+
+// Point n of the R2 sequence shifted by `start`, in [0, 1)²: 2³²/g and 2³²/g² (g the plastic
+// number) in fixed point, so that it stays exact however many frames go by.
+fn r2_point(n: u32, start: vec2<f32>) -> vec2<f32> {
+    let step = vec2<u32>(n * 0xc13fa9a9u, n * 0x91e10da6u);
+    return fract(vec2<f32>(step) * 2.3283064e-10 + start);
 }
