@@ -170,7 +170,7 @@ pub struct DdgiGatherSettings {
     /// place of the query at the pixel. 0: the paper's query. The probes then light only the
     /// second bounce on, so their interpolation between layers (the Cornell box's edges and the
     /// faces by its boxes) no longer shows: on the Cornell box at its 4×4×4 probes FLIP 0.063
-    /// → 0.038 at one ray and 32 frames of history (H100, docs/ddgi.md). Each ray costs a
+    /// → 0.031 at one ray and 32 frames of history (H100, docs/ddgi.md). Each ray costs a
     /// traced ray, a shadow ray and a query a pixel a volume (+3.2 ms on Sibenik at 1080p); one
     /// ray is noisy and leans on `history_frames`.
     pub rays_per_pixel: u32,
