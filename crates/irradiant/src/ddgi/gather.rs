@@ -20,6 +20,11 @@ const LABELS: [[&str; 2]; 2] = [
 ];
 const TEXEL_BYTES: u64 = 16;
 
+/// ddgi/temporal's workgroups at an image size: one thread a pixel, as ddgi/resolve.
+pub fn workgroups((width, height): (u32, u32)) -> Workgroups {
+    Workgroups::for_image(width, height, crate::frame::IMAGE_TILE)
+}
+
 /// The history's allocations at an image size.
 pub fn plan(size: (u32, u32)) -> Vec<Allocation> {
     LABELS
@@ -46,7 +51,6 @@ impl GatherHistory {
         temporal: &Arc<ComputePass>,
         tables: &[&ResourceTable],
         size: (u32, u32),
-        image: Workgroups,
     ) -> Result<Self, RenderError> {
         ctx.check_allocations(&plan(size))?;
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
@@ -82,7 +86,7 @@ impl GatherHistory {
         };
         Ok(Self {
             passes: [bind(0)?, bind(1)?],
-            image,
+            image: workgroups(size),
             frames: 0,
             _textures: textures,
         })

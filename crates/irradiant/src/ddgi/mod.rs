@@ -136,10 +136,7 @@ impl TechniqueKind for DdgiKind {
             })
             .collect();
         if settings.gather.rays_per_pixel > 0 {
-            all.push((
-                "ddgi/temporal",
-                Workgroups::for_image(size.0, size.1, crate::frame::IMAGE_TILE),
-            ));
+            all.push(("ddgi/temporal", gather::workgroups(size)));
         }
         Ok(all)
     }
@@ -197,13 +194,11 @@ impl Ddgi {
         let gather = match &pipelines.temporal {
             Some(temporal) => {
                 let first = volumes[0].resources.table();
-                let size = cx.frame.size();
                 Some(gather::GatherHistory::new(
                     cx.ctx,
                     temporal,
                     &[&scene_table, &frame_table, &first],
-                    size,
-                    Workgroups::for_image(size.0, size.1, crate::frame::IMAGE_TILE),
+                    cx.frame.size(),
                 )?)
             }
             None => None,
