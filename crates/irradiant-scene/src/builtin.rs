@@ -31,6 +31,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "a table with a 3 cm top under a lamp, a probe layer at the top's height: the extrapolation-leak test",
     ),
     (
+        "slit-corridor",
+        "a lit hall and a dark corridor joined by a 15 cm slit through a thick wall: light through openings narrower than the probe spacing",
+    ),
+    (
         "furnace",
         "a white diffuse sphere under a uniform white sky: the white-furnace test",
     ),
@@ -52,6 +56,7 @@ pub fn builtin(name: &str) -> Option<Scene> {
         "empty-box" => Some(empty_box()),
         "thin-frames" => Some(thin_frames()),
         "table" => Some(table()),
+        "slit-corridor" => Some(slit_corridor()),
         "furnace" => Some(furnace()),
         "glowing-box" => Some(glowing_box()),
         "dense-cluster" => Some(dense_cluster()),
@@ -375,6 +380,55 @@ pub fn thin_frames() -> Scene {
     scene
         .regions
         .push(Region::new("frames", v(-1.0, 0.0, -1.4), v(0.8, 1.7, -0.6)));
+    scene
+}
+
+/// A lit hall and a dark corridor behind a wall half a metre thick, joined only by a slit
+/// 15 cm high, far narrower than the probe spacing (about 1.2 m): Sponza's upper corridors in
+/// small (docs/ddgi.md). No ray from the lamp passes the slit, so the corridor's light comes
+/// from the hall's surfaces and the slit's reveals, which the corridor's probes see at a small
+/// angle and the surfaces by the slit at a large one.
+pub fn slit_corridor() -> Scene {
+    let mut b = Builder::new("slit-corridor");
+    let white = b.material("plaster", Vec3::splat(0.75), Vec3::ZERO);
+    let v = Vec3::new;
+    b.closed_room(v(-3.0, 0.0, -2.0), v(3.0, 3.0, 2.0), 0.1, white, white);
+    let (wall_front, wall_back) = (0.2, 0.7);
+    let (slit_bottom, slit_top, slit_half_width) = (1.0, 1.15, 1.0);
+    b.cuboid(
+        v(-3.0, 0.0, wall_front),
+        v(3.0, slit_bottom, wall_back),
+        white,
+    );
+    b.cuboid(v(-3.0, slit_top, wall_front), v(3.0, 3.0, wall_back), white);
+    for (x0, x1) in [(-3.0, -slit_half_width), (slit_half_width, 3.0)] {
+        b.cuboid(
+            v(x0, slit_bottom, wall_front),
+            v(x1, slit_top, wall_back),
+            white,
+        );
+    }
+    let camera = Camera::looking_at(v(2.7, 1.7, 1.9), v(-1.5, 0.9, 0.7), 60.0);
+    let mut scene = b.into_scene("slit-corridor", camera);
+    scene.lights.push(Light::point(
+        "lamp",
+        v(0.0, 2.7, -1.2),
+        Vec3::new(1.0, 0.9, 0.75),
+        12.0,
+    ));
+    // Four layers along z: two in the hall, one in the wall (relocated out of it), one in the
+    // corridor.
+    scene.probe_volumes.push(ProbeVolumeDesc::new(
+        "hall and corridor",
+        v(-2.75, 0.25, -1.75),
+        v(2.75, 2.75, 1.75),
+        [6, 3, 4],
+    ));
+    scene.regions.push(Region::new(
+        "corridor",
+        v(-3.0, 0.0, wall_back),
+        v(3.0, 3.0, 2.0),
+    ));
     scene
 }
 

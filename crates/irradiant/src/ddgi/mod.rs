@@ -57,7 +57,8 @@ pub struct DdgiKind {
 
 impl DdgiKind {
     /// The settings a spec asks for (classic probes force trilinear weights, no extrapolation
-    /// past the outermost probes and no final gather: the baseline the paper improves on).
+    /// past the outermost probes, no traced bounce and no final gather: the baseline the paper
+    /// improves on).
     pub fn settings(
         &self,
         spec: &TechniqueSpec,
@@ -67,6 +68,7 @@ impl DdgiKind {
         if self.classic {
             settings.update.weights = ProbeWeights::Classic;
             settings.update.extrapolation = 0.0;
+            settings.update.traced_bounce = false;
             settings.gather.rays_per_pixel = 0;
         }
         Ok(settings)

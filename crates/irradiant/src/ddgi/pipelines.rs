@@ -94,6 +94,10 @@ impl DdgiPipelines {
                 vec![
                     ("FUSED_TRACE", format!("{}u", fused as u32)),
                     ("SHADOW_QUEUE", format!("{}u", queue as u32)),
+                    (
+                        "TRACED_BOUNCE",
+                        format!("{}u", settings.update.traced_bounce as u32),
+                    ),
                 ],
             )?,
             shadow: if queue {

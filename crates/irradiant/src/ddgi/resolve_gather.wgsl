@@ -12,9 +12,8 @@ fn pixel_light(s: Surface, pixel: vec2<u32>, tile: vec2<u32>, local_index: u32) 
     return gathered_light(s, pixel);
 }
 
-// The cosine-weighted mean radiance GATHER_RAYS rays from the pixel's surface bring back. A ray
-// that leaves the scene takes the sky; one that meets a back face is shaded from that side,
-// as the path tracer does.
+// The cosine-weighted mean radiance GATHER_RAYS rays from the pixel's surface bring back
+// (traced_light).
 fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
     let index = pixel.y * frame.width + pixel.x;
     var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x3c6ef372u ^ volume.volume_index);
@@ -30,14 +29,7 @@ fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < GATHER_RAYS; i++) {
         let dir = normalize(around * cosine_hemisphere(r2_point(gather * GATHER_RAYS + i, start)));
-        let hit = trace_ray(origin, dir, RAY_FAR, false);
-        if hit.triangle == INVALID {
-            sum += scene_info.sky;
-            continue;
-        }
-        let h = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
-        let wo = -dir;
-        sum += hit_punctual_light(h, wo, rand(&rng)) + hit_emitter_and_probe_light(h, wo, hit.t, &rng);
+        sum += traced_light(origin, dir, &rng);
     }
     return sum / f32(GATHER_RAYS);
 }

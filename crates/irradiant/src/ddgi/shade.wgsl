@@ -1,6 +1,7 @@
 // ddgi/shade: the radiance each probe ray brings back (ddgi_hit_light): direct light and
-// indirect light from last frame's probes, so that bounces accumulate over frames. Misses
-// take the sky. The probes hold indirect light only.
+// indirect light from last frame's probes (read at the hit, or with TRACED_BOUNCE one traced
+// ray further on), so that bounces accumulate over frames. Misses take the sky. The probes
+// hold indirect light only.
 #import ddgi_hit_light
 #import ddgi_rays
 #import ddgi_active
@@ -9,6 +10,9 @@
 @group(2) @binding(4) var<storage, read> hits: array<GpuDdgiRayHit>;
 @group(2) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
 
+// TRACED_BOUNCE (0 or 1, DdgiUpdateSettings::traced_bounce): each hit's indirect light from one
+// cosine-distributed ray traced on from it (traced_light), instead of the probes read at the
+// hit.
 // SHADOW_QUEUE (0 or 1, DdgiSettings::shadow_queue): instead of tracing the punctual light's
 // shadow ray here, where only the lanes whose hit faces the light trace while the rest of the
 // warp waits, append it to this queue; ddgi/shadow traces the queue densely and adds the
@@ -109,7 +113,11 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
     } else {
         l = hit_punctual_light(s, wo, light_u);
     }
-    l += hit_emitter_and_probe_light(s, wo, NO_VIEWER_LIMIT, &rng);
+    if TRACED_BOUNCE == 1u {
+        l += hit_emitter_and_traced_bounce(s, wo, &rng);
+    } else {
+        l += hit_emitter_and_probe_light(s, wo, NO_VIEWER_LIMIT, &rng);
+    }
     out.radiance = l;
     // The sign marks backfaces for relocation, whatever the weights.
     out.distance = select(hit.t, -hit.t, backface);
