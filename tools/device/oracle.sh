@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs on the lent NVIDIA machine (issue 15): `irradiant oracle` — DDGI's probes and query
 # against the path tracer — on each scene of $SCENES after each frame count of $FRAMES, for the
-# DDGI variants $VARIANTS (default: ddgi). $BIN picks the binary (../irradiant or ../before).
+# DDGI variants $VARIANTS (default: ddgi) at the preset $PRESET (default: balanced). $BIN picks
+# the binary (../irradiant or ../before).
 # Writes oracle-<tag>.tgz (oracle.json, histograms, worst probes, error maps) into $OUT.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
@@ -15,7 +16,7 @@ for frames in ${FRAMES:-300}; do
         name=$(basename $scene .toml)
         /usr/bin/time -f "%e s" $bin oracle --scene $scene --size 256x192 --frames $frames \
             --average 16 --probe-samples ${PROBE_SAMPLES:-2048} --query-samples ${QUERY_SAMPLES:-512} \
-            --techniques "${VARIANTS:-ddgi}" --out "$res/$name-$frames" \
+            --preset ${PRESET:-balanced} --techniques "${VARIANTS:-ddgi}" --out "$res/$name-$frames" \
             > "$res/$name-$frames.txt" 2>&1 || true
         echo "== $name, $frames frames"; tail -n +2 "$res/$name-$frames.txt"
     done
