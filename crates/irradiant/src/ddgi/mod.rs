@@ -374,3 +374,34 @@ impl Technique for Ddgi {
         self
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::Preset;
+
+    /// Classic probes are the baseline the paper improves on: whatever the preset asks, they
+    /// trace no bounce at their rays' hits and no gather at the pixels.
+    #[test]
+    fn classic_probes_trace_neither_a_bounce_nor_a_gather() {
+        let spec = TechniqueSpec::new("classic-probes", Preset::Quality);
+        let full = DDGI.settings(&spec, &mut Vec::new()).unwrap();
+        assert!(full.update.traced_bounce && full.gather.rays_per_pixel > 0);
+        let classic = CLASSIC_PROBES.settings(&spec, &mut Vec::new()).unwrap();
+        assert!(!classic.update.traced_bounce);
+        assert_eq!(classic.gather.rays_per_pixel, 0);
+    }
+
+    /// The traced bounce is compiled into ddgi/shade: switching it rebuilds the volumes, while
+    /// the rest of `update` changes live.
+    #[test]
+    fn switching_the_traced_bounce_rebuilds() {
+        let balanced = DdgiSettings::balanced();
+        let mut traced = balanced.clone();
+        traced.update.traced_bounce = true;
+        assert!(!balanced.same_build(&traced));
+        let mut live = balanced.clone();
+        live.update.hysteresis = 0.9;
+        assert!(balanced.same_build(&live));
+    }
+}
