@@ -85,6 +85,12 @@ impl HybridSettings {
         // The screen-space light stands in for the probes where the screen sees; DDGI's traced
         // final gather would only be replaced there, at its full cost (docs/ddgi.md).
         ddgi.gather.rays_per_pixel = 0;
+        // Nor the traced bounce at the probe rays' hits: without the gather's mean over frames,
+        // its noise reaches the image (a still scene's image mean varies three times as much,
+        // docs/ssil.md), and the probes light only what the screen misses. 512 rays a probe
+        // instead, as before it.
+        ddgi.update.traced_bounce = false;
+        ddgi.volume.rays_per_probe = 512;
         Self {
             ssil: SsilSettings::quality(),
             ddgi,
