@@ -28,7 +28,8 @@ pub fn technique_values() -> Vec<&'static str> {
 #[derive(Args)]
 pub struct RenderArgs {
     /// A built-in scene (cornell, two-rooms, box-cylinders, empty-box, thin-frames, table,
-    /// furnace, glowing-box, dense-cluster), a manifest (.toml) or a mesh (.obj, .gltf, .glb).
+    /// slit-corridor, furnace, glowing-box, dense-cluster), a manifest (.toml) or a mesh (.obj,
+    /// .gltf, .glb).
     #[arg(long, default_value = "cornell")]
     pub scene: String,
     /// `path` (the reference path tracer) or a registered real-time technique (default: the
