@@ -43,22 +43,40 @@ fn two_rooms_lamp_off_after_a_second() -> Scene {
     scene
 }
 
+/// The balanced settings with 128 rays a probe, as both switch tests run them.
+fn switch_test_settings() -> DdgiSettings {
+    let mut settings = DdgiSettings::balanced();
+    settings.volume.rays_per_probe = 128;
+    settings
+}
+
+/// The dark room's indirect light at its last lit frame (59), and after the switch, frame by
+/// frame for `frames_after` frames, as a share of it.
+fn dark_room_after_the_switch(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &Scene,
+    settings: &DdgiSettings,
+    frames_after: u32,
+) -> (f64, Vec<f64>) {
+    let means = indirect_over_time(ctx, scene, settings, 60 + frames_after, "dark-room");
+    let lit = means[59];
+    (lit, means[60..].iter().map(|m| m / lit).collect())
+}
+
 #[test]
 fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag() {
     let Some(ctx) = gpu() else { return };
     let scene = two_rooms_lamp_off_after_a_second();
-    let mut with = DdgiSettings::balanced();
-    with.volume.rays_per_probe = 128;
+    let with = switch_test_settings();
     let mut without = with.clone();
     without.update.convergence_heuristics = false;
     let fall = |settings: &DdgiSettings| {
-        let means = indirect_over_time(&ctx, &scene, settings, 60 + 30, "dark-room");
-        let lit = means[59];
+        let (lit, shares) = dark_room_after_the_switch(&ctx, &scene, settings, 30);
         assert!(
             lit > 0.01,
             "the dark room should receive indirect light while the lamp burns"
         );
-        means[60..].iter().map(|m| m / lit).collect::<Vec<f64>>()
+        shares
     };
     let (fast, slow) = (fall(&with), fall(&without));
     let show = |v: &[f64]| {
@@ -96,15 +114,12 @@ fn switching_the_light_off_darkens_the_indirect_light_within_the_hysteresis_lag(
 fn the_gather_follows_a_switched_off_light_as_the_probes_do() {
     let Some(ctx) = gpu() else { return };
     let scene = two_rooms_lamp_off_after_a_second();
-    let mut query = DdgiSettings::balanced();
-    query.volume.rays_per_probe = 128;
+    let query = switch_test_settings();
     let mut gather = query.clone();
     gather.gather.rays_per_pixel = 1;
     gather.gather.history_frames = 64;
-    let fall = |settings: &DdgiSettings| {
-        let means = indirect_over_time(&ctx, &scene, settings, 60 + 15, "dark-room");
-        means[74] / means[59]
-    };
+    let fall =
+        |settings: &DdgiSettings| dark_room_after_the_switch(&ctx, &scene, settings, 15).1[14];
     let (q, g) = (fall(&query), fall(&gather));
     eprintln!(
         "dark-room indirect 15 frames after the switch, as a share of the lit value: query {q:.3}, gather {g:.3}"
