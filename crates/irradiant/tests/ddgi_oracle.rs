@@ -756,19 +756,23 @@ fn the_floor_under_a_table_takes_no_extrapolated_light() {
     );
 }
 
-/// The built-in `slit-corridor`: a corridor lit only through a 15 cm slit, far narrower than
+/// `slit-corridor`: a lit hall and a dark corridor whose only opening is a slit narrower than
 /// the probe spacing, as Sponza's upper corridors are. Read at the probe rays' hits, the probes
 /// leave the corridor almost black (−94.8 % here); with the traced bounce the surfaces by the
 /// slit pass on what they see through it (−56.3 %; docs/ddgi.md, "A traced bounce at the probe
-/// rays' hits"). The corridor must hold three times the light, and no more than the truth.
+/// rays' hits"), and with a blind bounce the slit's reveals, which no probe sees, pass on the
+/// hall's light too ("Tracing on where the probes are blind"). The corridor must hold three
+/// times the light with the traced bounce, a fifth more again with the blind bounce, and no
+/// more than the truth.
 #[test]
-fn the_traced_bounce_lights_a_corridor_through_a_slit() {
+fn the_traced_and_the_blind_bounces_light_a_corridor_through_a_slit() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("slit-corridor").unwrap().scene;
-    let variants = [false, true].map(|traced_bounce| {
+    let variants = [(false, 0), (true, 0), (true, 1)].map(|(traced_bounce, blind_bounces)| {
         let mut settings = DdgiSettings::balanced();
         settings.update.hysteresis = 0.9;
         settings.update.traced_bounce = traced_bounce;
+        settings.update.blind_bounces = blind_bounces;
         settings
     });
     let corridor: Vec<(f32, f32)> =
@@ -779,20 +783,26 @@ fn the_traced_bounce_lights_a_corridor_through_a_slit() {
                 (*ddgi, *truth)
             })
             .collect();
-    let [(query, truth), (traced, _)] = corridor[..] else {
+    let [(query, truth), (traced, _), (blind, _)] = corridor[..] else {
         unreachable!()
     };
+    let error = |light: f32| 100.0 * (light / truth - 1.0);
     eprintln!(
-        "slit-corridor's corridor against the truth: probes read at the hits {:+.1} %, traced bounce {:+.1} %",
-        100.0 * (query / truth - 1.0),
-        100.0 * (traced / truth - 1.0)
+        "slit-corridor's corridor against the truth: probes read at the hits {:+.1} %, traced bounce {:+.1} %, and a blind bounce {:+.1} %",
+        error(query),
+        error(traced),
+        error(blind)
     );
     assert!(
         traced > 3.0 * query,
         "the traced bounce brings the corridor {traced:.3e} against the query's {query:.3e}"
     );
     assert!(
-        traced < truth,
-        "the corridor reads {traced:.3e}, over the truth's {truth:.3e}"
+        blind > 1.2 * traced,
+        "the blind bounce brings the corridor {blind:.3e} against the traced bounce's {traced:.3e}"
+    );
+    assert!(
+        blind < truth,
+        "the corridor reads {blind:.3e}, over the truth's {truth:.3e}"
     );
 }

@@ -1,8 +1,8 @@
 // ddgi: the light a ray's hit sends back along the ray, for the probe rays (ddgi/shade) and the
 // final gather at the pixels (ddgi/resolve): punctual light with shadow rays, one emitter
 // sample, and the probes' irradiance — read at the hit, or one traced bounce further on
-// (`traced_light`). Emission is left out: the frame's direct pass samples every emitter
-// already.
+// (`traced_light`), and traced on past hits the probes are blind to (`probes_blind_to`).
+// Emission is left out: the frame's direct pass samples every emitter already.
 #import ddgi_query
 #import lights
 
@@ -26,30 +26,55 @@ fn hit_emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3
     return emitter_light(s, wo, rng);
 }
 
-// The rest: one emitter sample and the probes' irradiance, seen from `viewer_distance` away
-// (ddgi_irradiance_seen_from; NO_VIEWER_LIMIT: the plain query).
-fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, viewer_distance: f32, rng: ptr<function, u32>) -> vec3<f32> {
+// A cosine-distributed direction around n.
+fn cosine_direction(n: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
+    return normalize(basis(n) * cosine_hemisphere(rand2(rng)));
+}
+
+// Whether the probes are too blind to a point to give its light (BLIND_BOUNCES and
+// BLIND_THRESHOLD, DdgiUpdateSettings::blind_bounces): the ray that reached it traces on.
+fn probes_blind_to(read: ProbeRead, bounces_left: u32) -> bool {
+    return bounces_left > 0u && read.seen < BLIND_THRESHOLD;
+}
+
+// A probe ray's hit, beyond its punctual lights: one emitter sample and the probes' irradiance
+// read at the hit, or, where they are blind to it, one ray traced on.
+fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
     let l = hit_emitter_light(s, wo, rng);
-    var probes: vec3<f32>;
-    if viewer_distance == NO_VIEWER_LIMIT {
-        probes = ddgi_irradiance(s.position, s.normal, wo);
-    } else {
-        probes = ddgi_irradiance_seen_from(s.position, s.normal, wo, viewer_distance);
+    let read = ddgi_irradiance(s.position, s.normal, wo);
+    if probes_blind_to(read, BLIND_BOUNCES) {
+        let origin = offset_ray(s.position, s.geometric_normal);
+        return l + diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), BLIND_BOUNCES - 1u, rng);
     }
-    return l + diffuse_weight(s) * probes;
+    return l + diffuse_weight(s) * read.irradiance;
 }
 
 // The radiance a ray from `origin` along `dir` brings back: the sky where it leaves the scene,
-// else its hit's light with the probes seen from the ray's length away. A ray that meets a
-// back face is shaded from that side, as the path tracer does.
-fn traced_light(origin: vec3<f32>, dir: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
-    let hit = trace_ray(origin, dir, RAY_FAR, false);
-    if hit.triangle == INVALID {
-        return scene_info.sky;
+// else its hit's direct light and the probes seen from the ray's length away; where they are
+// blind to the hit, the ray goes on, cosine-distributed, at most `blind_bounces` times. A ray
+// that meets a back face is shaded from that side, as the path tracer does.
+fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
+    var ray_origin = origin;
+    var ray_dir = dir;
+    var throughput = vec3<f32>(1.0);
+    var light = vec3<f32>(0.0);
+    for (var bounce = 0u; bounce <= blind_bounces; bounce++) {
+        let hit = trace_ray(ray_origin, ray_dir, RAY_FAR, false);
+        if hit.triangle == INVALID {
+            return light + throughput * scene_info.sky;
+        }
+        let h = surface_at(ray_origin, ray_dir, hit.t, hit.triangle, hit.instance, hit.bary);
+        let wo = -ray_dir;
+        light += throughput * (hit_punctual_light(h, wo, rand(rng)) + hit_emitter_light(h, wo, rng));
+        let read = ddgi_irradiance_seen_from(h.position, h.normal, wo, hit.t);
+        if !probes_blind_to(read, blind_bounces - bounce) {
+            return light + throughput * diffuse_weight(h) * read.irradiance;
+        }
+        throughput *= diffuse_weight(h);
+        ray_origin = offset_ray(h.position, h.geometric_normal);
+        ray_dir = cosine_direction(h.normal, rng);
     }
-    let h = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
-    let wo = -dir;
-    return hit_punctual_light(h, wo, rand(rng)) + hit_emitter_and_probe_light(h, wo, hit.t, rng);
+    return light;
 }
 
 // The traced bounce (DdgiUpdateSettings::traced_bounce): one emitter sample and the light one
@@ -58,6 +83,6 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, rng: ptr<function, u32>) -> v
 // than the probe spacing see what lies beyond it.
 fn hit_emitter_and_traced_bounce(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
     let l = hit_emitter_light(s, wo, rng);
-    let dir = normalize(basis(s.normal) * cosine_hemisphere(rand2(rng)));
-    return l + diffuse_weight(s) * traced_light(offset_ray(s.position, s.geometric_normal), dir, rng);
+    let origin = offset_ray(s.position, s.geometric_normal);
+    return l + diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), BLIND_BOUNCES, rng);
 }

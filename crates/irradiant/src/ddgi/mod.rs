@@ -69,6 +69,7 @@ impl DdgiKind {
             settings.update.weights = ProbeWeights::Classic;
             settings.update.extrapolation = 0.0;
             settings.update.traced_bounce = false;
+            settings.update.blind_bounces = 0;
             settings.gather.rays_per_pixel = 0;
         }
         Ok(settings)
@@ -387,19 +388,28 @@ mod tests {
         let spec = TechniqueSpec::new("classic-probes", Preset::Quality);
         let full = DDGI.settings(&spec, &mut Vec::new()).unwrap();
         assert!(full.update.traced_bounce && full.gather.rays_per_pixel > 0);
+        assert!(full.update.blind_bounces > 0);
         let classic = CLASSIC_PROBES.settings(&spec, &mut Vec::new()).unwrap();
         assert!(!classic.update.traced_bounce);
+        assert_eq!(classic.update.blind_bounces, 0);
         assert_eq!(classic.gather.rays_per_pixel, 0);
     }
 
-    /// The traced bounce is compiled into ddgi/shade: switching it rebuilds the volumes, while
-    /// the rest of `update` changes live.
+    /// The traced bounce and the blind bounces are compiled into DDGI's passes: switching one
+    /// rebuilds the volumes, while the rest of `update` changes live.
     #[test]
-    fn switching_the_traced_bounce_rebuilds() {
+    fn switching_the_traced_or_the_blind_bounces_rebuilds() {
         let balanced = DdgiSettings::balanced();
-        let mut traced = balanced.clone();
-        traced.update.traced_bounce = true;
-        assert!(!balanced.same_build(&traced));
+        let switches: [fn(&mut DdgiUpdateSettings); 3] = [
+            |u| u.traced_bounce = true,
+            |u| u.blind_bounces = 2,
+            |u| u.blind_threshold = 0.75,
+        ];
+        for switch in switches {
+            let mut switched = balanced.clone();
+            switch(&mut switched.update);
+            assert!(!balanced.same_build(&switched), "{:?}", switched.update);
+        }
         let mut live = balanced.clone();
         live.update.hysteresis = 0.9;
         assert!(balanced.same_build(&live));

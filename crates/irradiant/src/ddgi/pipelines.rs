@@ -166,8 +166,8 @@ fn blend_constants(texels: u32) -> Vec<(&'static str, String)> {
 /// Rays the blend passes hold in workgroup memory at once: 4 KiB of radiance.
 const BLEND_CHUNK: u32 = 256;
 
-/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl) and
-/// LIGHT_PER_WARP (ddgi/shade).
+/// Constants every DDGI shader sees: PROBES_PER_GROUP (ray_slot in rays.wgsl), LIGHT_PER_WARP
+/// (ddgi/shade), BLIND_BOUNCES and BLIND_THRESHOLD (ddgi_hit_light's probe rays).
 fn shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
     vec![
         (
@@ -177,6 +177,14 @@ fn shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
         (
             "LIGHT_PER_WARP",
             format!("{}u", settings.speed.light_per_warp as u32),
+        ),
+        (
+            "BLIND_BOUNCES",
+            format!("{}u", settings.update.blind_bounces),
+        ),
+        (
+            "BLIND_THRESHOLD",
+            format!("{:?}", settings.update.blind_threshold),
         ),
     ]
 }

@@ -41,9 +41,19 @@ fn nearest_mean_distance(cell: vec2<u32>, uv: vec2<f32>) -> f32 {
     return textureLoad(distance_texture, vec2<i32>(round(c)), 0).x;
 }
 
-// Cosine-weighted mean radiance arriving at p around normal n (irradiance / π): a Lambertian
-// surface of albedo ρ reflects ρ times this. `wo` points from p towards the viewer.
-fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+// What the probes hold for a point.
+struct ProbeRead {
+    // Cosine-weighted mean radiance arriving around the normal (irradiance / π): a Lambertian
+    // surface of albedo ρ reflects ρ times this.
+    irradiance: vec3<f32>,
+    // The share of the cage's trilinear weight whose probes see the point (Chebyshev): 1 in
+    // open space, the near side's share at a wall between two layers, near 0 in a slit's
+    // reveals, whose irradiance then comes from probes that stand in other light.
+    seen: f32,
+}
+
+// The probes' light at p around normal n; `wo` points from p towards the viewer.
+fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> ProbeRead {
     // 003's bias scales with the smallest spacing; here each axis with its own, so that on a
     // grid of tall cells (Sibenik's 4 m layers) the bias is the same share of the cell that
     // the visibility test has to reach across along that axis.
@@ -51,15 +61,11 @@ fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     return irradiance_at_biased(p, n, p + bias);
 }
 
-// No limit on the bias towards the viewer: probe rays, whose viewers (the probes) stand off
-// the surfaces they see.
-const NO_VIEWER_LIMIT: f32 = 3.0e38;
-
 // ddgi_irradiance seen from a viewer `viewer_distance` away along `wo` (the final gather's
 // rays, which start on a surface): the bias towards the viewer goes at most half that far, so
 // that a hit next to the ray's own surface is not moved through it (a 10 cm wall lit on its
 // other side read bright along its seams).
-fn ddgi_irradiance_seen_from(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>, viewer_distance: f32) -> vec3<f32> {
+fn ddgi_irradiance_seen_from(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>, viewer_distance: f32) -> ProbeRead {
     let scale = volume.spacing * (0.75 * volume.self_shadow_bias);
     var view_bias = wo * 0.8 * scale;
     let view_length = length(view_bias);
@@ -70,7 +76,7 @@ fn ddgi_irradiance_seen_from(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>, viewer_d
 }
 
 // The query at p around n, its cage, weights and visibility taken at `biased`.
-fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> vec3<f32> {
+fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> ProbeRead {
     let max_base = vec3<i32>(volume.counts) - vec3<i32>(2);
     let grid = (biased - volume.origin) / volume.spacing;
     let base = clamp(vec3<i32>(floor(grid)), vec3<i32>(0), max(max_base, vec3<i32>(0)));
@@ -91,6 +97,7 @@ fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> vec3<f
     var sum_out = vec3<f32>(0.0);
     var weight_sum_out = 0.0;
     var trend_broken = false;
+    var seen = 0.0;
     for (var i = 0u; i < 8u; i++) {
         let offset = vec3<u32>(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u);
         let coord = min(vec3<u32>(base) + offset, volume.counts - 1u);
@@ -107,6 +114,7 @@ fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> vec3<f
             let wrap = (dot(to_probe, n) + 1.0) * 0.5;
             w *= wrap * wrap + 0.2;
         }
+        var visibility = 1.0;
         if (volume.weights & WEIGHT_CHEBYSHEV) != 0u {
             let probe_to_point = biased - probe_pos;
             let r = length(probe_to_point);
@@ -115,9 +123,10 @@ fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> vec3<f
                 let variance = abs(moments.y - moments.x * moments.x);
                 let d = r - moments.x;
                 let chebyshev = variance / (variance + d * d);
-                w *= max(chebyshev * chebyshev * chebyshev, 0.0);
+                visibility = max(chebyshev * chebyshev * chebyshev, 0.0);
             }
         }
+        w *= visibility;
         w = max(w, 1e-6);
         // Crush tiny weights (the "log perception" weight): light leaks read as far brighter
         // than their weight suggests in the dark.
@@ -130,7 +139,9 @@ fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> vec3<f
         }
         let w_visible = w;
         let trilinear = mix(1.0 - alpha, alpha, vec3<f32>(offset));
-        w *= trilinear.x * trilinear.y * trilinear.z;
+        let cage_weight = trilinear.x * trilinear.y * trilinear.z;
+        seen += visibility * cage_weight;
+        w *= cage_weight;
         let encoded = sample_irradiance_encoded(cell, n_uv);
         // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
         var blendable = max(encoded, vec3<f32>(0.0));
@@ -158,5 +169,5 @@ fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> vec3<f
         let extrapolated = sum_out / weight_sum_out;
         blended = clamp(extrapolated, blended * 0.70710678, blended * 1.41421356);
     }
-    return blended * blended;
+    return ProbeRead(blended * blended, seen);
 }

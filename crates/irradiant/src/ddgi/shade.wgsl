@@ -12,7 +12,7 @@
 
 // TRACED_BOUNCE (0 or 1, DdgiUpdateSettings::traced_bounce): each hit's indirect light from one
 // cosine-distributed ray traced on from it (traced_light), instead of the probes read at the
-// hit.
+// hit. Either way, hits the probes are blind to trace on (BLIND_BOUNCES, ddgi_hit_light).
 // SHADOW_QUEUE (0 or 1, DdgiSettings::shadow_queue): instead of tracing the punctual light's
 // shadow ray here, where only the lanes whose hit faces the light trace while the rest of the
 // warp waits, append it to this queue; ddgi/shadow traces the queue densely and adds the
@@ -116,7 +116,7 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
     if TRACED_BOUNCE == 1u {
         l += hit_emitter_and_traced_bounce(s, wo, &rng);
     } else {
-        l += hit_emitter_and_probe_light(s, wo, NO_VIEWER_LIMIT, &rng);
+        l += hit_emitter_and_probe_light(s, wo, &rng);
     }
     out.radiance = l;
     // The sign marks backfaces for relocation, whatever the weights.

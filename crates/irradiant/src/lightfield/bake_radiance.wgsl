@@ -43,7 +43,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
                 l += sum / f32(lightfield.emitter_samples);
             }
             if lightfield.bounce > 0u {
-                l += diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, wo);
+                l += diffuse_weight(s) * ddgi_irradiance(s.position, s.normal, wo).irradiance;
             }
         }
     }

@@ -34,7 +34,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let s = gbuffer_surface(pixel);
-    let e = ddgi_irradiance(s.position, s.normal, view_dir(s.position));
+    let e = ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance;
     textureStore(target_coarse_irradiance, id.xy, vec4<f32>(e, depth));
     textureStore(target_coarse_normal, id.xy, vec4<f32>(s.normal, 0.0));
 }

@@ -67,7 +67,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if lightfield.algorithm == ALGORITHM_PREFILTERED && EXACT_IRRADIANCE == 0u {
         lambert = upsampled_irradiance(id.xy, s, gbuffer_depth_at(id.xy));
     } else if lightfield.algorithm == ALGORITHM_PREFILTERED {
-        lambert = ddgi_irradiance(s.position, s.normal, view_dir(s.position));
+        lambert = ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance;
     } else {
         lambert = textureLoad(lambert_light, pixel, 0).rgb;
     }

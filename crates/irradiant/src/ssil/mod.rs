@@ -88,8 +88,9 @@ impl HybridSettings {
         // Nor the traced bounce at the probe rays' hits: without the gather's mean over frames,
         // its noise reaches the image (a still scene's image mean varies three times as much,
         // docs/ssil.md), and the probes light only what the screen misses. 512 rays a probe
-        // instead, as before it.
+        // instead, as before it. Nor its blind bounces, for the same noise.
         ddgi.update.traced_bounce = false;
+        ddgi.update.blind_bounces = 0;
         ddgi.volume.rays_per_probe = 512;
         Self {
             ssil: SsilSettings::quality(),
