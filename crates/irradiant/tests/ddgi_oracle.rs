@@ -763,18 +763,20 @@ fn the_floor_under_a_table_takes_no_extrapolated_light() {
 /// rays' hits"), and with a blind bounce the slit's reveals, which no probe sees, pass on the
 /// hall's light too ("Tracing on where the probes are blind"). The corridor must hold three
 /// times the light with the traced bounce, a fifth more again with the blind bounce, and no
-/// more than the truth.
+/// more than the truth; a blind bounce without the traced bounce (at the probe rays' own hits)
+/// half as much again as the probes read at the hits.
 #[test]
 fn the_traced_and_the_blind_bounces_light_a_corridor_through_a_slit() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("slit-corridor").unwrap().scene;
-    let variants = [(false, 0), (true, 0), (true, 1)].map(|(traced_bounce, blind_bounces)| {
-        let mut settings = DdgiSettings::balanced();
-        settings.update.hysteresis = 0.9;
-        settings.update.traced_bounce = traced_bounce;
-        settings.update.blind_bounces = blind_bounces;
-        settings
-    });
+    let variants =
+        [(false, 0), (true, 0), (true, 1), (false, 1)].map(|(traced_bounce, blind_bounces)| {
+            let mut settings = DdgiSettings::balanced();
+            settings.update.hysteresis = 0.9;
+            settings.update.traced_bounce = traced_bounce;
+            settings.update.blind_bounces = blind_bounces;
+            settings
+        });
     let corridor: Vec<(f32, f32)> =
         query_oracles_against_one_truth(&ctx, &scene, &variants, 120, 256)
             .into_iter()
@@ -783,15 +785,16 @@ fn the_traced_and_the_blind_bounces_light_a_corridor_through_a_slit() {
                 (*ddgi, *truth)
             })
             .collect();
-    let [(query, truth), (traced, _), (blind, _)] = corridor[..] else {
+    let [(query, truth), (traced, _), (blind, _), (blind_alone, _)] = corridor[..] else {
         unreachable!()
     };
     let error = |light: f32| 100.0 * (light / truth - 1.0);
     eprintln!(
-        "slit-corridor's corridor against the truth: probes read at the hits {:+.1} %, traced bounce {:+.1} %, and a blind bounce {:+.1} %",
+        "slit-corridor's corridor against the truth: probes read at the hits {:+.1} %, traced bounce {:+.1} %, and a blind bounce {:+.1} %; a blind bounce alone {:+.1} %",
         error(query),
         error(traced),
-        error(blind)
+        error(blind),
+        error(blind_alone)
     );
     assert!(
         traced > 3.0 * query,
@@ -800,6 +803,10 @@ fn the_traced_and_the_blind_bounces_light_a_corridor_through_a_slit() {
     assert!(
         blind > 1.2 * traced,
         "the blind bounce brings the corridor {blind:.3e} against the traced bounce's {traced:.3e}"
+    );
+    assert!(
+        blind_alone > 1.5 * query,
+        "a blind bounce alone brings the corridor {blind_alone:.3e} against the query's {query:.3e}"
     );
     assert!(
         blind < truth,

@@ -42,9 +42,12 @@ fn probes_blind_to(read: ProbeRead, bounces_left: u32) -> bool {
 fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
     let l = hit_emitter_light(s, wo, rng);
     let read = ddgi_irradiance(s.position, s.normal, wo);
-    if probes_blind_to(read, BLIND_BOUNCES) {
+    // A `let`, not the constant itself: `BLIND_BOUNCES - 1u` would be a constant expression,
+    // and one that overflows where BLIND_BOUNCES is 0.
+    let bounces = BLIND_BOUNCES;
+    if probes_blind_to(read, bounces) {
         let origin = offset_ray(s.position, s.geometric_normal);
-        return l + diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), BLIND_BOUNCES - 1u, rng);
+        return l + diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), bounces - 1u, rng);
     }
     return l + diffuse_weight(s) * read.irradiance;
 }
