@@ -813,3 +813,40 @@ fn the_traced_and_the_blind_bounces_light_a_corridor_through_a_slit() {
         "the corridor reads {blind:.3e}, over the truth's {truth:.3e}"
     );
 }
+
+/// Blind bounces trace on from hits no probe sees, such as the faces of two-rooms' doorway:
+/// they must not light the dark room past the truth, nor move it far from what the probes give
+/// without them (issue 15: fixes may not bring leaks back). `quality`'s update on `balanced`'s
+/// rays: the traced bounce, with and without a blind bounce.
+#[test]
+fn blind_bounces_bring_no_light_into_the_dark_room() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("two-rooms").unwrap().scene;
+    let variants = [0, 1].map(|blind_bounces| {
+        let mut settings = DdgiSettings::balanced();
+        settings.update.hysteresis = 0.9;
+        settings.update.traced_bounce = true;
+        settings.update.blind_bounces = blind_bounces;
+        settings
+    });
+    let dark_room: Vec<(f32, f32)> =
+        query_oracles_against_one_truth(&ctx, &scene, &variants, 120, 256)
+            .into_iter()
+            .map(|(_, oracle)| {
+                let (_, ddgi, truth) = oracle.regions.iter().find(|r| r.0 == "dark-room").unwrap();
+                (*ddgi, *truth)
+            })
+            .collect();
+    let [(without, truth), (blind, _)] = dark_room[..] else {
+        unreachable!()
+    };
+    eprintln!(
+        "two-rooms' dark room against the truth: traced bounce {:+.1} %, and a blind bounce {:+.1} %",
+        100.0 * (without / truth - 1.0),
+        100.0 * (blind / truth - 1.0)
+    );
+    assert!(
+        blind <= 1.05 * truth.max(without),
+        "with a blind bounce the dark room reads {blind:.3e}: the truth is {truth:.3e}, without it {without:.3e}"
+    );
+}
