@@ -390,8 +390,8 @@ impl DdgiSettings {
             1.0,
             1000.0,
         )?;
-        // Each blind bounce a ray may take is a traced ray more, and the light past a fourth
-        // bounce is too faint to be worth one.
+        // Each blind bounce a ray may take is a traced ray more; two read no better than one
+        // on `slit-corridor` (docs/ddgi.md), and four bound the shaders' loop.
         check_range("technique.update.blind_bounces", u.blind_bounces, 0, 4)?;
         check_range(
             "technique.update.blind_threshold",
