@@ -558,6 +558,33 @@ fn query_oracles_against_one_truth(
         .collect()
 }
 
+/// `balanced` at hysteresis 0.9 with the traced bounce and the blind bounces each variant names:
+/// the tests of the update's extra rays.
+fn bounce_variant((traced_bounce, blind_bounces): (bool, u32)) -> DdgiSettings {
+    let mut settings = DdgiSettings::balanced();
+    settings.update.hysteresis = 0.9;
+    settings.update.traced_bounce = traced_bounce;
+    settings.update.blind_bounces = blind_bounces;
+    settings
+}
+
+/// Each variant's (DDGI, truth) mean indirect light over `region` after 120 frames, against one
+/// truth of 256 samples a pixel.
+fn region_against_one_truth(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &irradiant_scene::Scene,
+    variants: &[DdgiSettings],
+    region: &str,
+) -> Vec<(f32, f32)> {
+    query_oracles_against_one_truth(ctx, scene, variants, 120, 256)
+        .into_iter()
+        .map(|(_, oracle)| {
+            let (_, ddgi, truth) = oracle.regions.iter().find(|r| r.0 == region).unwrap();
+            (*ddgi, *truth)
+        })
+        .collect()
+}
+
 fn probe_signed_errors(
     ctx: &std::sync::Arc<irradiant::GpuContext>,
     scene: &str,
@@ -769,22 +796,8 @@ fn the_floor_under_a_table_takes_no_extrapolated_light() {
 fn the_traced_and_the_blind_bounces_light_a_corridor_through_a_slit() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("slit-corridor").unwrap().scene;
-    let variants =
-        [(false, 0), (true, 0), (true, 1), (false, 1)].map(|(traced_bounce, blind_bounces)| {
-            let mut settings = DdgiSettings::balanced();
-            settings.update.hysteresis = 0.9;
-            settings.update.traced_bounce = traced_bounce;
-            settings.update.blind_bounces = blind_bounces;
-            settings
-        });
-    let corridor: Vec<(f32, f32)> =
-        query_oracles_against_one_truth(&ctx, &scene, &variants, 120, 256)
-            .into_iter()
-            .map(|(_, oracle)| {
-                let (_, ddgi, truth) = oracle.regions.iter().find(|r| r.0 == "corridor").unwrap();
-                (*ddgi, *truth)
-            })
-            .collect();
+    let variants = [(false, 0), (true, 0), (true, 1), (false, 1)].map(bounce_variant);
+    let corridor = region_against_one_truth(&ctx, &scene, &variants, "corridor");
     let [(query, truth), (traced, _), (blind, _), (blind_alone, _)] = corridor[..] else {
         unreachable!()
     };
@@ -822,21 +835,8 @@ fn the_traced_and_the_blind_bounces_light_a_corridor_through_a_slit() {
 fn blind_bounces_bring_no_light_into_the_dark_room() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("two-rooms").unwrap().scene;
-    let variants = [0, 1].map(|blind_bounces| {
-        let mut settings = DdgiSettings::balanced();
-        settings.update.hysteresis = 0.9;
-        settings.update.traced_bounce = true;
-        settings.update.blind_bounces = blind_bounces;
-        settings
-    });
-    let dark_room: Vec<(f32, f32)> =
-        query_oracles_against_one_truth(&ctx, &scene, &variants, 120, 256)
-            .into_iter()
-            .map(|(_, oracle)| {
-                let (_, ddgi, truth) = oracle.regions.iter().find(|r| r.0 == "dark-room").unwrap();
-                (*ddgi, *truth)
-            })
-            .collect();
+    let variants = [(true, 0), (true, 1)].map(bounce_variant);
+    let dark_room = region_against_one_truth(&ctx, &scene, &variants, "dark-room");
     let [(without, truth), (blind, _)] = dark_room[..] else {
         unreachable!()
     };
