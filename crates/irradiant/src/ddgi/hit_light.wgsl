@@ -46,10 +46,16 @@ fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32
     // and one that overflows where BLIND_BOUNCES is 0.
     let bounces = BLIND_BOUNCES;
     if probes_blind_to(read, bounces) {
-        let origin = offset_ray(s.position, s.geometric_normal);
-        return l + diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), bounces - 1u, rng);
+        return l + reflected_from_a_traced_ray(s, bounces - 1u, rng);
     }
     return l + diffuse_weight(s) * read.irradiance;
+}
+
+// What a Lambertian surface reflects of the light one cosine-distributed ray traced on from it
+// brings back (traced_light, with `blind_bounces` of its own).
+fn reflected_from_a_traced_ray(s: Surface, blind_bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
+    let origin = offset_ray(s.position, s.geometric_normal);
+    return diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), blind_bounces, rng);
 }
 
 // The radiance a ray from `origin` along `dir` brings back: the sky where it leaves the scene,
@@ -85,7 +91,5 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, rng: ptr<
 // hit's own surroundings, not the probes', decide its light: surfaces by an opening narrower
 // than the probe spacing see what lies beyond it.
 fn hit_emitter_and_traced_bounce(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
-    let l = hit_emitter_light(s, wo, rng);
-    let origin = offset_ray(s.position, s.geometric_normal);
-    return l + diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), BLIND_BOUNCES, rng);
+    return hit_emitter_light(s, wo, rng) + reflected_from_a_traced_ray(s, BLIND_BOUNCES, rng);
 }
