@@ -16,12 +16,12 @@ nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$res/nvi
 $bin info | tee "$res/info.txt"
 if [ "${BENCH:-1}" = 1 ]; then
 $bin bench --scene cornell,$sponza,$sibenik --size 1920x1080 --iterations 30 --json "$res/bench.json" | tee "$res/bench.txt"
-$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --ddgi-probes 16x8x16,32x8x32 --ddgi-rays 32,64,128,256 --ddgi-probe-states off,on --ddgi-probes-per-group 1,4 --json "$res/ddgi-sibenik.json" | tee "$res/ddgi.txt"
-$bin bench --scene cornell,two-rooms,$sponza --size 1920x1080 --iterations 30 --ddgi-probes scene --ddgi-rays 256 --ddgi-probe-states off,on --json "$res/ddgi-scenes.json" | tee -a "$res/ddgi.txt"
+$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --techniques ddgi --vary 'volume.probe_counts = [[16, 8, 16], [32, 8, 32]]' --vary 'volume.rays_per_probe = [32, 64, 128, 256]' --vary 'speed.probe_states = [false, true]' --vary 'speed.probes_per_group = [1, 4]' --json "$res/ddgi-sibenik.json" | tee "$res/ddgi.txt"
+$bin bench --scene cornell,two-rooms,$sponza --size 1920x1080 --iterations 30 --techniques 'ddgi{volume.rays_per_probe = 256}' --vary 'speed.probe_states = [false, true]' --json "$res/ddgi-scenes.json" | tee -a "$res/ddgi.txt"
 # What the shadow queue and the BVH build effort each buy, same call.
-$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states off,on --ddgi-probes-per-group 1,4 --ddgi-shadow-queue off,on --json "$res/ddgi-queue.json" | tee "$res/ddgi-queue.txt"
+$bin bench --scene $sibenik --size 1920x1080 --iterations 30 --techniques 'ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256}' --vary 'speed.probe_states = [false, true]' --vary 'speed.probes_per_group = [1, 4]' --vary 'speed.shadow_queue = [false, true]' --json "$res/ddgi-queue.json" | tee "$res/ddgi-queue.txt"
 for q in balanced quality; do
-    $bin bench --scene $sibenik --size 1920x1080 --iterations 30 --bvh-quality $q --ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states off,on --ddgi-probes-per-group 4 --json "$res/bvh-$q.json" | tee "$res/bvh-$q.txt"
+    $bin bench --scene $sibenik --size 1920x1080 --iterations 30 --bvh-quality $q --techniques 'ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256, speed.probes_per_group = 4}' --vary 'speed.probe_states = [false, true]' --json "$res/bvh-$q.json" | tee "$res/bvh-$q.txt"
 done
 fi
 if [ "${RENDER:-1}" = 1 ]; then
@@ -34,10 +34,10 @@ if [ "${RENDER:-1}" = 1 ]; then
     $bin render --scene $sponza --technique ddgi --frames 300 --size 640x400 --out "$img/sponza-ddgi.png"
     $bin render --scene $sibenik --technique ddgi --frames 300 --size 640x400 --out "$img/sibenik-ddgi.png"
     for w in classic backface chebyshev full; do
-        $bin render --scene two-rooms --technique ddgi --weights $w --frames 300 --size 480x360 --out "$img/two-rooms-$w.png"
+        $bin render --scene two-rooms --technique "ddgi{update.weights = \"$w\"}" --frames 300 --size 480x360 --out "$img/two-rooms-$w.png"
     done
     $bin render --scene two-rooms --technique path --spp 4096 --size 480x360 --out "$img/two-rooms-path.png"
-    $bin render --scene box-cylinders --technique ddgi --weights classic --frames 300 --size 480x360 --out "$img/box-cylinders-classic.png"
+    $bin render --scene box-cylinders --technique 'ddgi{update.weights = "classic"}' --frames 300 --size 480x360 --out "$img/box-cylinders-classic.png"
     $bin render --scene box-cylinders --technique ddgi --frames 300 --size 480x360 --out "$img/box-cylinders-ddgi.png"
     $bin render --scene box-cylinders --technique path --spp 4096 --size 480x360 --out "$img/box-cylinders-path.png"
     $bin render --scene $sibenik --technique none --frames 2 --size 640x400 --out "$img/sibenik-direct.png"

@@ -12,7 +12,7 @@ sibenik=scenes/sibenik/sibenik.toml
 sponza=scenes/sponza/sponza.toml
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$res/nvidia-smi.txt" 2>&1 || true
 ../irradiant info > "$res/info.txt" 2>&1
-bench=(bench --scene "$sibenik" --size 1920x1080 --iterations 30 --ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states off,on)
+bench=(bench --scene "$sibenik" --size 1920x1080 --iterations 30 --techniques 'ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256}' --vary 'speed.probe_states = [false, true]')
 if [ "${BENCH:-1}" = 1 ]; then
     order=(after)
     [ -x ../before ] && order=(before after after before)

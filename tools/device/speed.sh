@@ -13,9 +13,9 @@ for b in ../before ../irradiant ../irradiant ../before; do
     tag="$n-$(basename $b)"
     echo "== $tag" | tee -a "$OUT/speed.txt"
     $b bench --scene scenes/sibenik/sibenik.toml --size 1920x1080 --iterations 30 --warmup-ms 500 \
-        --ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states on \
+        --techniques 'ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256, speed.probe_states = true}' \
         --json "$OUT/sibenik-$tag.json" 2>&1 | grep -v "^ *$" | tee -a "$OUT/speed.txt"
     $b bench --scene scenes/sponza/sponza.toml --size 1920x1080 --iterations 30 --warmup-ms 500 \
-        --ddgi-probes scene --ddgi-rays 256 --ddgi-probe-states on \
+        --techniques 'ddgi{volume.rays_per_probe = 256, speed.probe_states = true}' \
         --json "$OUT/sponza-$tag.json" 2>&1 | grep -v "^ *$" | tee -a "$OUT/speed.txt"
 done

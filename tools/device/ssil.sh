@@ -18,8 +18,8 @@ nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$res/nvi
 if [ "${BENCH:-1}" = 1 ]; then
     for size in 1280x720 1920x1080; do
         ../irradiant bench --scene "$sponza" --size "$size" --iterations 30 \
-            --ssil-start quarter,half --ssil-levels 4,5 --ssil-samples 64,256 --ssil-visibility off,on \
-            --techniques none,ssil,ddgi,ssil+ddgi --json "$res/bench-$size.json" 2>&1 | tee -a "$res/bench.txt"
+            --techniques none,ssil,ddgi,ssil+ddgi --vary 'start = ["quarter", "half"]' --vary 'levels = [4, 5]' \
+            --vary 'samples = [64, 256]' --vary 'visibility = [false, true]' --json "$res/bench-$size.json" 2>&1 | tee -a "$res/bench.txt"
     done
 fi
 if [ "${BEFORE:-1}" = 1 ] && [ -x ../before ]; then
@@ -29,7 +29,7 @@ if [ "${BEFORE:-1}" = 1 ] && [ -x ../before ]; then
         bin=../irradiant
         [ "$which" = before ] && bin=../before
         echo "== run $i: $which" | tee -a "$res/before-after.txt"
-        $bin bench --scene "$sponza" --size 1920x1080 --iterations 30 --ddgi-probes scene \
+        $bin bench --scene "$sponza" --size 1920x1080 --iterations 30 --techniques ddgi \
             --json "$res/rays-$i-$which.json" 2>&1 | tee -a "$res/before-after.txt"
     done
 fi

@@ -5,7 +5,7 @@
 # Sponza's own volume, in the order before, after, after, before; a third binary
 # .dev/baseline, when there, is timed first and last with the camera swaying through
 # IRRADIANT_BENCH_MOVING (issue 15's f2daeb4 with that sway backported; BENCHMARKS.md,
-# session 17). MODE=quality: `compare` of DDGI on the Cornell box at 256×192 against a
+# 2026-11-24, 2eecf16). MODE=quality: `compare` of DDGI on the Cornell box at 256×192 against a
 # 4096-sample reference at each of $BLENDS ("blend:frames"), then tools/device/quality.sh's
 # scenes. Writes taa.txt (and quality.tgz) into $OUT.
 set -euo pipefail
@@ -17,12 +17,23 @@ log="$OUT/taa.txt"
 bench() { # binary, tag, extra flags...
     local b=$1 tag=$2
     shift 2
+    # .dev/baseline (and a .dev/before older than the techniques' specs) knows only the old
+    # --ddgi-* flags; the same frames through them.
+    local help
+    help=$($b bench --help 2>&1 || true)
     for scene in sibenik sponza; do
-        local probes=scene
-        [ $scene = sibenik ] && probes=32x8x32
+        # Sibenik at the paper's grid; Sponza's own volume.
+        local flags
+        if [[ $help == *--vary* ]]; then
+            flags=(--techniques 'ddgi{volume.rays_per_probe = 256, speed.probe_states = true}')
+            [ $scene = sibenik ] && flags=(--techniques 'ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256, speed.probe_states = true}')
+        else
+            flags=(--ddgi-probes scene --ddgi-rays 256 --ddgi-probe-states on)
+            [ $scene = sibenik ] && flags=(--ddgi-probes 32x8x32 --ddgi-rays 256 --ddgi-probe-states on)
+        fi
         echo "== $tag $scene $*" | tee -a "$log"
         $b bench --scene scenes/$scene/$scene.toml --size 1920x1080 --iterations 30 \
-            --warmup-ms 500 --ddgi-probes $probes --ddgi-rays 256 --ddgi-probe-states on "$@" \
+            --warmup-ms 500 "${flags[@]}" "$@" \
             2>&1 | { grep -E "^scene +technique|^(sibenik|sponza) +ddgi +[0-9]" || true; } | tee -a "$log"
     done
 }

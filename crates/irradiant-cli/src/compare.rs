@@ -14,7 +14,7 @@ use irradiant::{
 use irradiant_eval::report::{Comparison, TechniqueResult};
 
 use crate::CliError;
-use crate::options::{RunSettings, SettingsArgs, parse_camera, parse_size};
+use crate::options::{CameraArgs, RunSettings, SettingsArgs, parse_size};
 use crate::reference::reference;
 
 #[derive(Args)]
@@ -22,10 +22,8 @@ pub struct CompareArgs {
     /// A built-in scene, a manifest or a mesh file.
     #[arg(long, default_value = "cornell")]
     pub scene: String,
-    /// The view, instead of the scene's camera: "px,py,pz,tx,ty,tz" (position, target) or
-    /// with a vertical field of view in degrees as a seventh number.
-    #[arg(long, value_parser = parse_camera)]
-    pub camera: Option<irradiant_scene::Camera>,
+    #[command(flatten)]
+    pub view: CameraArgs,
     /// Techniques to compare, comma-separated, from the registry (`irradiant compare --help`
     /// lists them; `all` takes every one).
     /// Settings of a technique's own go in braces as a TOML inline table, so that variants of
@@ -143,9 +141,7 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
         eprintln!("warning: {w}");
     }
     let mut scene = loaded.scene;
-    if let Some(camera) = &args.camera {
-        scene.camera = camera.clone();
-    }
+    args.view.apply(&mut scene)?;
     if args.pan != 0.0 {
         if !args.pan.is_finite() || args.pan.abs() > 360.0 || args.over_time < 2 {
             return Err(CliError::Usage(format!(

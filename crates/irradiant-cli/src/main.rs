@@ -1,5 +1,6 @@
 //! `irradiant`: render, benchmark and inspect Irradiant from the command line.
 
+mod agreement;
 mod atlas;
 mod bench;
 mod cache;
@@ -43,6 +44,8 @@ enum Command {
     Soak(soak::SoakArgs),
     /// Measure DDGI's probes and its query against the path tracer, apart (docs/ddgi.md).
     Oracle(oracle::OracleArgs),
+    /// Trace rays through a light field and through the BVH; report the share that agree.
+    Agreement(agreement::AgreementArgs),
 }
 
 fn main() -> ExitCode {
@@ -67,6 +70,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => compare::run(&args, &adapter),
         Command::Soak(args) => soak::run(&args, &adapter),
         Command::Oracle(args) => oracle::run(&args, &adapter),
+        Command::Agreement(args) => agreement::run(&args, &adapter),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

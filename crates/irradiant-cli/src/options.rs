@@ -37,23 +37,6 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
-/// `XxYxZ` probes per axis, e.g. `8x4x8`.
-pub fn parse_counts(text: &str) -> Result<[u32; 3], String> {
-    let parts: Vec<_> = text
-        .split(['x', 'X'])
-        .map(|p| p.trim().parse::<u32>())
-        .collect();
-    let limit = irradiant_scene::MAX_PROBES_PER_AXIS;
-    match parts.as_slice() {
-        [Ok(x), Ok(y), Ok(z)] if [x, y, z].iter().all(|c| (1..=limit).contains(*c)) => {
-            Ok([*x, *y, *z])
-        }
-        _ => Err(format!(
-            "'{text}' is not a probe count: write XxYxZ with 1…{limit} each, e.g. 8x4x8"
-        )),
-    }
-}
-
 /// "px,py,pz,tx,ty,tz[,fov]": a view instead of the scene's camera.
 pub fn parse_camera(text: &str) -> Result<irradiant_scene::Camera, String> {
     let numbers: Vec<f32> = text
@@ -82,6 +65,33 @@ pub fn parse_camera(text: &str) -> Result<irradiant_scene::Camera, String> {
     Ok(camera)
 }
 
+/// The view a command renders, instead of the scene's camera: given as numbers or read from a
+/// camera file.
+#[derive(Args, Clone, Debug)]
+pub struct CameraArgs {
+    /// The view, instead of the scene's camera: "px,py,pz,tx,ty,tz" (position, target) or
+    /// with a seventh number, the vertical field of view in degrees.
+    #[arg(long, value_parser = parse_camera, conflicts_with = "camera_from")]
+    pub camera: Option<irradiant_scene::Camera>,
+    /// The view from a camera file's [camera] table (`render --save-camera` writes one; a scene
+    /// manifest is one too).
+    #[arg(long)]
+    pub camera_from: Option<PathBuf>,
+}
+
+impl CameraArgs {
+    /// Puts the chosen view, if any, in place of the scene's camera.
+    pub fn apply(&self, scene: &mut Scene) -> Result<(), CliError> {
+        if let Some(camera) = &self.camera {
+            scene.camera = camera.clone();
+        }
+        if let Some(path) = &self.camera_from {
+            scene.camera = irradiant_scene::read_camera_file(path)?;
+        }
+        Ok(())
+    }
+}
+
 /// A technique as a command line names it: a registered name, optionally with settings over
 /// its preset in braces, as a TOML inline table (`ssil{visibility = false}`), so that one
 /// comparison can hold several variants of one technique.
@@ -89,7 +99,11 @@ pub fn parse_camera(text: &str) -> Result<irradiant_scene::Camera, String> {
 pub struct TechniqueChoice {
     /// The text as given (spaces dropped): what reports call it.
     pub label: String,
+    /// The registered name (or `path`).
     pub name: String,
+    /// `preset = "…"` in the braces: this technique's preset, over the command's `--preset`.
+    pub preset: Option<Preset>,
+    /// The other keys in the braces, over the preset and any settings file.
     pub overrides: toml::Table,
 }
 
@@ -98,6 +112,11 @@ impl TechniqueChoice {
     /// reference, is a technique on the command line but not in the registry).
     pub fn parse(text: &str) -> Result<Self, CliError> {
         let text = text.trim();
+        if text.is_empty() {
+            return Err(CliError::Usage(
+                "a technique is empty: name one, e.g. ddgi or ddgi{preset = \"quality\"}".into(),
+            ));
+        }
         let (name, overrides) = match text.split_once('{') {
             Some((name, rest)) => {
                 let inner = rest.strip_suffix('}').ok_or_else(|| {
@@ -113,9 +132,23 @@ impl TechniqueChoice {
             }
             None => (text, toml::Table::new()),
         };
+        let mut overrides = overrides;
+        let preset = match overrides.remove("preset") {
+            None => None,
+            Some(toml::Value::String(p)) => Some(
+                Preset::parse(&p)
+                    .map_err(|e| CliError::Usage(format!("technique '{text}': {e}")))?,
+            ),
+            Some(other) => {
+                return Err(CliError::Usage(format!(
+                    "technique '{text}': preset = {other} is not a preset name; write preset = \"fast\", \"balanced\" or \"quality\" (in quotes)"
+                )));
+            }
+        };
         Ok(Self {
             label: text.split_whitespace().collect(),
             name: name.to_owned(),
+            preset,
             overrides,
         })
     }
@@ -155,7 +188,7 @@ pub fn technique_list(lists: &[String]) -> Result<Vec<TechniqueChoice>, CliError
         texts.push(&list[start..]);
     }
     if texts.iter().any(|t| t.trim() == "all") {
-        texts = irradiant::technique::names();
+        texts = irradiant::registry::names();
     }
     let choices: Vec<TechniqueChoice> = texts
         .into_iter()
@@ -163,7 +196,7 @@ pub fn technique_list(lists: &[String]) -> Result<Vec<TechniqueChoice>, CliError
         .map(TechniqueChoice::parse)
         .collect::<Result<_, _>>()?;
     for c in &choices {
-        irradiant::technique::find(&c.name).map_err(|e| CliError::Usage(e.to_string()))?;
+        irradiant::registry::find(&c.name).map_err(|e| CliError::Usage(e.to_string()))?;
     }
     Ok(choices)
 }
@@ -269,34 +302,12 @@ pub fn check_techniques<'a>(
     Ok(())
 }
 
-/// The DDGI paper's Figure 7 ladder, as a flag.
-#[derive(Clone, Copy, Debug, PartialEq, clap::ValueEnum)]
-pub enum Weights {
-    /// Classic irradiance probes: trilinear weights only.
-    Classic,
-    /// + smooth backface weight.
-    Backface,
-    /// + Chebyshev visibility.
-    Chebyshev,
-    /// + self-shadow bias and backface-hit rule (the full method).
-    Full,
-}
-
-impl Weights {
-    pub fn name(self) -> &'static str {
-        match self {
-            Weights::Classic => "classic",
-            Weights::Backface => "backface",
-            Weights::Chebyshev => "chebyshev",
-            Weights::Full => "full",
-        }
-    }
-}
-
 /// The settings every command that renders frames takes.
 #[derive(Args, Clone, Debug)]
 pub struct SettingsArgs {
-    /// Settings preset of the frame and the technique: fast, balanced or quality.
+    /// Settings preset of the frame and every technique: fast, balanced or quality. A
+    /// technique's own `preset` in braces (`ddgi{preset = "quality"}`) overrides it for that
+    /// technique.
     #[arg(long, default_value = "balanced", value_parser = parse_preset)]
     pub preset: Preset,
     /// A settings file with [frame] and [technique] tables (see docs/architecture.md); it
@@ -306,18 +317,6 @@ pub struct SettingsArgs {
     /// Trace one ray through each pixel centre and blend no history (TAA is on by default).
     #[arg(long)]
     pub no_taa: bool,
-    /// DDGI weights (the paper's Figure 7 ladder).
-    #[arg(long, value_enum)]
-    pub weights: Option<Weights>,
-    /// DDGI rays per probe per frame (default: the preset's).
-    #[arg(long)]
-    pub rays: Option<u32>,
-    /// DDGI irradiance hysteresis (default: the preset's).
-    #[arg(long)]
-    pub hysteresis: Option<f32>,
-    /// DDGI probes per axis in every volume, e.g. 8x4x8 (default: the scene's volumes).
-    #[arg(long, value_parser = parse_counts)]
-    pub probes: Option<[u32; 3]>,
 }
 
 fn parse_preset(text: &str) -> Result<Preset, String> {
@@ -398,18 +397,9 @@ impl RunSettings {
         self.file.technique.as_ref().map(|t| t.name.clone())
     }
 
-    /// The spec of technique `name`: the settings file's or manifest's own table where it names
-    /// the same technique, with the command's flags over it.
-    pub fn technique(
-        &self,
-        name: &str,
-        args: &SettingsArgs,
-        seed: u32,
-    ) -> Result<TechniqueSpec, CliError> {
-        self.choice(&TechniqueChoice::parse(name)?, args, seed)
-    }
-
-    /// [`Self::technique`] for a choice, its settings in braces over everything else.
+    /// The spec of a choice: the settings file's or manifest's own table where it names the
+    /// same technique (else the preset alone), then the choice's preset and its settings in
+    /// braces over everything else.
     pub fn choice(
         &self,
         choice: &TechniqueChoice,
@@ -417,6 +407,9 @@ impl RunSettings {
         seed: u32,
     ) -> Result<TechniqueSpec, CliError> {
         let mut spec = self.named(&choice.name, args, seed)?;
+        if let Some(preset) = choice.preset {
+            spec.preset = preset;
+        }
         merge(&mut spec.settings, &choice.overrides);
         Ok(spec)
     }
@@ -429,35 +422,16 @@ impl RunSettings {
         if args.preset != Preset::Balanced {
             spec.preset = args.preset;
         }
-        let set = |spec: &mut TechniqueSpec, group: &str, key: &str, value: toml::Value| {
-            let table = spec
-                .settings
-                .entry(group)
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            if let toml::Value::Table(t) = table {
-                t.insert(key.into(), value);
-            }
-        };
-        // The DDGI flags only concern the DDGI family; elsewhere they would be unknown keys.
+        // The DDGI family seeds its ray rotations from the command's seed; elsewhere the key
+        // would be unknown.
         if name == "ddgi" || name == "classic-probes" {
-            if let Some(w) = args.weights {
-                set(&mut spec, "update", "weights", w.name().into());
+            let update = spec
+                .settings
+                .entry("update")
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            if let toml::Value::Table(t) = update {
+                t.insert("seed".into(), (seed as i64).into());
             }
-            if let Some(r) = args.rays {
-                set(&mut spec, "volume", "rays_per_probe", (r as i64).into());
-            }
-            if let Some(h) = args.hysteresis {
-                set(&mut spec, "update", "hysteresis", (h as f64).into());
-            }
-            if let Some(c) = args.probes {
-                set(
-                    &mut spec,
-                    "volume",
-                    "probe_counts",
-                    toml::Value::Array(c.iter().map(|&v| (v as i64).into()).collect()),
-                );
-            }
-            set(&mut spec, "update", "seed", (seed as i64).into());
         }
         Ok(spec)
     }
@@ -493,7 +467,7 @@ mod tests {
         }
         assert_eq!(
             technique_list(&["all".into()]).unwrap().len(),
-            irradiant::technique::names().len()
+            irradiant::registry::names().len()
         );
     }
 

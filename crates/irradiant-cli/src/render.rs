@@ -13,17 +13,12 @@ use irradiant::{
 };
 
 use crate::CliError;
-use crate::options::{RunSettings, SettingsArgs, check_folder, check_output, parse_size};
+use crate::options::{
+    CameraArgs, RunSettings, SettingsArgs, TechniqueChoice, check_folder, check_output, parse_size,
+};
 
 /// The reference path tracer's name on the command line, beside the registered techniques.
 pub const PATH: &str = "path";
-
-/// `--technique` values: the path tracer and every registered technique.
-pub fn technique_values() -> Vec<&'static str> {
-    let mut names = vec![PATH];
-    names.extend(irradiant::technique::names());
-    names
-}
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -32,10 +27,12 @@ pub struct RenderArgs {
     /// .gltf, .glb).
     #[arg(long, default_value = "cornell")]
     pub scene: String,
-    /// `path` (the reference path tracer) or a registered real-time technique (default: the
-    /// one the --settings file or the scene's manifest names, else ddgi).
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(technique_values()))]
-    pub technique: Option<String>,
+    /// `path` (the reference path tracer) or a registered real-time technique, with settings
+    /// of its own in braces over its preset: `ddgi{preset = "quality"}`,
+    /// `ddgi{update.weights = "classic"}` (default: the one the --settings file or the scene's
+    /// manifest names, else ddgi). `irradiant render --help` lists them below.
+    #[arg(long, value_parser = parse_technique)]
+    pub technique: Option<TechniqueChoice>,
     /// Samples per pixel (path tracer).
     #[arg(long, value_parser = crate::options::parse_samples)]
     pub spp: Option<u32>,
@@ -76,7 +73,22 @@ pub struct RenderArgs {
     #[arg(long)]
     pub dump_atlas: Option<PathBuf>,
     #[command(flatten)]
+    pub view: CameraArgs,
+    /// Also write the camera this render used to a camera file, for `--camera-from`.
+    #[arg(long)]
+    pub save_camera: Option<PathBuf>,
+    #[command(flatten)]
     pub settings: SettingsArgs,
+}
+
+/// A `--technique` value: a registered technique or `path`, with settings in braces.
+fn parse_technique(text: &str) -> Result<TechniqueChoice, String> {
+    let choice = TechniqueChoice::parse(text).map_err(|e| e.to_string())?;
+    if choice.name != PATH {
+        irradiant::registry::find(&choice.name)
+            .map_err(|e| format!("{e}, or path (the reference path tracer)"))?;
+    }
+    Ok(choice)
 }
 
 fn check_args(args: &RenderArgs) -> Result<(), CliError> {
@@ -87,7 +99,7 @@ fn check_args(args: &RenderArgs) -> Result<(), CliError> {
             args.exposure
         )));
     }
-    if args.technique.as_deref() != Some(PATH) && (args.frames == 0 || args.frames > 100_000) {
+    if !is_path(args) && (args.frames == 0 || args.frames > 100_000) {
         return Err(CliError::Usage(format!(
             "--frames {} is out of range: use 1…100000",
             args.frames
@@ -113,7 +125,14 @@ fn check_args(args: &RenderArgs) -> Result<(), CliError> {
             message: "the atlas folder does not exist; create it first".into(),
         });
     }
+    if let Some(path) = &args.save_camera {
+        check_output(path, &["toml"])?;
+    }
     Ok(())
+}
+
+fn is_path(args: &RenderArgs) -> bool {
+    args.technique.as_ref().is_some_and(|c| c.name == PATH)
 }
 
 pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -123,17 +142,26 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
-    let scene = loaded.scene;
+    let mut scene = loaded.scene;
+    args.view.apply(&mut scene)?;
     let mut run_settings = RunSettings::new(&args.settings, &scene, args.seed)?;
     run_settings.frame.tone.exposure = args.exposure;
     run_settings.frame.tone.filmic = !args.no_filmic;
-    let technique = args
-        .technique
-        .clone()
-        .or_else(|| run_settings.named_technique())
-        .unwrap_or_else(|| "ddgi".into());
-    let spec = run_settings.technique(&technique, &args.settings, args.seed)?;
-    run_settings.check_and_warn((technique != PATH).then_some(&spec), &scene)?;
+    let choice = match &args.technique {
+        Some(choice) => choice.clone(),
+        None => TechniqueChoice::parse(
+            &run_settings
+                .named_technique()
+                .unwrap_or_else(|| "ddgi".into()),
+        )?,
+    };
+    let technique = choice.name.clone();
+    let spec = if technique == PATH {
+        None
+    } else {
+        Some(run_settings.choice(&choice, &args.settings, args.seed)?)
+    };
+    run_settings.check_and_warn(spec.as_ref(), &scene)?;
     let ctx = Arc::new(GpuContext::new(adapter)?);
     let (width, height) = args.size;
     let (image, what) = if technique == PATH {
@@ -164,12 +192,18 @@ pub fn run(args: &RenderArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             ctx.clone(),
             scene.clone(),
             run_settings.frame.clone(),
-            spec,
+            spec.expect("a real-time technique has a spec"),
         )?;
-        (image, format!("{} after {} frames", technique, args.frames))
+        (
+            image,
+            format!("{} after {} frames", choice.label, args.frames),
+        )
     };
     if !is_png(&args.out) && !args.sequence {
         image.write_exr(&args.out)?;
+    }
+    if let Some(path) = &args.save_camera {
+        crate::write_file(path, irradiant_scene::camera_file_text(&scene.camera))?;
     }
     let m = image.mean();
     println!(
@@ -257,7 +291,19 @@ pub fn srgb_rgba(image: &Image, tone: &irradiant::frame::ToneSettings) -> Vec<u8
 }
 
 fn path_settings(args: &RenderArgs) -> Result<PathTraceSettings, CliError> {
-    let mut settings = match args.settings.preset {
+    let choice = args.technique.as_ref().filter(|c| c.name == PATH);
+    if let Some(c) = choice
+        && !c.overrides.is_empty()
+    {
+        return Err(CliError::Usage(format!(
+            "--technique '{}': the path tracer takes only a preset in braces; set its samples and bounces with --spp and --max-bounces",
+            c.label
+        )));
+    }
+    let preset = choice
+        .and_then(|c| c.preset)
+        .unwrap_or(args.settings.preset);
+    let mut settings = match preset {
         Preset::Fast => PathTraceSettings::fast(),
         Preset::Balanced => PathTraceSettings::balanced(),
         Preset::Quality => PathTraceSettings::quality(),

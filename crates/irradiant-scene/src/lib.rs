@@ -6,6 +6,7 @@
 
 mod animation;
 mod builtin;
+mod camera_file;
 mod error;
 mod framing;
 mod gltf_load;
@@ -19,6 +20,9 @@ use std::path::Path;
 
 pub use animation::Pose;
 pub use builtin::{BUILTIN_SCENES, GLOWING_BOX_ALBEDO, GLOWING_BOX_EMISSION, builtin};
+pub use camera_file::{
+    FOV_RANGE_DEGREES, camera_desc, camera_file_text, camera_from_desc, read_camera_file,
+};
 pub use error::{Result, SceneError};
 pub use framing::camera_for_bounds;
 pub use manifest::{

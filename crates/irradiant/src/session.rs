@@ -11,7 +11,8 @@ use irradiant_scene::{Camera, Pose, Scene};
 use crate::RenderError;
 use crate::frame::{Frame, FrameNeeds, FrameSettings, GBufferSample, Image, SceneChange};
 use crate::scene::{GpuScene, GpuSceneSettings};
-use crate::technique::{Technique, TechniqueContext, TechniqueSpec};
+use crate::settings::TechniqueSpec;
+use crate::technique::{Technique, TechniqueContext};
 
 /// How a session starts.
 #[derive(Clone, Debug)]

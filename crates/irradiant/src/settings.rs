@@ -24,7 +24,6 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use crate::frame::FrameSettings;
-use crate::technique::TechniqueSpec;
 
 /// The three named points of every settings type's trade-offs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -93,6 +92,46 @@ macro_rules! presets_from_inherent {
     };
 }
 pub(crate) use presets_from_inherent;
+
+/// A technique as settings describe it: a registered name, a preset, and the technique's own
+/// keys over the preset (tables such as `[technique.update]`; each technique documents its
+/// keys on its settings type). Round-trips through TOML without loss.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TechniqueSpec {
+    pub name: String,
+    #[serde(default)]
+    pub preset: Preset,
+    /// The technique's own settings over the preset; unknown keys are warned about when the
+    /// technique reads them.
+    #[serde(flatten)]
+    pub settings: toml::Table,
+}
+
+impl TechniqueSpec {
+    /// A technique at a preset, with no settings of its own.
+    pub fn new(name: &str, preset: Preset) -> Self {
+        Self {
+            name: name.into(),
+            preset,
+            settings: toml::Table::new(),
+        }
+    }
+
+    /// A technique with every setting spelled out (what a typed settings struct serialises to).
+    pub fn with_settings<T: Serialize>(name: &str, settings: &T) -> Self {
+        Self {
+            name: name.into(),
+            preset: Preset::Balanced,
+            settings: toml::Table::try_from(settings).expect("settings serialise to a table"),
+        }
+    }
+}
+
+impl Default for TechniqueSpec {
+    fn default() -> Self {
+        Self::new("ddgi", Preset::Balanced)
+    }
+}
 
 /// A setting that cannot be used. Every message names the field, the value and the fix.
 #[derive(Debug, thiserror::Error, PartialEq)]

@@ -6,99 +6,18 @@
 //! [`TechniqueSpec`] — a registered name, a preset and its own settings, as a settings file or
 //! a manifest writes them — already bound to the frame: there is no separate call to forget.
 //!
-//! Adding a technique touches its own folder and one line of [`REGISTRY`]; `render
-//! --technique`, `compare --techniques`, `bench` and the tests find it there (the checklist is
-//! in docs/architecture.md).
+//! The registry that lists the techniques lives above this module, in [`crate::registry`]: the
+//! techniques import the trait and types from here, and nothing here imports a technique.
 
 use std::any::Any;
 
 use irradiant_gpu::{Allocation, GpuContext, Profiler, Workgroups, wgpu};
 use irradiant_scene::Scene;
-use serde::{Deserialize, Serialize};
 
 use crate::RenderError;
 use crate::frame::{Frame, FrameNeeds, SceneChange};
 use crate::scene::GpuScene;
-use crate::settings::Preset;
-
-/// Every real-time technique, in the order tools list them. One line each.
-pub static REGISTRY: &[&dyn TechniqueKind] = &[
-    &crate::none::NONE,
-    &crate::ddgi::CLASSIC_PROBES,
-    &crate::ddgi::DDGI,
-    &crate::ssil::SSIL,
-    &crate::ssil::SSIL_DDGI,
-    &crate::lightfield::LIGHTFIELD,
-    &crate::lightfield::LIGHTFIELD_TRACED,
-    &crate::lightfield::LIGHTFIELD_NAIVE,
-];
-
-/// A registered technique by name.
-pub fn find(name: &str) -> Result<&'static dyn TechniqueKind, RenderError> {
-    REGISTRY
-        .iter()
-        .copied()
-        .find(|k| k.name() == name)
-        .ok_or_else(|| {
-            let known: Vec<String> = REGISTRY
-                .iter()
-                .map(|k| format!("{} ({})", k.name(), k.description()))
-                .collect();
-            RenderError::Settings(format!(
-                "unknown technique '{name}': use {}",
-                known.join(", ")
-            ))
-        })
-}
-
-/// Every registered name, for command-line value lists.
-pub fn names() -> Vec<&'static str> {
-    REGISTRY.iter().map(|k| k.name()).collect()
-}
-
-/// A technique as settings describe it: a registered name, a preset, and the technique's own
-/// keys over the preset (tables such as `[technique.update]`; each technique documents its
-/// keys on its settings type). Round-trips through TOML without loss.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TechniqueSpec {
-    pub name: String,
-    #[serde(default)]
-    pub preset: Preset,
-    /// The technique's own settings over the preset; unknown keys are warned about when the
-    /// technique reads them.
-    #[serde(flatten)]
-    pub settings: toml::Table,
-}
-
-impl TechniqueSpec {
-    /// A technique at a preset, with no settings of its own.
-    pub fn new(name: &str, preset: Preset) -> Self {
-        Self {
-            name: name.into(),
-            preset,
-            settings: toml::Table::new(),
-        }
-    }
-
-    /// A technique with every setting spelled out (what a typed settings struct serialises to).
-    pub fn with_settings<T: Serialize>(name: &str, settings: &T) -> Self {
-        Self {
-            name: name.into(),
-            preset: Preset::Balanced,
-            settings: toml::Table::try_from(settings).expect("settings serialise to a table"),
-        }
-    }
-
-    pub fn kind(&self) -> Result<&'static dyn TechniqueKind, RenderError> {
-        find(&self.name)
-    }
-}
-
-impl Default for TechniqueSpec {
-    fn default() -> Self {
-        Self::new("ddgi", Preset::Balanced)
-    }
-}
+use crate::settings::TechniqueSpec;
 
 /// What a technique is built from.
 pub struct TechniqueContext<'a> {
@@ -234,25 +153,4 @@ pub fn non_finite(label: &str, values: impl Iterator<Item = f32>) -> Option<Stri
         bad += !v.is_finite() as usize;
     }
     (bad > 0).then(|| format!("{label}: {bad} of {all} values are not finite"))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn registry_names_are_unique_and_specs_round_trip() {
-        let names = names();
-        for (i, a) in names.iter().enumerate() {
-            assert!(!names[i + 1..].contains(a), "{a} registered twice");
-        }
-        let spec: TechniqueSpec =
-            toml::from_str("name = \"ddgi\"\npreset = \"fast\"\n[update]\nhysteresis = 0.9\n")
-                .unwrap();
-        assert_eq!(spec.preset, Preset::Fast);
-        let again: TechniqueSpec = toml::from_str(&toml::to_string(&spec).unwrap()).unwrap();
-        assert_eq!(spec, again);
-        let e = find("magic").err().unwrap().to_string();
-        assert!(e.contains("'magic'") && e.contains("ddgi"), "{e}");
-    }
 }

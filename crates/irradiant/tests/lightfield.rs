@@ -519,7 +519,7 @@ fn bad_settings_are_refused_naming_the_key() {
     for (what, change, key) in cases {
         let mut s = LightfieldSettings::balanced();
         change(&mut s);
-        let kind = irradiant::technique::find("lightfield").unwrap();
+        let kind = irradiant::registry::find("lightfield").unwrap();
         let message = kind
             .check(&spec("lightfield", &s))
             .err()
@@ -531,7 +531,7 @@ fn bad_settings_are_refused_naming_the_key() {
     let mut s = LightfieldSettings::balanced();
     s.bake.probe_counts = [64, 64, 64];
     let scene = irradiant_scene::load("cornell").unwrap().scene;
-    let kind = irradiant::technique::find("lightfield").unwrap();
+    let kind = irradiant::registry::find("lightfield").unwrap();
     let message = kind
         .plan(&spec("lightfield", &s), &scene, (64, 64))
         .err()

@@ -9,8 +9,8 @@ use irradiant::frame::{Frame, FrameNeeds, FrameSettings};
 use irradiant::lightfield::LightfieldSettings;
 use irradiant::pathtrace::PathTracer;
 use irradiant::raycast::RayCaster;
+use irradiant::registry::REGISTRY;
 use irradiant::ssil::{HybridSettings, SsilSettings, StartResolution};
-use irradiant::technique::REGISTRY;
 use irradiant::{Preset, Session, SessionSettings, TechniqueSpec};
 use irradiant_gpu::MAX_WORKGROUPS_PER_DIMENSION;
 

@@ -20,7 +20,7 @@ pub struct FrameRecord {
     /// Probes per axis of the first volume (probe techniques; zeros otherwise).
     pub probes: [u32; 3],
     pub rays_per_probe: u32,
-    /// How the technique was set up (DDGI: ray order, probes per workgroup, switches).
+    /// The technique as the command line named it, with the --vary values it took.
     pub variant: String,
     /// The camera while timed: "still", or "moving" (`--moving-camera`).
     pub camera: &'static str,
@@ -60,8 +60,6 @@ pub struct FrameBench<'a> {
     /// Sway the camera every frame (`bench --moving-camera`).
     pub moving_camera: bool,
     pub iterations: u32,
-    /// Rays of the light-field agreement test (light-field techniques; 0: none).
-    pub agreement_rays: u32,
     /// Which run over the scene list this is (`bench --check-order`).
     pub order: &'static str,
 }
@@ -131,28 +129,7 @@ impl FrameBench<'_> {
         let labels = session.technique().passes();
         let update: f64 = labels.update.iter().map(|l| ms(l)).sum();
         let resolve: f64 = labels.resolve.iter().map(|l| ms(l)).sum();
-        let mut counters = session.technique().counters(session.ctx())?;
-        if self.agreement_rays > 0
-            && session
-                .technique_as::<irradiant::lightfield::Lightfield>()
-                .is_some()
-        {
-            let a = irradiant::lightfield::agreement::measure(&session, self.agreement_rays, 1)?;
-            counters.extend(
-                [
-                    ("agreement_share", a.share()),
-                    ("agreement_rays", a.rays as f64),
-                    ("agreement_hits", a.hits as f64),
-                    ("agreement_misses", a.misses as f64),
-                    ("agreement_wrong_distance", a.wrong_distance as f64),
-                    ("agreement_false_hits", a.false_hits as f64),
-                    ("agreement_false_misses", a.false_misses as f64),
-                    ("agreement_tolerance", a.tolerance as f64),
-                    ("agreement_mean_visits", a.mean_visits),
-                ]
-                .map(|(name, value)| Counter { name, value }),
-            );
-        }
+        let counters = session.technique().counters(session.ctx())?;
         let counter = |name: &str| {
             counters
                 .iter()

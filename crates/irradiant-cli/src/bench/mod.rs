@@ -7,12 +7,12 @@ mod frames;
 mod rays;
 mod ssil;
 mod table;
+mod vary;
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use clap::Args;
-use irradiant::ddgi::DdgiSettings;
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant::raycast::RayCaster;
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings, TechniqueSpec};
@@ -56,43 +56,6 @@ pub struct BenchArgs {
     /// A quick check that every pass runs (CI): 64×64, 2 iterations, no warm-up.
     #[arg(long)]
     pub smoke: bool,
-    /// Also time the real-time frame with DDGI, for each probe grid listed (e.g.
-    /// 16x8x16,32x8x32; "scene" takes the scene's own volume).
-    #[arg(long, value_delimiter = ',')]
-    pub ddgi_probes: Vec<String>,
-    /// Rays per probe to time DDGI with, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "256")]
-    pub ddgi_rays: Vec<u32>,
-    /// DDGI probe rays shade every punctual light instead of one chosen at random.
-    #[arg(long)]
-    pub ddgi_shade_all_lights: bool,
-    /// Probes per workgroup of ddgi/trace and ddgi/shade to time, comma-separated (powers of
-    /// two up to 64; see DdgiSettings::probes_per_group).
-    #[arg(long, value_delimiter = ',', default_value = "1")]
-    pub ddgi_probes_per_group: Vec<u32>,
-    /// Probe ray orders to time, comma-separated: coherent (sorted into compact patches, the
-    /// default) and/or fibonacci (the plain spiral order).
-    #[arg(long, value_delimiter = ',', default_value = "coherent")]
-    pub ddgi_ray_order: Vec<String>,
-    /// Probe states to time with, comma-separated: on (the default: probes in walls switch off
-    /// and probes far from geometry sleep, 003 §6) and/or off (every probe traces every frame).
-    #[arg(long, value_delimiter = ',', default_value = "on")]
-    pub ddgi_probe_states: Vec<String>,
-    /// Light choice of the probe rays' shadow rays to time, comma-separated: warp (one random
-    /// light for 32 neighbouring rays, the default) and/or ray (one for each ray).
-    #[arg(long, value_delimiter = ',', default_value = "warp")]
-    pub ddgi_light_choice: Vec<String>,
-    /// Time DDGI with trace and shade as one pass (on) and/or two (off, the default),
-    /// comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "off")]
-    pub ddgi_fuse_trace_shade: Vec<String>,
-    /// Time DDGI with the probe rays' shadow rays queued for a dense pass (on, the default)
-    /// and/or traced in ddgi/shade (off), comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "on")]
-    pub ddgi_shadow_queue: Vec<String>,
-    /// DDGI weights to time with (the Figure 7 ladder; classic skips the visibility lookups).
-    #[arg(long, value_enum, default_value = "full")]
-    pub ddgi_weights: crate::options::Weights,
     /// BVH build effort: fast, balanced or quality (spatial pre-splits, the default).
     #[arg(long, value_enum, default_value = "quality")]
     pub bvh_quality: BvhQuality,
@@ -102,11 +65,17 @@ pub struct BenchArgs {
     /// Keep traversal stacks in workgroup memory instead of private memory (binary layout).
     #[arg(long)]
     pub stack_in_workgroup: bool,
-    /// Also time the real-time frame of each of these registered techniques with their
-    /// balanced settings and the scene's own probe volumes, comma-separated (`all`: every one);
-    /// settings of their own in braces, e.g. `ssil{samples = 256}`.
+    /// Also time the real-time frame of each of these techniques, comma-separated (`all`:
+    /// every registered one), each at its balanced preset and the scene's own probe volumes
+    /// unless its braces say otherwise: `ddgi{preset = "quality"}`,
+    /// `ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256}`.
     #[arg(long)]
     pub techniques: Vec<String>,
+    /// Times every listed technique at each value of one of its settings, in the grammar of
+    /// the braces: `--vary 'volume.rays_per_probe = [64, 256]'`. Several multiply, the first
+    /// outermost (SSIL's Figure 9 grid is four).
+    #[arg(long)]
+    pub vary: Vec<String>,
     /// Time frames without TAA (the frame/taa pass then only copies), as frames were before it.
     #[arg(long)]
     pub no_taa: bool,
@@ -115,13 +84,6 @@ pub struct BenchArgs {
     /// history, and every running mean restarts, as in a game.
     #[arg(long)]
     pub moving_camera: bool,
-    #[command(flatten)]
-    pub ssil: ssil::SsilGridArgs,
-    /// Light-field techniques: after timing, trace this many rays from the visible surfaces
-    /// both through the light field and through the BVH, and report the share on which they
-    /// agree (counters agreement_*). 0: not measured.
-    #[arg(long, default_value_t = 0)]
-    pub lightfield_agreement: u32,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -204,12 +166,8 @@ pub struct BenchRecord {
     iterations: u32,
     scenes: Vec<SceneRecord>,
     passes: Vec<PassRecord>,
-    /// DDGI frames for each probe grid and variant asked for (--ddgi-probes).
-    ddgi: Vec<FrameRecord>,
-    /// Frames of each technique asked for (--techniques).
+    /// Frames of each technique asked for (--techniques, at each --vary).
     techniques: Vec<FrameRecord>,
-    /// SSIL frames over the grid asked for (--ssil-start, the paper's Figure 9).
-    ssil: Vec<FrameRecord>,
 }
 
 pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -239,25 +197,29 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             args.order_tolerance
         )));
     }
-    let techniques = crate::options::technique_list(&args.techniques)?;
-    // Each technique's balanced settings with its own in braces over them, checked (and its
-    // unknown keys warned of) before the GPU is touched.
+    let varies = args
+        .vary
+        .iter()
+        .map(|v| vary::Vary::parse(v))
+        .collect::<Result<Vec<_>, _>>()?;
+    if !varies.is_empty() && args.techniques.is_empty() {
+        return Err(CliError::Usage(
+            "--vary varies the settings of --techniques: name the techniques to time, e.g. --techniques ddgi".into(),
+        ));
+    }
+    let techniques = vary::expand(&crate::options::technique_list(&args.techniques)?, &varies)?;
+    // Each technique's preset (balanced unless its braces name one) with its own settings over
+    // it, checked (and its unknown keys warned of) before the GPU is touched.
     let technique_specs: Vec<TechniqueSpec> = techniques
         .iter()
         .map(|choice| {
-            let mut spec = TechniqueSpec::new(&choice.name, irradiant::Preset::Balanced);
+            let preset = choice.preset.unwrap_or(irradiant::Preset::Balanced);
+            let mut spec = TechniqueSpec::new(&choice.name, preset);
             spec.settings = choice.overrides.clone();
             spec
         })
         .collect();
     crate::options::check_techniques(&[], &technique_specs, None)?;
-    let ddgi_variants = ddgi_variants(args)?;
-    let ssil_variants = ssil::variants(&args.ssil);
-    for v in &ssil_variants {
-        v.validate().map_err(|e| CliError::Usage(e.to_string()))?;
-        v.check_size(size)
-            .map_err(|e| CliError::Usage(e.to_string()))?;
-    }
     let ctx = std::sync::Arc::new(GpuContext::new(adapter)?);
     let mut record = BenchRecord {
         adapter: ctx.info.name.clone(),
@@ -278,9 +240,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         iterations,
         scenes: Vec::new(),
         passes: Vec::new(),
-        ddgi: Vec::new(),
         techniques: Vec::new(),
-        ssil: Vec::new(),
     };
     let scene_settings = GpuSceneSettings {
         stack_in_workgroup: args.stack_in_workgroup,
@@ -342,7 +302,6 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 taa: !args.no_taa,
                 moving_camera: args.moving_camera,
                 iterations,
-                agreement_rays: args.lightfield_agreement,
                 order,
             };
             // A frame is run once at least before timing: its first one builds what it caches.
@@ -350,42 +309,8 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 runs: warmup.runs.max(1),
                 ..warmup
             };
-            for probes in &args.ddgi_probes {
-                let counts = if probes == "scene" {
-                    scene
-                        .probe_volumes
-                        .first()
-                        .map(|v| v.counts)
-                        .ok_or_else(|| {
-                            CliError::Usage(format!(
-                                "{}: the scene has no probe volume; pass counts such as 16x8x16",
-                                scene.name
-                            ))
-                        })?
-                } else {
-                    crate::options::parse_counts(probes).map_err(CliError::Usage)?
-                };
-                for &rays in &args.ddgi_rays {
-                    for variant in &ddgi_variants {
-                        let mut settings = variant.clone();
-                        settings.volume.rays_per_probe = rays;
-                        settings.volume.probe_counts = counts;
-                        let spec = irradiant::TechniqueSpec::with_settings("ddgi", &settings);
-                        let mut r = frames.time(&spec, frame_warmup)?;
-                        r.variant = variant_name(&settings);
-                        record.ddgi.push(r);
-                    }
-                }
-            }
-            for settings in &ssil_variants {
-                let spec = irradiant::TechniqueSpec::with_settings("ssil", settings);
-                let mut r = frames.time(&spec, frame_warmup)?;
-                r.variant = ssil::variant_name(settings);
-                record.ssil.push(r);
-            }
             for (choice, spec) in techniques.iter().zip(&technique_specs) {
                 let mut r = frames.time(spec, frame_warmup)?;
-                r.technique = choice.label.clone();
                 r.variant = choice.label.clone();
                 record.techniques.push(r);
             }
@@ -415,18 +340,14 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
 /// How many records of each kind there were when an order's run began.
 struct RecordLengths {
     passes: usize,
-    frames: [usize; 3],
+    frames: usize,
 }
 
 impl RecordLengths {
     fn of(record: &BenchRecord) -> Self {
         Self {
             passes: record.passes.len(),
-            frames: [
-                record.ddgi.len(),
-                record.techniques.len(),
-                record.ssil.len(),
-            ],
+            frames: record.techniques.len(),
         }
     }
 }
@@ -444,17 +365,12 @@ fn order_check(record: &BenchRecord, reverse_start: &RecordLengths, tolerance: f
             pairs.push((format!("{} {}", f.scene, f.label), f.median_ms, r.median_ms));
         }
     }
-    let frame_lists = [&record.ddgi, &record.techniques, &record.ssil];
-    for (list, start) in frame_lists.into_iter().zip(reverse_start.frames) {
-        let (forward, reverse) = list.split_at(start);
-        for f in forward {
-            let same = |r: &&FrameRecord| {
-                r.scene == f.scene && r.technique == f.technique && r.variant == f.variant
-            };
-            if let Some(r) = reverse.iter().find(same) {
-                let name = format!("{} {} {} frame", f.scene, f.technique, f.variant);
-                pairs.push((name, f.frame_ms, r.frame_ms));
-            }
+    let (forward, reverse) = record.techniques.split_at(reverse_start.frames);
+    for f in forward {
+        let same = |r: &&FrameRecord| r.scene == f.scene && r.variant == f.variant;
+        if let Some(r) = reverse.iter().find(same) {
+            let name = format!("{} {} frame", f.scene, f.variant);
+            pairs.push((name, f.frame_ms, r.frame_ms));
         }
     }
     println!(
@@ -532,111 +448,6 @@ fn time_rays(
         None,
     ));
     Ok(())
-}
-
-/// The DDGI settings `bench` times (rays per probe and probe counts aside): every combination
-/// of the listed values of the DDGI switches and of probes per group, in the order listed.
-fn ddgi_variants(args: &BenchArgs) -> Result<Vec<DdgiSettings>, CliError> {
-    let switch = |values: &[String], flag: &str, yes: &str, no: &str| {
-        values
-            .iter()
-            .map(|v| match v.as_str() {
-                v if v == yes => Ok(true),
-                v if v == no => Ok(false),
-                other => Err(CliError::Usage(format!(
-                    "unknown {flag} {other:?}: use {yes} or {no}"
-                ))),
-            })
-            .collect::<Result<Vec<bool>, CliError>>()
-    };
-    type Set = fn(&mut DdgiSettings, bool);
-    let switches: [(Vec<bool>, Set); 5] = [
-        (
-            switch(
-                &args.ddgi_ray_order,
-                "--ddgi-ray-order",
-                "coherent",
-                "fibonacci",
-            )?,
-            |s, on| s.speed.coherent_rays = on,
-        ),
-        (
-            switch(&args.ddgi_probe_states, "--ddgi-probe-states", "on", "off")?,
-            |s, on| s.speed.probe_states = on,
-        ),
-        (
-            switch(
-                &args.ddgi_light_choice,
-                "--ddgi-light-choice",
-                "warp",
-                "ray",
-            )?,
-            |s, on| s.speed.light_per_warp = on,
-        ),
-        (
-            switch(
-                &args.ddgi_fuse_trace_shade,
-                "--ddgi-fuse-trace-shade",
-                "on",
-                "off",
-            )?,
-            |s, on| s.speed.fuse_trace_and_shade = on,
-        ),
-        (
-            switch(&args.ddgi_shadow_queue, "--ddgi-shadow-queue", "on", "off")?,
-            |s, on| s.speed.shadow_queue = on,
-        ),
-    ];
-    let mut base = DdgiSettings::balanced();
-    base.volume.shade_all_lights = args.ddgi_shade_all_lights;
-    base.update.weights = match args.ddgi_weights {
-        crate::options::Weights::Classic => irradiant::ddgi::ProbeWeights::Classic,
-        crate::options::Weights::Backface => irradiant::ddgi::ProbeWeights::Backface,
-        crate::options::Weights::Chebyshev => irradiant::ddgi::ProbeWeights::Chebyshev,
-        crate::options::Weights::Full => irradiant::ddgi::ProbeWeights::Full,
-    };
-    let mut variants = vec![base];
-    // Each switch multiplies the variants so far by its values (the first listed outermost).
-    for (values, set) in switches {
-        variants = variants
-            .iter()
-            .flat_map(|v| {
-                values.iter().map(move |&on| {
-                    let mut v = v.clone();
-                    set(&mut v, on);
-                    v
-                })
-            })
-            .collect();
-    }
-    let mut all = Vec::new();
-    for v in &variants {
-        for &probes_per_group in &args.ddgi_probes_per_group {
-            let mut v = v.clone();
-            v.speed.probes_per_group = probes_per_group;
-            v.validate().map_err(|e| CliError::Usage(e.to_string()))?;
-            all.push(v);
-        }
-    }
-    Ok(all)
-}
-
-/// How a DDGI variant laid out its rays: ray order, probes a group and the switches on.
-fn variant_name(s: &DdgiSettings) -> String {
-    let p = &s.speed;
-    format!(
-        "{}/{}{}{}{}{}",
-        if p.coherent_rays {
-            "coherent"
-        } else {
-            "fibonacci"
-        },
-        p.probes_per_group,
-        if p.probe_states { "/states" } else { "" },
-        if p.light_per_warp { "" } else { "/ray-light" },
-        if p.fuse_trace_and_shade { "/fused" } else { "" },
-        if s.queues_shadow_rays() { "/queue" } else { "" }
-    )
 }
 
 /// Runs `record_pass` warm-up + timed times, one submission each, and returns the timed

@@ -47,9 +47,13 @@ pub fn print_table(r: &BenchRecord) {
             p.scene, p.label, p.median_ms, p.min_ms, rays, rate
         );
     }
-    frame_table(&r.ddgi);
     frame_table(&r.techniques);
-    super::ssil::print_table(&r.ssil);
+    let ssil: Vec<&FrameRecord> = r
+        .techniques
+        .iter()
+        .filter(|f| f.technique == "ssil")
+        .collect();
+    super::ssil::print_table(&ssil);
 }
 
 /// One row a timed frame configuration, one column a pass (any record's, in the order first

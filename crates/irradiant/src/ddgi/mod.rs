@@ -39,9 +39,8 @@ use irradiant_scene::{ProbeVolumeDesc, Scene};
 
 use crate::RenderError;
 use crate::frame::SceneChange;
-use crate::technique::{
-    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec,
-};
+use crate::settings::TechniqueSpec;
+use crate::technique::{Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses};
 use pipelines::DdgiPipelines;
 
 /// The registry entry `ddgi`: the full method.

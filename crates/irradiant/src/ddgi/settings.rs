@@ -5,8 +5,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::settings::TechniqueSpec;
 use crate::settings::{Presets, SettingsError, check_range, overlay};
-use crate::technique::TechniqueSpec;
 
 /// Which of the query's weights are on: the paper's Figure 7 ladder, each step adding one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]

@@ -22,13 +22,19 @@
 //! `lightfield-naive` (Monte Carlo through the light field). See docs/lightfield.md.
 
 pub mod agreement;
+mod bake;
 pub mod cache;
 pub mod constants;
+mod kind;
 mod resources;
 mod settings;
 pub mod types;
 
+pub use bake::BakeReport;
+use bake::check_prefilter_loops;
 pub use cache::{EntryLayout, bake_key, parse_entry};
+pub use kind::{LightfieldKind, grid_of};
+use kind::{bake_dispatches, block_image};
 pub use resources::plan as plan_resources;
 pub use settings::{
     LightfieldBakeSettings, LightfieldSettings, LightfieldShadeSettings, ShadingAlgorithm,
@@ -53,8 +59,9 @@ use crate::frame::IMAGE_TILE;
 use crate::probes::{AtlasLayout, ProbeGrid};
 use crate::raycast::types::GpuRay;
 use crate::settings::SettingsError;
+use crate::settings::TechniqueSpec;
 use crate::technique::{
-    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec, non_finite,
+    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, non_finite,
 };
 use constants::{ALGORITHM_FILTERED, ALGORITHM_NAIVE, ALGORITHM_PREFILTERED, MIN_MIP_FACTOR};
 use resources::LightfieldResources;
@@ -106,174 +113,6 @@ const BAKE: [&str; 7] = [
     "lightfield/reduce",
     "lightfield/prefilter",
 ];
-
-pub struct LightfieldKind {
-    algorithm: ShadingAlgorithm,
-}
-
-impl LightfieldKind {
-    pub fn settings(
-        &self,
-        spec: &TechniqueSpec,
-        warnings: &mut Vec<String>,
-    ) -> Result<LightfieldSettings, RenderError> {
-        Ok(LightfieldSettings::from_spec(
-            spec,
-            self.algorithm,
-            warnings,
-        )?)
-    }
-}
-
-/// The probe grid the settings ask for: the scene's first probe volume (or the default one
-/// over its bounds); with the bake's own probe counts, that many probes at the centres of as
-/// many equal cells of the volume's box (or the scene's bounds), so that a coarse grid keeps
-/// its probes off the walls the box touches.
-pub fn grid_of(scene: &Scene, settings: &LightfieldSettings) -> Result<ProbeGrid, RenderError> {
-    let mut desc = crate::probes::volumes_of(scene).remove(0);
-    let counts = settings.bake.probe_counts;
-    if counts != [0, 0, 0] {
-        let (lo, hi) = match scene.probe_volumes.first() {
-            Some(v) => (v.min, v.max),
-            None => scene.bounds(),
-        };
-        let extent = (hi - lo).max(Vec3::splat(1e-3));
-        let inset = extent / glam::UVec3::from(counts).as_vec3() * 0.5;
-        desc.min = lo + inset;
-        desc.max = hi - inset;
-        desc.counts = counts;
-    }
-    let grid = ProbeGrid::new(&desc);
-    if grid.probe_count > MAX_PROBES {
-        return Err(RenderError::Settings(format!(
-            "technique.bake.probe_counts: {} probes are more than one bake dispatch holds ({MAX_PROBES}); use fewer probes",
-            grid.probe_count
-        )));
-    }
-    Ok(grid)
-}
-
-fn map_groups(side: u32, probes: u32) -> Workgroups {
-    Workgroups::for_layers(side, side, probes, MAP_TILE)
-}
-
-/// The bake's dispatches, each with its label, in order.
-fn bake_dispatches(grid: &ProbeGrid, s: &LightfieldSettings) -> Vec<(&'static str, Workgroups)> {
-    let b = &s.bake;
-    let probes = grid.probe_count;
-    let tile = b.irradiance_texels.max(b.distance_texels) + 2;
-    let geometry = (BAKE[0], map_groups(b.resolution, probes));
-    let per_probe = Workgroups::linear(probes as u64);
-    let mut all = vec![geometry];
-    for _ in 0..b.relocation_steps {
-        all.extend([(BAKE[1], per_probe), geometry]);
-    }
-    all.extend([
-        (BAKE[2], map_groups(b.resolution / MIN_MIP_FACTOR, probes)),
-        (BAKE[3], per_probe),
-    ]);
-    for _ in 0..=b.bounces {
-        all.extend([
-            (BAKE[4], map_groups(b.resolution, probes)),
-            (BAKE[5], map_groups(s.prefilter_side(), probes)),
-            (BAKE[6], map_groups(tile, probes)),
-        ]);
-    }
-    all
-}
-
-/// A thread a block of the fast path's irradiance.
-fn block_image((width, height): (u32, u32), block: u32) -> Workgroups {
-    Workgroups::for_image(width.div_ceil(block), height.div_ceil(block), IMAGE_TILE)
-}
-
-/// The frame's dispatches, each with its label, in order.
-fn frame_dispatches(s: &LightfieldSettings, size: (u32, u32)) -> Vec<(&'static str, Workgroups)> {
-    let image = Workgroups::for_image(size.0, size.1, IMAGE_TILE);
-    let glossy = s.shade.glossy;
-    let mut all = Vec::new();
-    match s.shade.algorithm {
-        ShadingAlgorithm::Naive => all.push((TRACE, image)),
-        ShadingAlgorithm::Filtered => {
-            all.push((TRACE, image));
-            let filters = if glossy { 4 } else { 2 };
-            all.extend(std::iter::repeat_n((FILTER, image), filters));
-            all.push((TEMPORAL, image));
-        }
-        ShadingAlgorithm::Prefiltered if glossy => {
-            all.extend([(TRACE, image), (FILTER, image), (FILTER, image)]);
-            all.push((TEMPORAL, image));
-        }
-        ShadingAlgorithm::Prefiltered => {}
-    }
-    if s.shade.algorithm == ShadingAlgorithm::Prefiltered && s.shade.irradiance_block > 1 {
-        all.push((IRRADIANCE, block_image(size, s.shade.irradiance_block)));
-    }
-    all.push((RESOLVE, image));
-    all
-}
-
-impl TechniqueKind for LightfieldKind {
-    fn name(&self) -> &'static str {
-        match self.algorithm {
-            ShadingAlgorithm::Prefiltered => "lightfield",
-            ShadingAlgorithm::Filtered => "lightfield-traced",
-            ShadingAlgorithm::Naive => "lightfield-naive",
-        }
-    }
-    fn description(&self) -> &'static str {
-        match self.algorithm {
-            ShadingAlgorithm::Prefiltered => {
-                "light-field probes: prefiltered irradiance with visibility, a filtered glossy ray"
-            }
-            ShadingAlgorithm::Filtered => {
-                "light-field probes: a Lambertian and a glossy ray a pixel, filtered"
-            }
-            ShadingAlgorithm::Naive => "light-field probes: Monte Carlo rays, unfiltered",
-        }
-    }
-    fn check(&self, spec: &TechniqueSpec) -> Result<Vec<String>, RenderError> {
-        let mut warnings = Vec::new();
-        self.settings(spec, &mut warnings)?;
-        Ok(warnings)
-    }
-    fn plan(
-        &self,
-        spec: &TechniqueSpec,
-        scene: &Scene,
-        size: (u32, u32),
-    ) -> Result<Vec<Allocation>, RenderError> {
-        let settings = self.settings(spec, &mut Vec::new())?;
-        Ok(resources::plan(
-            &grid_of(scene, &settings)?,
-            &settings,
-            size,
-        ))
-    }
-    fn dispatches(
-        &self,
-        spec: &TechniqueSpec,
-        scene: &Scene,
-        size: (u32, u32),
-    ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
-        let settings = self.settings(spec, &mut Vec::new())?;
-        let mut all = bake_dispatches(&grid_of(scene, &settings)?, &settings);
-        all.extend(frame_dispatches(&settings, size));
-        all.push((
-            "lightfield/view",
-            Workgroups::for_image(size.0, size.1, IMAGE_TILE),
-        ));
-        Ok(all)
-    }
-    fn build(
-        &self,
-        cx: &TechniqueContext,
-        spec: &TechniqueSpec,
-    ) -> Result<Box<dyn Technique>, RenderError> {
-        let settings = self.settings(spec, &mut Vec::new())?;
-        Ok(Box::new(Lightfield::new(cx, self.name(), &settings)?))
-    }
-}
 
 /// The compiled passes.
 struct Pipelines {
@@ -334,18 +173,6 @@ impl Pipelines {
     }
 }
 
-/// What the bake cost.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BakeReport {
-    /// Wall-clock milliseconds from the first bake pass to the GPU's finishing the last (or to
-    /// the cache entry's upload).
-    pub milliseconds: f64,
-    /// Bytes of the baked probe data (the maps and the prefiltered atlases).
-    pub bytes: u64,
-    /// Read from the disk cache.
-    pub cached: bool,
-}
-
 pub struct Lightfield {
     name: &'static str,
     settings: LightfieldSettings,
@@ -365,37 +192,6 @@ pub struct Lightfield {
     max_distance: f32,
     frames: u32,
     bake: BakeReport,
-}
-
-/// lightfield/prefilter sums every texel of a probe's reduced map, twice (irradiance and
-/// distance), in one invocation: 2 × prefilter_resolution² loop iterations. Where the adapter
-/// ends an invocation's loops past a limit (llvmpipe), a larger map would be summed only in
-/// part, silently; it is refused instead, naming the setting.
-fn check_prefilter_loops(
-    settings: &LightfieldSettings,
-    info: &irradiant_gpu::GpuInfo,
-) -> Result<(), RenderError> {
-    let Some(limit) = info.loop_iteration_limit else {
-        return Ok(());
-    };
-    let size = settings.prefilter_side() as u64;
-    if 2 * size * size < limit as u64 {
-        return Ok(());
-    }
-    // The largest power of two under the limit.
-    let root = (limit as f64 / 2.0).sqrt() as u32;
-    let largest = 1u32 << (31 - root.leading_zeros());
-    Err(SettingsError::invalid(
-        "technique.bake.prefilter_resolution",
-        size,
-        format!(
-            "{largest} or less on {}, which ends a shader invocation's loops after {limit} \
-             iterations and would sum only part of each map (2 × {size}² texels); or pick a \
-             hardware GPU with --adapter",
-            info.name
-        ),
-    )
-    .into())
 }
 
 impl Lightfield {
@@ -650,123 +446,6 @@ impl Lightfield {
         let mut states: Vec<u32> = read_buffer_as(ctx, &self.resources.maps.states)?;
         states.truncate(self.grid.probe_count as usize);
         Ok(states)
-    }
-
-    fn bake_or_load(&mut self, cx: &TechniqueContext) -> Result<BakeReport, RenderError> {
-        let ctx = cx.ctx;
-        let start = Instant::now();
-        let key = bake_key(
-            cx.scene,
-            &self.grid,
-            &self.settings.bake,
-            self.settings.shade.self_shadow_bias,
-        );
-        let file = cx.cache_dir.map(|dir| cache::entry_path(dir, key));
-        let bytes = self.baked_bytes();
-        if let Some(file) = &file
-            && cache::load(ctx, file, key, &self.resources.maps)?
-        {
-            ctx.queue.write_buffer(
-                &self.resources.volume,
-                0,
-                bytemuck::bytes_of(&self.volume()),
-            );
-            ctx.check("uploading cached light-field probes")?;
-            return Ok(BakeReport {
-                milliseconds: start.elapsed().as_secs_f64() * 1e3,
-                bytes,
-                cached: true,
-            });
-        }
-        self.bake_now(cx)?;
-        let report = BakeReport {
-            milliseconds: start.elapsed().as_secs_f64() * 1e3,
-            bytes,
-            cached: false,
-        };
-        if let Some(file) = &file {
-            cache::store(ctx, file, key, &self.resources.maps)?;
-        }
-        Ok(report)
-    }
-
-    /// Bakes the probes: one submission a step, each waited on, so that progress is real.
-    fn bake_now(&mut self, cx: &TechniqueContext) -> Result<(), RenderError> {
-        let ctx = cx.ctx;
-        let r = &self.resources;
-        let p = &self.pipelines;
-        let scene_table = cx.gpu_scene.resources();
-        let frame_table = cx.frame.resources.table();
-        let shared = r.table();
-        let bind =
-            |pass: &Arc<ComputePass>, own: ResourceTable| -> Result<BoundPass, RenderError> {
-                Ok(pass.bind(ctx, &[&scene_table, &frame_table, &shared, &own])?)
-            };
-        ctx.queue
-            .write_buffer(&r.volume, 0, bytemuck::bytes_of(&self.volume()));
-        let geometry = bind(
-            &p.bake_geometry,
-            ResourceTable::new().texture("target_geometry", &r.maps.geometry.view),
-        )?;
-        let relocate = bind(
-            &p.relocate,
-            ResourceTable::new().buffer("target_probe_offsets", &r.maps.offsets),
-        )?;
-        let min_mip = bind(
-            &p.min_mip,
-            ResourceTable::new().texture("target_low", &r.maps.low.view),
-        )?;
-        let states = bind(
-            &p.probe_states,
-            ResourceTable::new().buffer("target_probe_states", &r.maps.states),
-        )?;
-        let radiance = bind(
-            &p.bake_radiance,
-            ResourceTable::new().texture("target_radiance", &r.maps.radiance.view),
-        )?;
-        let reduce = bind(
-            &p.reduce,
-            ResourceTable::new()
-                .texture("target_small_radiance", &r.small_radiance.view)
-                .texture("target_small_moments", &r.small_moments.view),
-        )?;
-        let prefilter = bind(
-            &p.prefilter,
-            ResourceTable::new()
-                .texture("small_radiance", &r.small_radiance.view)
-                .texture("small_moments", &r.small_moments.view)
-                .texture("target_irradiance", &r.maps.irradiance.view)
-                .texture("target_distance", &r.maps.distance.view),
-        )?;
-        let dispatches = bake_dispatches(&self.grid, &self.settings);
-        let passes = [
-            &geometry, &relocate, &min_mip, &states, &radiance, &reduce, &prefilter,
-        ];
-        // Bounce n's radiance, reduce and prefilter come after everything else.
-        let first_bounce_step = dispatches.len() - 3 * (self.settings.bake.bounces as usize + 1);
-        let steps = dispatches.len() as u32;
-        let progress = cx.progress;
-        let report = |done: u32| {
-            if let Some(progress) = progress {
-                progress.report("baking light-field probes", done, steps);
-            }
-        };
-        report(0);
-        for (step, (label, groups)) in dispatches.iter().enumerate() {
-            let bounce = (step.saturating_sub(first_bounce_step) / 3) as u32;
-            ctx.queue
-                .write_buffer(&r.params, 0, bytemuck::bytes_of(&self.params(bounce)));
-            let pass = passes[BAKE.iter().position(|b| b == label).expect("a bake pass")];
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-            pass.dispatch(&mut encoder, None, *groups);
-            ctx.queue.submit([encoder.finish()]);
-            ctx.wait()?;
-            report(step as u32 + 1);
-        }
-        ctx.check("baking light-field probes")?;
-        Ok(())
     }
 
     /// Traces `rays` through the light field alone (tests and the agreement figures).

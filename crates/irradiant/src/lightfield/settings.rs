@@ -5,8 +5,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::settings::TechniqueSpec;
 use crate::settings::{Presets, SettingsError, check_range, overlay};
-use crate::technique::TechniqueSpec;
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LightfieldSettings {

@@ -7,9 +7,8 @@ use irradiant_gpu::{Allocation, Profiler, Workgroups, wgpu};
 use irradiant_scene::Scene;
 
 use crate::RenderError;
-use crate::technique::{
-    Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec,
-};
+use crate::settings::TechniqueSpec;
+use crate::technique::{Technique, TechniqueContext, TechniqueKind, TechniquePasses};
 
 pub struct NoneKind;
 

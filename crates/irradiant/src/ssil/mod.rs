@@ -16,10 +16,14 @@
 //! supply the light the screen cannot see.
 
 pub mod constants;
+mod hybrid;
+mod kind;
 mod resources;
 mod settings;
 pub mod types;
 
+pub use hybrid::{HybridSettings, SsilDdgi};
+pub use kind::{SsilKind, dispatches};
 pub use resources::plan;
 pub use settings::{SsilSettings, StartResolution};
 
@@ -28,18 +32,15 @@ use std::sync::Arc;
 
 use glam::Vec3;
 use irradiant_gpu::{
-    Allocation, BoundPass, ComputePass, GpuContext, PassDesc, Profiler, ResourceTable, Workgroups,
+    BoundPass, ComputePass, GpuContext, PassDesc, Profiler, ResourceTable, Workgroups,
     read_buffer_as, wgpu,
 };
-use irradiant_scene::{Camera, Scene};
-use serde::{Deserialize, Serialize};
+use irradiant_scene::Camera;
 
 use crate::RenderError;
-use crate::ddgi::{Ddgi, DdgiSettings};
-use crate::frame::{FrameNeeds, IMAGE_TILE, SceneChange};
-use crate::technique::{
-    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, TechniqueSpec, non_finite,
-};
+use crate::settings::TechniqueSpec;
+use crate::technique::{Counter, Technique, TechniqueContext, TechniquePasses, non_finite};
+use kind::{gather_groups, level_groups};
 use resources::SsilResources;
 use types::{GpuSsilParams, GpuSsilPass};
 
@@ -57,215 +58,6 @@ const GATHER_LABELS: [&str; 6] = [
     "ssil/gather_5",
     "ssil/gather_6",
 ];
-
-/// The settings of `ssil+ddgi`: each technique's own, under its name.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct HybridSettings {
-    pub ssil: SsilSettings,
-    pub ddgi: DdgiSettings,
-}
-
-crate::settings::presets_from_inherent!(HybridSettings);
-
-impl HybridSettings {
-    pub fn fast() -> Self {
-        Self {
-            ssil: SsilSettings::fast(),
-            ddgi: DdgiSettings::fast(),
-        }
-    }
-    pub fn balanced() -> Self {
-        Self {
-            ssil: SsilSettings::balanced(),
-            ddgi: DdgiSettings::balanced(),
-        }
-    }
-    pub fn quality() -> Self {
-        let mut ddgi = DdgiSettings::quality();
-        // The screen-space light stands in for the probes where the screen sees; DDGI's traced
-        // final gather would only be replaced there, at its full cost (docs/ddgi.md).
-        ddgi.gather.rays_per_pixel = 0;
-        // Nor the traced bounce at the probe rays' hits: without the gather's mean over frames,
-        // its noise reaches the image (a still scene's image mean varies three times as much,
-        // docs/ssil.md), and the probes light only what the screen misses. 512 rays a probe
-        // instead, as before it. Nor its blind bounces, for the same noise.
-        ddgi.update.traced_bounce = false;
-        ddgi.update.blind_bounces = 0;
-        ddgi.volume.rays_per_probe = 512;
-        Self {
-            ssil: SsilSettings::quality(),
-            ddgi,
-        }
-    }
-}
-
-pub struct SsilKind {
-    hybrid: bool,
-}
-
-impl SsilKind {
-    /// The screen-space settings a spec asks for (and, for the hybrid, DDGI's).
-    pub fn settings(
-        &self,
-        spec: &TechniqueSpec,
-        warnings: &mut Vec<String>,
-    ) -> Result<(SsilSettings, Option<DdgiSettings>), RenderError> {
-        if self.hybrid {
-            let preset = <HybridSettings as crate::settings::Presets>::preset(spec.preset);
-            let s: HybridSettings =
-                crate::settings::overlay(&preset, &spec.settings, "technique", warnings)?;
-            s.ssil.validate()?;
-            s.ddgi.validate()?;
-            Ok((s.ssil, Some(s.ddgi)))
-        } else {
-            Ok((SsilSettings::from_spec(spec, warnings)?, None))
-        }
-    }
-}
-
-impl TechniqueKind for SsilKind {
-    fn name(&self) -> &'static str {
-        if self.hybrid { "ssil+ddgi" } else { "ssil" }
-    }
-    fn description(&self) -> &'static str {
-        if self.hybrid {
-            "screen-space indirect light, with DDGI's probes where the screen has none"
-        } else {
-            "hierarchical screen-space indirect illumination"
-        }
-    }
-    fn check(&self, spec: &TechniqueSpec) -> Result<Vec<String>, RenderError> {
-        let mut warnings = Vec::new();
-        self.settings(spec, &mut warnings)?;
-        Ok(warnings)
-    }
-    fn frame_needs(&self, spec: &TechniqueSpec) -> FrameNeeds {
-        let levels = self
-            .settings(spec, &mut Vec::new())
-            .map_or(0, |(s, _)| s.pyramid_levels());
-        FrameNeeds {
-            pyramid_levels: levels,
-        }
-    }
-    fn scene_warnings(&self, spec: &TechniqueSpec, scene: &Scene) -> Vec<String> {
-        let Ok((settings, _)) = self.settings(spec, &mut Vec::new()) else {
-            return Vec::new();
-        };
-        let open: usize = scene
-            .instances
-            .iter()
-            .map(|i| scene.meshes[i.mesh as usize].open_edges())
-            .sum();
-        if settings.visibility && open > 0 {
-            vec![format!(
-                "scene '{}' is not watertight ({open} open edges): screen-space visibility treats the space behind an open surface as solid until the next surface; close the meshes, or set technique.visibility = false",
-                scene.name
-            )]
-        } else {
-            Vec::new()
-        }
-    }
-    fn plan(
-        &self,
-        spec: &TechniqueSpec,
-        scene: &Scene,
-        size: (u32, u32),
-    ) -> Result<Vec<Allocation>, RenderError> {
-        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
-        settings.check_size(size)?;
-        let mut plan = resources::plan(&settings, size, self.hybrid);
-        if let Some(ddgi) = ddgi {
-            plan.extend(crate::ddgi::DDGI.plan(
-                &TechniqueSpec::with_settings("ddgi", &ddgi),
-                scene,
-                size,
-            )?);
-        }
-        Ok(plan)
-    }
-    fn dispatches(
-        &self,
-        spec: &TechniqueSpec,
-        scene: &Scene,
-        size: (u32, u32),
-    ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
-        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
-        let mut all = dispatches(&settings, size, self.hybrid);
-        if let Some(ddgi) = ddgi {
-            all.extend(crate::ddgi::DDGI.dispatches(
-                &TechniqueSpec::with_settings("ddgi", &ddgi),
-                scene,
-                size,
-            )?);
-        }
-        Ok(all)
-    }
-    fn build(
-        &self,
-        cx: &TechniqueContext,
-        spec: &TechniqueSpec,
-    ) -> Result<Box<dyn Technique>, RenderError> {
-        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
-        settings.check_size(cx.frame.size())?;
-        let ssil = Ssil::new(cx, &settings, ddgi.is_some())?;
-        Ok(match ddgi {
-            Some(ddgi) => Box::new(SsilDdgi {
-                ddgi: Ddgi::new(cx, "ddgi", &ddgi)?,
-                ssil,
-            }),
-            None => Box::new(ssil),
-        })
-    }
-}
-
-/// Workgroups of a pass with a thread a texel of pyramid level `k`.
-fn level_groups((width, height): (u32, u32), k: u32) -> Workgroups {
-    Workgroups::for_image((width >> k).max(1), (height >> k).max(1), IMAGE_TILE)
-}
-
-/// Workgroups of a gather at pyramid level `k` (GATHER_LANES threads a texel).
-fn gather_groups((width, height): (u32, u32), k: u32) -> Workgroups {
-    let tile = (constants::GATHER_TILE, constants::GATHER_TILE);
-    Workgroups::for_image((width >> k).max(1), (height >> k).max(1), tile)
-}
-
-/// Every dispatch, with its label (the frame's pyramid aside).
-pub fn dispatches(
-    settings: &SsilSettings,
-    (width, height): (u32, u32),
-    hybrid: bool,
-) -> Vec<(&'static str, Workgroups)> {
-    let level = |k: u32| level_groups((width, height), k);
-    let gather_groups = |k: u32| gather_groups((width, height), k);
-    let s = settings.start.level();
-    let mut all = vec![("ssil/voxelize", level(s))];
-    for j in 1..settings.levels {
-        all.push(("ssil/voxel_down", level(s + j)));
-    }
-    for bounce in 0..settings.bounces {
-        if bounce > 0 || hybrid {
-            all.push((
-                if bounce > 0 {
-                    "ssil/bounce"
-                } else {
-                    "ssil/probe_light"
-                },
-                level(s),
-            ));
-            for j in 1..settings.levels {
-                all.push(("ssil/bounce", level(s + j)));
-            }
-        }
-        for j in 0..settings.levels {
-            all.push((GATHER_LABELS[j as usize], gather_groups(s + j)));
-        }
-        for j in (0..settings.levels).rev() {
-            all.push(("ssil/upsample", level(s + j)));
-        }
-    }
-    all.extend([("ssil/upsample", level(0)), ("ssil/temporal", level(0))]);
-    all
-}
 
 /// The compiled passes.
 struct Pipelines {
@@ -708,61 +500,4 @@ fn read_rgba16(
         .chunks_exact(4)
         .map(|c| [c[0].to_f32(), c[1].to_f32(), c[2].to_f32(), c[3].to_f32()])
         .collect())
-}
-
-/// `ssil+ddgi`: DDGI's probes light everything, then the screen-space light replaces them in
-/// the share of each pixel's hemisphere the screen covers.
-pub struct SsilDdgi {
-    pub ddgi: Ddgi,
-    pub ssil: Ssil,
-}
-
-impl Technique for SsilDdgi {
-    fn name(&self) -> &'static str {
-        "ssil+ddgi"
-    }
-    fn passes(&self) -> TechniquePasses {
-        let (d, s) = (self.ddgi.passes(), self.ssil.passes());
-        TechniquePasses {
-            update: d.update.into_iter().chain(s.update).collect(),
-            resolve: d.resolve.into_iter().chain(s.resolve).collect(),
-        }
-    }
-    fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {
-        self.ddgi.prepare(ctx, camera);
-        self.ssil.prepare(ctx, camera);
-    }
-    fn update(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
-        self.ddgi.update(encoder, profiler);
-    }
-    fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
-        self.ddgi.resolve(encoder, profiler.as_deref_mut());
-        self.ssil.resolve(encoder, profiler);
-    }
-    fn visualize(&self, encoder: &mut wgpu::CommandEncoder) {
-        self.ddgi.visualize(encoder);
-    }
-    fn invalidate(&mut self) {
-        self.ddgi.invalidate();
-        self.ssil.invalidate();
-    }
-    fn scene_changed(&mut self, change: &SceneChange) {
-        self.ddgi.scene_changed(change);
-    }
-    fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
-        let mut all = self.ddgi.check_state(ctx)?;
-        all.extend(self.ssil.check_state(ctx)?);
-        Ok(all)
-    }
-    fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
-        let mut all = self.ddgi.counters(ctx)?;
-        all.extend(self.ssil.counters(ctx)?);
-        Ok(all)
-    }
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-    fn as_any_mut(&mut self) -> &mut dyn Any {
-        self
-    }
 }

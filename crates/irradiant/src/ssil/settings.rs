@@ -3,8 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::settings::TechniqueSpec;
 use crate::settings::{SettingsError, check_range, overlay};
-use crate::technique::TechniqueSpec;
 
 /// The resolution the gathers start at: the first level of the G-buffer pyramid they use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
