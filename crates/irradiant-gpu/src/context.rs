@@ -127,7 +127,7 @@ impl GpuContext {
         // Every indirect dispatch's workgroup counts are written by Irradiant's own shaders,
         // folded under the limits by construction (WORKGROUP_FOLD); wgpu's check of them costs
         // each indirect dispatch a dispatch and a barrier more: 0.011 ms of ddgi/shadow on
-        // Sibenik on an H100 (BENCHMARKS.md, session 16). WGPU_VALIDATION_INDIRECT_CALL=1
+        // Sibenik on an H100 (BENCHMARKS.md, commit 88de8bc). WGPU_VALIDATION_INDIRECT_CALL=1
         // turns it back on.
         if std::env::var_os("WGPU_VALIDATION_INDIRECT_CALL").is_none() {
             desc.flags

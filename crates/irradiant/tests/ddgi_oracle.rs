@@ -347,7 +347,7 @@ fn thin_frames_show_few_specks() {
 /// axes, where backfaces all round tie for the closest. Whichever way such a probe leaves, it
 /// lights some of its eight cells and misleads the others: counted like any probe (weight 1),
 /// the query over the view reads 14 % dark here; at the default weight (0.1) against probes
-/// with a clear view, 6.6 % (lavapipe, session 17). Weight 1 shows the check can fail.
+/// with a clear view, 6.6 % (lavapipe, commit 2eecf16). Weight 1 shows the check can fail.
 #[test]
 fn tied_probes_on_the_columns_axes_keep_box_cylinders_within_ten_percent() {
     let Some(ctx) = gpu() else { return };
@@ -384,7 +384,7 @@ fn tied_probes_on_the_columns_axes_keep_box_cylinders_within_ten_percent() {
 /// Two-rooms with a probe layer on the dividing wall's middle plane: each of the wall's probes
 /// leaves into one room and serves it as any probe does, and the dark room's light stays
 /// within 3 % of the truth (−0.4 % here). When those probes were tied and counted at a tenth
-/// (the rule before session 18), it read +5.1 % here (+6.3 % at seed 0 and +6.5 % at seed 1
+/// (the rule before commit 1db3573), it read +5.1 % here (+6.3 % at seed 0 and +6.5 % at seed 1
 /// from `irradiant oracle` at this size; docs/ddgi.md, "A probe in a wall's middle").
 #[test]
 fn probes_in_a_walls_middle_keep_the_dark_room_right() {
@@ -408,7 +408,7 @@ fn probes_in_a_walls_middle_keep_the_dark_room_right() {
 
 /// A volume fitted to a room's walls (its box the room's inside, as a user who gives the
 /// room's bounds places it) reads the room nearly as well as one inset from them: the Cornell
-/// box's one-sided walls and two-rooms' solid ones (−7.9 and +4.5 % here). Before session 18
+/// box's one-sided walls and two-rooms' solid ones (−7.9 and +4.5 % here). Before commit 1db3573
 /// the probes in the walls' planes saw half the void beyond the Cornell box's quads (−40.7 %
 /// here) and turned off in two-rooms' slabs, which lit the rooms from the probes a cell away
 /// (+45 % at 128×96). A box 5 cm outside the Cornell box's walls leaves 9.1 % of the pixels

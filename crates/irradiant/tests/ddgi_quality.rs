@@ -162,7 +162,7 @@ fn box_cylinders_has_no_dark_halo_around_swallowed_probes() {
     eprintln!(
         "box-cylinders, DDGI ÷ path tracer indirect over 8×8 tiles around the cylinders (worst, median, best): full {full:.2?}, without relocation {unrelocated:.2?}, classic {classic:.2?}, tied probes weighing 0.01 {barely_tied:.2?}"
     );
-    // Seen on lavapipe (session 17): full 0.79 / 0.94 / 1.20, without relocation 0.27 / 0.87
+    // Seen on lavapipe (commit 2eecf16): full 0.79 / 0.94 / 1.20, without relocation 0.27 / 0.87
     // (black between the four cylinders, whose eight cage probes are all swallowed), classic
     // 0.71 / 0.83, tied probes weighing 0.01 1.41 against 0.98 (the gaps between the columns
     // read the probes beyond them). Bounds: the worst tile at least 75 % of the median one — no

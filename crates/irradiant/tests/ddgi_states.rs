@@ -98,7 +98,7 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
     assert!(with_states > 0.01, "the box should have indirect light");
     // With states off the same probes are read (only more of them trace), so the image is
     // the same: equal on lavapipe; 10⁻⁴ leaves room for another adapter's arithmetic. (Before
-    // session 21 states off also read the sleeping and switched-off probes: 0.03 % apart.)
+    // commit 0c1ff66 states off also read the sleeping and switched-off probes: 0.03 % apart.)
     assert!(
         (with_states / without - 1.0).abs() < 1e-4,
         "probe states changed the image: {with_states} against {without}"
@@ -291,7 +291,7 @@ fn queued_shadow_rays_render_what_inline_shadow_rays_render() {
 /// cells): in the empty box at 10×6×10 the walls stand 0.75 m past the outer probes, more than
 /// the 0.5 m spacing, and those probes once fell asleep — the whole image lost half its
 /// indirect light (docs/ddgi.md). They must stay awake. (This test compared the image with
-/// states off until session 21; states off now reads the same probes, so it checks the states.)
+/// states off until commit 0c1ff66; states off now reads the same probes, so it checks the states.)
 #[test]
 fn outer_probes_stay_awake_for_the_walls_beyond_them() {
     use irradiant::ddgi::constants::{PROBE_STATE_MASK, PROBE_VIGILANT};
@@ -394,7 +394,7 @@ fn probes_on_a_columns_axis_are_tied_and_leave_towards_the_middle() {
 
 /// A probe in a wall's middle (two-rooms with a probe layer on its dividing wall) has two
 /// opposite exits, each into an open room. It is not tied: it crosses one side and serves that
-/// room in full. Before session 18 any tied exit more than 60° from the closest marked a probe
+/// room in full. Before commit 1db3573 any tied exit more than 60° from the closest marked a probe
 /// tied, so all 17 such probes counted at a tenth of a probe's weight and the dark room's
 /// light read 5–7 % bright (`probes_in_a_walls_middle_keep_the_dark_room_right`).
 #[test]
@@ -422,7 +422,7 @@ fn probes_in_a_walls_middle_are_not_tied_and_leave_through_one_side() {
 }
 
 /// A volume fitted to a room's walls puts its outer probes in the walls' planes. From there a
-/// ray from the probe's centre misses the wall it stands in, so before session 18 such a probe
+/// ray from the probe's centre misses the wall it stands in, so before commit 1db3573 such a probe
 /// saw half the void beyond a one-sided wall (the Cornell box's quads) or, in a solid wall
 /// (two-rooms' slabs), the wall's far side as a backface that it could not cross, and turned
 /// off (152 of two-rooms' 200 probes). Relocation's first step now moves the outer probes a
@@ -510,7 +510,7 @@ fn probes_of_a_one_layer_volume_leave_a_box_through_its_top() {
 /// probes too. There the query extrapolates the last two layers' trend, and the inner layer
 /// sleeps wherever no surface lies within a cell of it. Those probes once dropped out of the
 /// trend with states on only: on the built-in table the query read 3 points brighter with
-/// states on than with every probe tracing (H100, session 20), and this test 2.93 % apart.
+/// states on than with every probe tracing (H100, commit b8b5716), and this test 2.93 % apart.
 /// With states off the probes are now classified alike and the query reads the same ones;
 /// only more of them trace (docs/ddgi.md, "Probe states").
 #[test]

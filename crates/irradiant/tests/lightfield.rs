@@ -312,10 +312,10 @@ fn box_cylinders_light_field_irradiance_has_no_dark_halo() {
         light_field.0 >= 0.5 * light_field.1,
         "a dark halo: {light_field:.2?}"
     );
-    // Seen on lavapipe (session 17): classic probes left in the cylinders (0.04, 0.10), light
+    // Seen on lavapipe (commit 2eecf16): classic probes left in the cylinders (0.04, 0.10), light
     // field with relocation (0.39, 0.48); without relocation the light field's worst tile was
     // 0.14, black between the cylinders. (DDGI's classic weights with relocation and its tied
-    // probes read (0.62, 0.71); this baseline used relocation until session 17.)
+    // probes read (0.62, 0.71); this baseline used relocation until commit 2eecf16.)
     assert!(
         (1.0 - light_field.1).abs() < (1.0 - classic.1).abs(),
         "light field {light_field:.2?} against classic {classic:.2?}"
@@ -606,7 +606,7 @@ fn a_moving_object_is_lit_by_the_baked_probes() {
 /// `shade.self_shadow_bias` is applied between frames (`Session::set_technique` keeps the
 /// bake): the irradiance query then reads close to what a session started with the new bias
 /// reads — not exactly, since that one's bake gathered its bounces with the new bias too (seen:
-/// 0.0205 moved, 0.0024 left). Before session 17 the change did not reach the query at all.
+/// 0.0205 moved, 0.0024 left). Before commit 2eecf16 the change did not reach the query at all.
 #[test]
 fn a_live_change_of_the_self_shadow_bias_reaches_the_query() {
     let Some(ctx) = gpu() else { return };

@@ -40,7 +40,7 @@ pub struct BenchArgs {
     /// Each pass and frame also runs untimed for at least this long before it is timed. GPU
     /// clocks fall while the GPU waits for the CPU (loading a scene, building its tree,
     /// making rays) and climb back only under steady work: a few runs after such a wait were
-    /// timed at a sixth of the clock (BENCHMARKS.md, session 7). Longer costs bench time only.
+    /// timed at a sixth of the clock (BENCHMARKS.md, commit 3169a4f). Longer costs bench time only.
     #[arg(long, default_value = "500")]
     pub warmup_ms: u64,
     /// Runs the scenes again in reverse order in the same call and compares every pass and
