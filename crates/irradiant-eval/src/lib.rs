@@ -5,6 +5,8 @@
 //! relative MSE, tonemapped sRGB8 for FLIP (nv-flip implements LDR-FLIP). [`report`] turns a
 //! comparison into a self-contained HTML page.
 
+#![warn(missing_docs)]
+
 pub mod report;
 
 /// Why two images cannot be compared.

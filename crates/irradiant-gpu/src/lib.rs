@@ -3,6 +3,8 @@
 //! timestamp profiling and readback. Techniques build on this; nothing here knows about scenes
 //! or global illumination.
 
+#![warn(missing_docs)]
+
 mod budget;
 mod context;
 mod layout;

@@ -4,6 +4,8 @@
 //! (`scenes/sponza.toml`), or a mesh file (`.obj`, `.gltf`, `.glb`), and returns a validated
 //! [`Scene`] plus the warnings a user should see.
 
+#![warn(missing_docs)]
+
 mod animation;
 mod builtin;
 mod camera_file;

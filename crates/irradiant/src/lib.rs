@@ -9,6 +9,8 @@
 //!   techniques.
 //! - [`pathtrace`]: the reference path tracer. [`raycast`]: rays in, hits out.
 
+#![warn(missing_docs)]
+
 pub mod ddgi;
 mod error;
 pub mod frame;
