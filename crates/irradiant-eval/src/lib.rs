@@ -12,13 +12,23 @@ pub mod report;
 /// Why two images cannot be compared.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum MetricError {
+    /// The images differ in size: width and height of the first, then of the second. Not
+    /// returned by the functions here, which see only slice lengths and report
+    /// [`WrongLength`](Self::WrongLength) instead.
     #[error("the images differ in size: {0}×{1} against {2}×{3}; render both at the same --size")]
     SizeMismatch(u32, u32, u32, u32),
+    /// A slice's length does not fit the image. [`flip`] checks each slice against
+    /// `width`×`height`; [`psnr`], [`relative_mse`] and [`difference`] check the test slice
+    /// against the reference's length, reported as an image of that many pixels × 1.
     #[error("an image of {width}×{height} needs {expected} values, got {got}")]
     WrongLength {
+        /// Width of the image, in pixels.
         width: u32,
+        /// Height of the image, in pixels.
         height: u32,
+        /// Length the slice needs: bytes for [`flip`] (3 a pixel), pixels for the others.
         expected: usize,
+        /// Length of the slice, in the same unit.
         got: usize,
     },
 }
@@ -27,9 +37,11 @@ pub enum MetricError {
 /// statistics.
 #[derive(Clone, Debug)]
 pub struct Flip {
+    /// Mean of the per-pixel errors, FLIP's one-number score (0: identical).
     pub mean: f32,
     /// 95th percentile of the per-pixel errors: where the worst regions stand.
     pub p95: f32,
+    /// The per-pixel error, 0…1, one value a pixel, row by row.
     pub error_map: Vec<f32>,
     /// The error map through FLIP's magma colour map, RGB8, for reports.
     pub error_map_rgb8: Vec<u8>,

@@ -1,22 +1,29 @@
 //! The comparison lab's report: one self-contained HTML page (images inline, no server, no
 //! external files) and the data behind it, which is also written as JSON.
 
+use base64::prelude::{BASE64_STANDARD, Engine};
 use serde::Serialize;
 
 /// Everything measured for one technique against the reference.
 #[derive(Clone, Debug, Serialize)]
 pub struct TechniqueResult {
+    /// The technique's label as compared, settings included (`ssil{visibility = false}`).
     pub technique: String,
+    /// Mean FLIP error against the reference (see [`Flip`](crate::Flip)).
     pub flip_mean: f32,
+    /// 95th percentile of the per-pixel FLIP error.
     pub flip_p95: f32,
+    /// PSNR against the reference over linear RGB, in dB (see [`psnr`](crate::psnr)).
     pub psnr_db: f64,
+    /// Relative MSE against the reference (see [`relative_mse`](crate::relative_mse)).
     pub relative_mse: f64,
     /// Mean indirect luminance in each named region: (region, technique, reference).
     pub regions: Vec<(String, f64, f64)>,
     /// GPU milliseconds per pass of the last frame (label, ms).
     pub passes: Vec<(String, f64)>,
-    /// PNG files (relative to the report) of the image and of its FLIP error map.
+    /// PNG file of the technique's image, relative to the report.
     pub image: String,
+    /// PNG file of its FLIP error map (magma colours), relative to the report.
     pub error_map: String,
     /// Its difference from another technique of the comparison (`--difference-from`).
     pub difference: Option<DifferenceResult>,
@@ -27,8 +34,9 @@ pub struct TechniqueResult {
 pub struct DifferenceResult {
     /// The technique subtracted.
     pub from: String,
-    /// Mean and mean absolute luminance difference (this − from).
+    /// Mean luminance difference, this − from.
     pub mean: f64,
+    /// Mean absolute luminance difference, |this − from|.
     pub mean_abs: f64,
     /// |Δ luminance| at which the map saturates.
     pub scale: f32,
@@ -36,19 +44,29 @@ pub struct DifferenceResult {
     pub image: String,
 }
 
+/// A whole comparison: the scene, the path-traced reference and each technique measured
+/// against it. Serialised as the report's JSON; [`html`] renders it.
 #[derive(Clone, Debug, Serialize)]
 pub struct Comparison {
+    /// Name of the scene compared.
     pub scene: String,
+    /// Width of every image, in pixels.
     pub width: u32,
+    /// Height of every image, in pixels.
     pub height: u32,
+    /// Name of the GPU adapter the comparison ran on.
     pub adapter: String,
+    /// Samples per pixel of the path-traced reference.
     pub reference_spp: u32,
     /// Indirect bounces the reference follows; None: every bounce (full global illumination).
     pub reference_indirect_bounces: Option<u32>,
+    /// PNG file of the reference, relative to the report.
     pub reference_image: String,
     /// Whether the reference came from the cache.
     pub reference_cached: bool,
+    /// Frames each real-time technique ran before its image was taken.
     pub frames: u32,
+    /// One result a technique, in the order compared.
     pub results: Vec<TechniqueResult>,
     /// Over time, for animated scenes (`--over-time`).
     pub over_time: Vec<TimeSeries>,
@@ -58,6 +76,7 @@ pub struct Comparison {
 /// frame, per frame the flicker (mean absolute luminance change from the previous frame).
 #[derive(Clone, Debug, Serialize)]
 pub struct TimeSeries {
+    /// The technique's label, as in [`TechniqueResult::technique`].
     pub technique: String,
     /// (frame, FLIP mean against that frame's reference)
     pub error: Vec<(u32, f32)>,
@@ -69,28 +88,6 @@ pub struct TimeSeries {
     pub lag_frames: Option<u32>,
     /// The FLIP under which the error counts as recovered (`--lag-bound`).
     pub lag_bound: f32,
-}
-
-/// RFC 4648 base64, for inlining images.
-pub fn base64(data: &[u8]) -> String {
-    const TABLE: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(data.len().div_ceil(3) * 4);
-    for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            out.push(if i <= chunk.len() {
-                TABLE[(n >> (18 - 6 * i) & 63) as usize] as char
-            } else {
-                '='
-            });
-        }
-    }
-    out
 }
 
 fn escape(text: &str) -> String {
@@ -105,7 +102,7 @@ pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
     let img = |file: &str, alt: &str| {
         format!(
             "<img src=\"data:image/png;base64,{}\" alt=\"{}\">",
-            base64(&png(file)),
+            BASE64_STANDARD.encode(png(file)),
             escape(alt)
         )
     };
@@ -258,20 +255,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn base64_matches_the_rfc_examples() {
-        for (input, expected) in [
-            ("", ""),
-            ("f", "Zg=="),
-            ("fo", "Zm8="),
-            ("foo", "Zm9v"),
-            ("foob", "Zm9vYg=="),
-            ("foobar", "Zm9vYmFy"),
-        ] {
-            assert_eq!(base64(input.as_bytes()), expected);
-        }
-    }
-
-    #[test]
     fn the_report_inlines_every_image_and_escapes_names() {
         let result = TechniqueResult {
             technique: "ddgi <full>".into(),
@@ -327,7 +310,9 @@ mod tests {
 
 /// One curve of a plot: a name and its (x, y) points.
 pub struct Curve {
+    /// Label of the curve in the legend.
     pub name: String,
+    /// The (x, y) points, joined in the order given.
     pub points: Vec<(f64, f64)>,
 }
 

@@ -14,8 +14,11 @@ pub enum AllocationKind {
     Buffer,
     /// A 2D texture (or array of `layers` layers).
     Texture {
+        /// Width in texels (of level 0).
         width: u32,
+        /// Height in texels (of level 0).
         height: u32,
+        /// Array layers; 1 for a plain 2D texture.
         layers: u32,
     },
 }
@@ -25,13 +28,16 @@ pub enum AllocationKind {
 pub struct Allocation {
     /// `owner/name`, as the resource's label.
     pub label: String,
+    /// Size in bytes; for a texture, every layer and mip level.
     pub bytes: u64,
+    /// What it is, which decides the limit it is checked against.
     pub kind: AllocationKind,
     /// The setting that sizes it (`--size`, `ddgi probe counts`): the message names it.
     pub setting: String,
 }
 
 impl Allocation {
+    /// A storage buffer of `bytes` bytes, bound whole.
     pub fn storage(label: impl Into<String>, bytes: u64, setting: impl Into<String>) -> Self {
         Self {
             label: label.into(),
@@ -41,6 +47,7 @@ impl Allocation {
         }
     }
 
+    /// A buffer of `bytes` bytes that is only copied or bound as a uniform.
     pub fn buffer(label: impl Into<String>, bytes: u64, setting: impl Into<String>) -> Self {
         Self {
             kind: AllocationKind::Buffer,
@@ -89,15 +96,20 @@ impl Allocation {
 /// The limits allocations are checked against: the device's, and its memory.
 #[derive(Clone, Debug)]
 pub struct Budget {
+    /// Largest storage-buffer binding, in bytes.
     pub max_storage_buffer_binding_size: u64,
+    /// Largest buffer, in bytes.
     pub max_buffer_size: u64,
+    /// Largest side of a 2D texture, in texels.
     pub max_texture_dimension_2d: u32,
+    /// Most layers of a texture array.
     pub max_texture_array_layers: u32,
     /// The largest device-local memory heap, where the driver reports it.
     pub memory: Option<u64>,
 }
 
 impl Budget {
+    /// The limits of `ctx`'s device, and the memory its adapter reports.
     pub fn of(ctx: &GpuContext) -> Self {
         let limits = ctx.device.limits();
         Self {

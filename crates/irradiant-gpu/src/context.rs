@@ -4,39 +4,82 @@ use std::sync::{Arc, Mutex};
 
 use wgpu::{Adapter, Backends, Device, Features, Limits, Queue};
 
+/// What can go wrong with the adapter, the device or the work on it. The messages say what
+/// to change wherever the user can act.
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
+    /// wgpu sees no adapter at all.
     #[error(
         "no GPU adapter found ({tried}). Install a Vulkan driver; with no GPU, Mesa's software driver works: `sudo apt-get install mesa-vulkan-drivers` (Debian/Ubuntu)."
     )]
-    NoAdapter { tried: String },
+    NoAdapter {
+        /// What was searched (`Vulkan`).
+        tried: String,
+    },
+    /// The [`AdapterChoice`] names an index or a name that no adapter present matches.
     #[error(
         "no adapter matches '{wanted}'. Adapters present: {present}. Pass an index or a part of a name from this list (--adapter or IRRADIANT_ADAPTER)."
     )]
-    NoMatchingAdapter { wanted: String, present: String },
+    NoMatchingAdapter {
+        /// The index or the part of a name asked for.
+        wanted: String,
+        /// The adapters present, as `index: name`, comma-separated.
+        present: String,
+    },
+    /// The chosen adapter lacks a limit, feature or texture format Irradiant needs, or
+    /// refused to create the device.
     #[error(
         "the adapter '{adapter}' cannot run Irradiant: {reason}. Pick another adapter with --adapter (see `irradiant info`)."
     )]
-    Unsuitable { adapter: String, reason: String },
+    Unsuitable {
+        /// The adapter's name.
+        adapter: String,
+        /// What it lacks, or why it refused the device.
+        reason: String,
+    },
+    /// The device reported a validation error (in [`GpuContext::scoped`], or uncaptured
+    /// and found by [`GpuContext::check`]).
     #[error("GPU error in {what}: {message}")]
-    Validation { what: String, message: String },
+    Validation {
+        /// What was being done, as the caller names it (a pass's label).
+        what: String,
+        /// wgpu's message.
+        message: String,
+    },
+    /// The device was lost: the driver reset it or ran out of memory. Holds wgpu's reason
+    /// and message.
     #[error(
         "the GPU device was lost ({0}). The driver reset it or ran out of memory; try a smaller size or fewer samples per frame."
     )]
     DeviceLost(String),
+    /// The device refused an allocation for lack of memory. Reported before any other
+    /// error, since what fails after it is its consequence.
     #[error(
         "the GPU ran out of memory (noticed in {what}: {message}). Close other programs that use the GPU, or lower the image size, probe counts or bake resolution."
     )]
-    OutOfMemory { what: String, message: String },
+    OutOfMemory {
+        /// What was being done when it was noticed (not necessarily what failed).
+        what: String,
+        /// wgpu's error with its sources, which say what was being made.
+        message: String,
+    },
+    /// Waiting for the GPU or mapping a readback buffer failed, or a readback asked for a
+    /// mip level the texture lacks. Holds the message.
     #[error("waiting for the GPU failed: {0}")]
     Poll(String),
+    /// An allocation, or all of a run's together, would pass the adapter's limits or memory
+    /// (see [`Budget::check`](crate::Budget::check)); found before anything is allocated.
     #[error(
         "{what} would need {needs}, more than this adapter allows ({allows}): lower {setting}, or pick a larger adapter with --adapter"
     )]
     TooLarge {
+        /// The allocation's label (`owner/name`), or "this run" for their sum.
         what: String,
+        /// What it would need, for people ("3.0 GiB", "a 20000×10 texture").
         needs: String,
+        /// What the adapter allows, for people.
         allows: String,
+        /// The setting that sizes it, which the user can lower (`--size`).
         setting: String,
     },
 }
@@ -45,9 +88,13 @@ pub enum GpuError {
 /// first whose name contains a string (case-insensitive).
 #[derive(Clone, Debug, Default)]
 pub enum AdapterChoice {
+    /// The best-ranked adapter: discrete GPUs first, then integrated, virtual, other
+    /// and software (CPU) ones.
     #[default]
     Auto,
+    /// The adapter at this index of `irradiant info`'s list, from 0.
     Index(usize),
+    /// The first adapter whose name contains this, case-insensitive.
     Name(String),
 }
 
@@ -59,6 +106,8 @@ impl AdapterChoice {
             .unwrap_or_default()
     }
 
+    /// Reads a choice as given on the command line: empty or `auto`, an index, else
+    /// a part of an adapter's name.
     pub fn parse(text: &str) -> Self {
         match text.trim() {
             "" | "auto" => Self::Auto,
@@ -73,16 +122,28 @@ impl AdapterChoice {
 /// What `irradiant info` prints and benchmark records carry.
 #[derive(Clone, Debug)]
 pub struct GpuInfo {
+    /// The adapter's name, as the driver reports it.
     pub name: String,
+    /// The backend, as wgpu's `Debug` writes it (`Vulkan`).
     pub backend: String,
+    /// The device type, as wgpu's `Debug` writes it (`DiscreteGpu`, `Cpu`).
     pub device_type: String,
+    /// The driver's name.
     pub driver: String,
+    /// The driver's version and details, as it reports them.
     pub driver_info: String,
+    /// Whether the device has timestamp queries, so that passes can be timed.
     pub timestamps: bool,
+    /// Largest storage-buffer binding of the device, in bytes.
     pub max_storage_buffer_binding_size: u64,
+    /// Largest buffer of the device, in bytes.
     pub max_buffer_size: u64,
+    /// Most invocations in x of a compute workgroup on the device.
     pub max_compute_workgroup_size_x: u32,
+    /// Storage buffers one shader stage of the device may bind.
     pub max_storage_buffers_per_shader_stage: u32,
+    /// Workgroups the device allows in each dimension of a
+    /// dispatch.
     pub max_compute_workgroups_per_dimension: u32,
     /// The largest device-local memory heap in bytes, where the driver reports it (Vulkan).
     pub memory: Option<u64>,
@@ -94,11 +155,19 @@ pub struct GpuInfo {
     pub loop_iteration_limit: Option<u32>,
 }
 
+/// The adapter and device Irradiant runs on. Device errors are collected rather
+/// than left to wgpu's panicking default, and [`check`](Self::check) and
+/// [`scoped`](Self::scoped) return them as [`GpuError`] values.
 pub struct GpuContext {
+    /// The wgpu instance the adapter was found through.
     pub instance: wgpu::Instance,
+    /// The chosen adapter.
     pub adapter: Adapter,
+    /// The device, with the features and limits Irradiant requests.
     pub device: Device,
+    /// The device's queue, which all work is submitted to.
     pub queue: Queue,
+    /// Description and limits of the adapter and the device.
     pub info: GpuInfo,
     /// Errors the device reported outside an error scope; taken by [`GpuContext::check`].
     errors: Arc<Mutex<Vec<String>>>,
@@ -138,6 +207,8 @@ impl GpuContext {
         (instance, adapters)
     }
 
+    /// Picks an adapter among [`adapters`](Self::adapters) as `choice` says, checks that
+    /// it has the limits, features and formats Irradiant needs, and creates the device.
     pub fn new(choice: &AdapterChoice) -> Result<Self, GpuError> {
         let (instance, adapters) = Self::adapters();
         let names = || {

@@ -14,6 +14,7 @@ macro_rules! gpu_layout {
     };
 }
 
+/// Why Rust and WGSL layouts differ, one problem a line, or why the WGSL did not parse.
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
 pub struct StructLayoutError(pub String);

@@ -68,10 +68,12 @@ impl Workgroups {
         Self([x, y, layers.clamp(1, MAX_WORKGROUPS_PER_DIMENSION)])
     }
 
+    /// The workgroup counts in x, y and z, as `dispatch_workgroups` takes them.
     pub fn counts(self) -> [u32; 3] {
         self.0
     }
 
+    /// Workgroups in all: the product of the three counts.
     pub fn total(self) -> u64 {
         self.0.iter().map(|&c| c as u64).product()
     }
@@ -86,8 +88,11 @@ impl Workgroups {
 /// One resource a binding can take.
 #[derive(Clone, Copy)]
 pub enum Resource<'a> {
+    /// A buffer, bound whole.
     Buffer(&'a wgpu::Buffer),
+    /// A texture view, for a sampled or a storage texture binding.
     Texture(&'a wgpu::TextureView),
+    /// A sampler.
     Sampler(&'a wgpu::Sampler),
 }
 
@@ -108,25 +113,30 @@ pub struct ResourceTable<'a> {
 }
 
 impl<'a> ResourceTable<'a> {
+    /// An empty table.
     pub fn new() -> Self {
         Self::default()
     }
 
+    /// Offers `buffer` under `name`.
     pub fn buffer(mut self, name: impl Into<String>, buffer: &'a wgpu::Buffer) -> Self {
         self.entries.push((name.into(), Resource::Buffer(buffer)));
         self
     }
 
+    /// Offers the texture `view` under `name`, for sampled and storage bindings alike.
     pub fn texture(mut self, name: impl Into<String>, view: &'a wgpu::TextureView) -> Self {
         self.entries.push((name.into(), Resource::Texture(view)));
         self
     }
 
+    /// Offers `sampler` under `name`.
     pub fn sampler(mut self, name: impl Into<String>, sampler: &'a wgpu::Sampler) -> Self {
         self.entries.push((name.into(), Resource::Sampler(sampler)));
         self
     }
 
+    /// The resource offered under `name`, if any (the first, if it is offered twice).
     pub fn get(&self, name: &str) -> Option<Resource<'a>> {
         self.entries
             .iter()
@@ -134,6 +144,7 @@ impl<'a> ResourceTable<'a> {
             .map(|(_, r)| *r)
     }
 
+    /// The names offered, in the order they were added.
     pub fn names(&self) -> impl Iterator<Item = &str> {
         self.entries.iter().map(|(n, _)| n.as_str())
     }
@@ -142,28 +153,49 @@ impl<'a> ResourceTable<'a> {
 /// Why a pass could not be built or bound. Messages name the pass and the binding.
 #[derive(Debug, thiserror::Error)]
 pub enum PassError {
+    /// The pass's WGSL does not compose or validate.
     #[error(transparent)]
     Shader(#[from] crate::ShaderError),
+    /// wgpu refused the pass's layouts, pipeline or bind groups.
     #[error(transparent)]
     Gpu(#[from] GpuError),
+    /// A binding cannot be filled: no table offers its name, more than one does, or the
+    /// resource offered is of another kind than its declaration.
     #[error("pass '{pass}': binding '{name}' (group {group}, binding {binding}) {problem}")]
     Binding {
+        /// Label of the pass.
         pass: String,
+        /// Name of the binding, as its WGSL declares it.
         name: String,
+        /// Its `@group` index.
         group: u32,
+        /// Its `@binding` index.
         binding: u32,
+        /// What is wrong, worded to follow the binding in the message.
         problem: String,
     },
+    /// The WGSL declares something Irradiant cannot bind: no entry point `main`, a binding
+    /// without a name or two at one slot, a type or storage format it does not map, or an
+    /// [`unfilterable`](PassDesc::unfilterable) name that no binding has.
     #[error("pass '{pass}': {problem}")]
-    Declaration { pass: String, problem: String },
+    Declaration {
+        /// Label of the pass.
+        pass: String,
+        /// What is wrong with its declarations.
+        problem: String,
+    },
 }
 
 /// What a binding holds, as its WGSL declares it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BindingDecl {
+    /// The variable's name, by which [`ComputePass::bind`] looks the resource up.
     pub name: String,
+    /// Its `@group` index.
     pub group: u32,
+    /// Its `@binding` index.
     pub binding: u32,
+    /// The layout entry's type, read off the declaration.
     pub ty: wgpu::BindingType,
 }
 
@@ -171,13 +203,18 @@ pub struct BindingDecl {
 /// constants prepended to it, and the textures that are not filterable (f32 formats, which not
 /// every adapter filters: WGSL's types cannot say so).
 pub struct PassDesc<'a> {
+    /// The pass's label, `technique/stage`: names its pipeline, its errors and its timings.
     pub label: &'static str,
+    /// The pass's WGSL, `#import`s unresolved.
     pub source: &'a str,
+    /// Constants prepended as `const NAME = value;`: (name, WGSL value).
     pub constants: Vec<(&'static str, String)>,
+    /// Names of the float textures that are not filterable.
     pub unfilterable: &'a [&'a str],
 }
 
 impl<'a> PassDesc<'a> {
+    /// A pass of `source` under `label`, with no constants and no texture named unfilterable.
     pub fn new(label: &'static str, source: &'a str) -> Self {
         Self {
             label,
@@ -187,6 +224,7 @@ impl<'a> PassDesc<'a> {
         }
     }
 
+    /// Adds constants to prepend to the WGSL (see [`compose`](crate::compose)).
     pub fn constants(
         mut self,
         constants: impl IntoIterator<Item = (&'static str, String)>,
@@ -195,6 +233,8 @@ impl<'a> PassDesc<'a> {
         self
     }
 
+    /// Names the textures that are not filterable: their layout entries, and those
+    /// of the samplers used with them, are declared non-filtering.
     pub fn unfilterable(mut self, names: &'a [&'a str]) -> Self {
         self.unfilterable = names;
         self
@@ -203,6 +243,7 @@ impl<'a> PassDesc<'a> {
 
 /// A compute pipeline and the bind group layouts read off its WGSL.
 pub struct ComputePass {
+    /// The pass's label, `technique/stage`.
     pub label: &'static str,
     pipeline: wgpu::ComputePipeline,
     /// Per group index: its layout and its bindings (None: the pass uses no binding there).
@@ -210,6 +251,8 @@ pub struct ComputePass {
 }
 
 impl ComputePass {
+    /// Composes the pass's WGSL, reads the bindings its entry point `main` uses, and creates
+    /// the bind group layouts and the pipeline. Errors name the pass.
     pub fn new(
         ctx: &GpuContext,
         library: &crate::ShaderLibrary,
@@ -369,6 +412,7 @@ pub struct BoundPass {
 }
 
 impl BoundPass {
+    /// The label the pass is recorded and timed under.
     pub fn label(&self) -> &'static str {
         self.label
     }

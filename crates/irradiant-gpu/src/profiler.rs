@@ -3,12 +3,17 @@
 
 use crate::{GpuContext, GpuError, read_buffer};
 
+/// The GPU time of one pass of a frame.
 #[derive(Clone, Debug)]
 pub struct PassTiming {
+    /// The pass's label, `technique/stage`.
     pub label: String,
+    /// Time from the pass's beginning timestamp to its end one, in milliseconds.
     pub milliseconds: f64,
 }
 
+/// Timestamp queries for the compute passes of a frame, read back as [`PassTiming`]s.
+/// Records nothing where the device has no timestamp queries.
 pub struct Profiler {
     query_set: Option<wgpu::QuerySet>,
     resolve: Option<wgpu::Buffer>,
@@ -45,6 +50,7 @@ impl Profiler {
         }
     }
 
+    /// Whether the device has timestamp queries, so that passes are timed.
     pub fn enabled(&self) -> bool {
         self.query_set.is_some()
     }

@@ -13,12 +13,25 @@
 use std::borrow::Cow;
 use std::collections::HashSet;
 
+/// Why a shader could not be composed.
 #[derive(Debug, thiserror::Error)]
 pub enum ShaderError {
+    /// An `#import` names a module the library does not have.
     #[error("shader '{shader}': `#import {module}` names no known module")]
-    UnknownModule { shader: String, module: String },
+    UnknownModule {
+        /// Label of the shader being composed.
+        shader: String,
+        /// The name imported.
+        module: String,
+    },
+    /// The composed WGSL does not parse or does not validate with naga.
     #[error("shader '{shader}' does not compile:\n{message}")]
-    Invalid { shader: String, message: String },
+    Invalid {
+        /// Label of the shader being composed.
+        shader: String,
+        /// naga's diagnostic, quoting the composed source.
+        message: String,
+    },
 }
 
 /// Named WGSL modules that `#import` can name.
@@ -28,6 +41,7 @@ pub struct ShaderLibrary {
 }
 
 impl ShaderLibrary {
+    /// Adds the module `name`, which `#import name` includes, with its WGSL `source`.
     pub fn with(mut self, name: &'static str, source: impl Into<Cow<'static, str>>) -> Self {
         self.modules.push((name, source.into()));
         self
@@ -53,8 +67,12 @@ impl ShaderLibrary {
 
 /// A composed shader: its text, and naga's parse and analysis of it.
 pub struct Composed {
+    /// The composed WGSL: the constants, then the source with each import replaced by its
+    /// module.
     pub text: String,
+    /// naga's parse of `text`.
     pub module: naga::Module,
+    /// naga's validation analysis of `module` (what each entry point uses, among others).
     pub info: naga::valid::ModuleInfo,
 }
 
@@ -130,7 +148,9 @@ fn include(
 
 /// A value that can be written as a WGSL constant.
 pub trait WgslValue: Copy {
+    /// The WGSL type name (`u32`, `i32`, `f32`).
     fn wgsl_type() -> &'static str;
+    /// The value as a WGSL literal of that type (`3u`, `-1i`, `0.5`).
     fn literal(self) -> String;
 }
 

@@ -7,8 +7,11 @@ use crate::model::{AnimationTarget, Camera, Light, Scene};
 /// What animation changes, at one instant. Everything else in the scene is static.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pose {
+    /// Every light of the scene at that instant, in [`Scene::lights`]' order.
     pub lights: Vec<Light>,
+    /// Object-to-world transform of each instance, in [`Scene::instances`]' order.
     pub instance_transforms: Vec<Mat4>,
+    /// The camera at that instant.
     pub camera: Camera,
 }
 

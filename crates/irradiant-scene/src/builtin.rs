@@ -48,6 +48,8 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
     ),
 ];
 
+/// The built-in scene called `name` (one of [`BUILTIN_SCENES`]), made anew; `None` for
+/// any other name.
 pub fn builtin(name: &str) -> Option<Scene> {
     match name {
         "cornell" => Some(cornell()),
@@ -569,8 +571,9 @@ pub fn dense_cluster() -> Scene {
     scene
 }
 
-/// Emitted radiance and albedo of `glowing_box`'s walls.
+/// Emitted radiance of the walls of the built-in `glowing-box` scene.
 pub const GLOWING_BOX_EMISSION: f32 = 1.0;
+/// Diffuse albedo of the walls of the built-in `glowing-box` scene.
 pub const GLOWING_BOX_ALBEDO: f32 = 0.5;
 
 /// A closed box whose every wall emits `GLOWING_BOX_EMISSION` and reflects

@@ -9,7 +9,7 @@
 //! position = [0.0, 1.0, 3.4]
 //! target = [0.0, 1.0, 0.0]
 //! up = [0.0, 1.0, 0.0]        # optional: y up
-//! fov_y_degrees = 45.0        # optional: 45
+//! fov_y_degrees = 45.0        # optional: 40
 //! ```
 
 use std::path::Path;

@@ -38,7 +38,9 @@ pub use validate::MAX_PROBES_PER_AXIS;
 /// A loaded scene and the warnings collected on the way (missing textures, unknown keys, …).
 #[derive(Debug)]
 pub struct Loaded {
+    /// The scene, validated.
     pub scene: Scene,
+    /// Problems that did not stop the load, one message each, for the user.
     pub warnings: Vec<String>,
 }
 

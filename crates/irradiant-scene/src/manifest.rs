@@ -42,12 +42,17 @@ use crate::model::{
     Scene, Tracks,
 };
 
+/// A scene manifest: a mesh file, and the lights, camera and the rest to add to it. Read
+/// with [`parse`](Self::parse), then [`apply`](Self::apply) to the loaded mesh file.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Manifest {
+    /// Name of the scene; when absent, the mesh file's stem or the built-in's name.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// The geometry: an .obj, .gltf or .glb file, or a built-in scene name.
     pub mesh: MeshRef,
+    /// The view; when absent, the mesh file's, or one framing the whole scene where
+    /// `mesh.scale` or `mesh.translation` moved it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera: Option<CameraDesc>,
     /// Radiance of rays that leave the scene; black when absent.
@@ -56,17 +61,20 @@ pub struct Manifest {
     /// Lights added to those the mesh file brings (glTF lights are kept).
     #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDesc>,
+    /// Probe volumes (`[[probe_volume]]` tables) for the probe-based techniques.
     #[serde(
         default,
         rename = "probe_volume",
         skip_serializing_if = "Vec::is_empty"
     )]
     pub probe_volumes: Vec<ProbeVolumeManifest>,
+    /// Named regions (`[[region]]` tables) that the comparison lab measures.
     #[serde(default, rename = "region", skip_serializing_if = "Vec::is_empty")]
     pub regions: Vec<RegionDesc>,
     /// Changes to the mesh file's materials, by name (glossy and mirror variants of a scene).
     #[serde(default, rename = "material", skip_serializing_if = "Vec::is_empty")]
     pub materials: Vec<MaterialDesc>,
+    /// Keyframed animations (`[[animation]]` tables).
     #[serde(default, rename = "animation", skip_serializing_if = "Vec::is_empty")]
     pub animations: Vec<AnimationDesc>,
     /// Renderer settings for this scene: the `[frame]` table (the frame's settings) and the
@@ -74,10 +82,13 @@ pub struct Manifest {
     /// renderer reads them and warns about unknown keys (irradiant::settings).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frame: Option<toml::Table>,
+    /// The `[technique]` table, kept as written (see `frame`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub technique: Option<toml::Table>,
 }
 
+/// The `[mesh]` table: the geometry, and where it is placed in the world (scale, then
+/// rotation, then translation).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct MeshRef {
     /// Path relative to the manifest (or a built-in scene name such as `cornell`).
@@ -85,8 +96,10 @@ pub struct MeshRef {
     /// Uniform scale applied first (Sponza's OBJ is in centimetres in some exports).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<f32>,
+    /// Rotation about the y axis, in degrees, applied after the scale.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotation_y_degrees: Option<f32>,
+    /// Offset applied last, in scene units.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub translation: Option<[f32; 3]>,
     /// Copies of the whole mesh on a grid, `[x, y, z]` counts (default `[1, 1, 1]`), placed
@@ -95,6 +108,8 @@ pub struct MeshRef {
     /// unless `flatten` is set.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub repeat: Option<[u32; 3]>,
+    /// Offset between neighbouring copies of `repeat` on each axis, in scene units
+    /// (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub repeat_spacing: Option<[f32; 3]>,
     /// Merges every instance into one mesh in world space: one bottom-level tree over all the
@@ -107,38 +122,57 @@ pub struct MeshRef {
 /// it is worth, and a flattened mesh would pass 4 billion vertex indices sooner or later.
 pub const MAX_REPEAT_COPIES: u32 = 4096;
 
+/// A camera as TOML writes it: the `[camera]` table of a manifest or a camera file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CameraDesc {
+    /// Eye position, in world space.
     pub position: [f32; 3],
+    /// Point looked at, in world space.
     pub target: [f32; 3],
+    /// Up direction; y up when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub up: Option<[f32; 3]>,
+    /// Vertical field of view in degrees; the default camera's (40) when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fov_y_degrees: Option<f32>,
 }
 
+/// The `kind` of a manifest's light.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LightKindDesc {
+    /// `point`: light from `position` in every direction.
     Point,
+    /// `spot`: a cone of light from `position` along `direction`.
     Spot,
+    /// `directional`: parallel light along `direction`, as from the sun.
     Directional,
 }
 
+/// A light of a manifest: a `[[light]]` table.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LightDesc {
+    /// Name, by which animations refer to the light.
     pub name: String,
+    /// What kind of light it is.
     pub kind: LightKindDesc,
+    /// Position, in world space; required except for directional lights.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub position: Option<[f32; 3]>,
     /// The direction the light travels (spot, directional).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direction: Option<[f32; 3]>,
+    /// Linear RGB colour; white when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub color: Option<[f32; 3]>,
+    /// Radiant intensity (point, spot) or irradiance (directional), scaling `color`.
     pub intensity: f32,
+    /// Spot lights: angle from the axis within which the light is at full strength, in
+    /// degrees (default 20).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inner_angle_degrees: Option<f32>,
+    /// Spot lights: angle from the axis past which there is no light, in degrees
+    /// (default 30).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outer_angle_degrees: Option<f32>,
     /// Off lights can be switched on by animation.
@@ -146,12 +180,18 @@ pub struct LightDesc {
     pub enabled: Option<bool>,
 }
 
+/// A probe volume of a manifest (a `[[probe_volume]]` table): a box filled with a
+/// regular grid of probes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ProbeVolumeManifest {
+    /// Name; `volume<i>`, its index among the volumes, when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// Lowest corner, in world space.
     pub min: [f32; 3],
+    /// Highest corner, in world space.
     pub max: [f32; 3],
+    /// Probes per axis, 1 to [`MAX_PROBES_PER_AXIS`](crate::MAX_PROBES_PER_AXIS).
     pub counts: [u32; 3],
 }
 
@@ -160,6 +200,7 @@ pub struct ProbeVolumeManifest {
 pub struct MaterialDesc {
     /// The material's name in the mesh file (MTL `newmtl`, glTF material name).
     pub name: String,
+    /// Linear RGB base colour, 0 … 1; the file's alpha is kept.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub base_color: Option<[f32; 3]>,
     /// 0 (dielectric) … 1 (metal: the base colour tints the reflection).
@@ -171,21 +212,31 @@ pub struct MaterialDesc {
     /// Scale of the dielectric specular lobe (F0 = 0.04 × specular), 0 … 25.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub specular: Option<f32>,
+    /// Emitted radiance, linear RGB, 0 … 10⁶.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub emission: Option<[f32; 3]>,
 }
 
+/// A named region of a manifest (a `[[region]]` table): a box that the comparison lab
+/// measures.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RegionDesc {
+    /// Name, as the comparison lab reports and selects it.
     pub name: String,
+    /// Lowest corner, in world space.
     pub min: [f32; 3],
+    /// Highest corner, in world space.
     pub max: [f32; 3],
 }
 
+/// A keyframed animation of a manifest (an `[[animation]]` table). It drives exactly
+/// one of `light`, `instance` or `camera`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct AnimationDesc {
+    /// Name of the light it drives.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub light: Option<String>,
+    /// Name of the instance it drives (of `repeat`'s copies, the first).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub instance: Option<String>,
     /// The camera: translation moves it with its target, rotation pans its view.
@@ -224,6 +275,7 @@ impl Manifest {
         Ok(manifest)
     }
 
+    /// The manifest as TOML; keys that are absent or empty are left out.
     pub fn to_toml(&self) -> String {
         toml::to_string_pretty(self).expect("a manifest always serialises")
     }

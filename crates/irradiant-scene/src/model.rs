@@ -9,7 +9,9 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 /// A triangle mesh in object space; one bottom-level BVH on the GPU.
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
+    /// Name, for messages and tools.
     pub name: String,
+    /// Vertex positions, in object space.
     pub positions: Vec<Vec3>,
     /// Per-vertex shading normals; empty means flat shading from the geometric normal.
     pub normals: Vec<Vec3>,
@@ -22,6 +24,7 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// Triangles in the mesh: a third of its indices.
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3
     }
@@ -52,6 +55,7 @@ impl Mesh {
         }
     }
 
+    /// The object-space positions of triangle `t`'s vertices. Panics if `t` is out of range.
     pub fn triangle(&self, t: usize) -> [Vec3; 3] {
         let i = &self.indices[3 * t..3 * t + 3];
         [
@@ -65,23 +69,31 @@ impl Mesh {
 /// A mesh's distinct edges (vertices matched by position) and those that bound one triangle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct EdgeCount {
+    /// Distinct edges.
     pub total: usize,
+    /// Edges that bound only one triangle.
     pub open: usize,
 }
 
 /// A placed copy of a mesh: the unit of the top-level BVH, and what animation moves.
 #[derive(Clone, Debug)]
 pub struct Instance {
+    /// Name, by which animations and manifests address the instance.
     pub name: String,
+    /// Index into [`Scene::meshes`].
     pub mesh: u32,
+    /// Object-to-world transform.
     pub transform: Mat4,
 }
 
+/// How a material's alpha is used.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AlphaMode {
+    /// Alpha is ignored: every surface is solid.
     Opaque,
     /// Texels whose alpha is below the cutoff are holes: rays pass through them.
     Mask {
+        /// Alpha below which a texel is a hole, 0 … 1 (glTF `alphaCutoff`, 0.5 by default).
         cutoff: f32,
     },
 }
@@ -89,6 +101,7 @@ pub enum AlphaMode {
 /// glTF-style metallic-roughness material.
 #[derive(Clone, Debug)]
 pub struct Material {
+    /// Name in the mesh file (MTL `newmtl`, glTF material name), as manifests address it.
     pub name: String,
     /// Linear base colour; alpha is coverage for [`AlphaMode::Mask`].
     pub base_color: Vec4,
@@ -96,12 +109,14 @@ pub struct Material {
     pub base_color_texture: Option<u32>,
     /// Emitted radiance (glTF emissive factor × KHR_materials_emissive_strength, or MTL `Ke`).
     pub emission: Vec3,
+    /// 0 (dielectric) … 1 (metal: the base colour tints the reflection).
     pub metallic: f32,
     /// Perceptual roughness (GGX alpha = roughness²).
     pub roughness: f32,
     /// Scale of the dielectric specular lobe (F0 = 0.04 × specular). OBJ materials with
     /// `Ks 0 0 0` are pure Lambertian (0); glTF materials use 1.
     pub specular: f32,
+    /// Whether alpha cuts holes (see [`AlphaMode`]).
     pub alpha_mode: AlphaMode,
 }
 
@@ -123,31 +138,46 @@ impl Default for Material {
 /// An sRGB-encoded RGBA8 image, rows top to bottom.
 #[derive(Clone, Debug)]
 pub struct Texture {
+    /// Name, for messages.
     pub name: String,
+    /// Width, in texels.
     pub width: u32,
+    /// Height, in texels.
     pub height: u32,
+    /// `width` × `height` texels of 4 bytes, rows top to bottom.
     pub rgba8: Vec<u8>,
 }
 
+/// The shape of a light's emission.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightKind {
+    /// Light from `position` in every direction.
     Point,
     /// Cone angles in radians, measured from the axis.
     Spot {
+        /// Angle within which the light is at full strength.
         inner_angle: f32,
+        /// Angle past which there is no light; between the two it falls off smoothly.
         outer_angle: f32,
     },
+    /// Parallel light along `direction`, as from the sun; `position` is unused.
     Directional,
 }
 
+/// A punctual light: point, spot or directional.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
+    /// Name, by which animations address the light.
     pub name: String,
+    /// Point, spot or directional, with a spot light's cone.
     pub kind: LightKind,
+    /// Position in world space (point and spot lights).
     pub position: Vec3,
     /// The direction light travels (for spot and directional lights).
     pub direction: Vec3,
+    /// Linear RGB colour, scaled by `intensity`.
     pub color: Vec3,
+    /// Radiant intensity (point, spot) or irradiance (directional) of a white light.
     pub intensity: f32,
     /// Lights that are off still exist so that animation can switch them on.
     pub enabled: bool,
@@ -180,9 +210,13 @@ impl Light {
 /// A pinhole camera. Image y goes down; the vertical field of view is fixed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
+    /// Eye position, in world space.
     pub position: Vec3,
+    /// Point looked at, in world space.
     pub target: Vec3,
+    /// Up direction, in world space (y up unless a file says otherwise).
     pub up: Vec3,
+    /// Vertical field of view, in degrees.
     pub fov_y_degrees: f32,
 }
 
@@ -212,14 +246,18 @@ impl Default for Camera {
 /// A box that a probe volume fills with a regular grid of probes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProbeVolumeDesc {
+    /// Name, for messages and tools.
     pub name: String,
+    /// Lowest corner, in world space.
     pub min: Vec3,
+    /// Highest corner, in world space.
     pub max: Vec3,
     /// Probes per axis (any count ≥ 2, not only powers of two).
     pub counts: [u32; 3],
 }
 
 impl ProbeVolumeDesc {
+    /// A volume over `min`..`max` with `counts` probes per axis.
     pub fn new(name: &str, min: Vec3, max: Vec3, counts: [u32; 3]) -> Self {
         Self {
             name: name.into(),
@@ -233,12 +271,16 @@ impl ProbeVolumeDesc {
 /// A named box of the scene, measured by the comparison lab (e.g. the dark room).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Region {
+    /// Name, as the comparison lab reports and selects it.
     pub name: String,
+    /// Lowest corner, in world space.
     pub min: Vec3,
+    /// Highest corner, in world space.
     pub max: Vec3,
 }
 
 impl Region {
+    /// A region over `min`..`max`.
     pub fn new(name: &str, min: Vec3, max: Vec3) -> Self {
         Self {
             name: name.into(),
@@ -251,7 +293,9 @@ impl Region {
 /// What an animation track drives.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnimationTarget {
+    /// The light of this name.
     Light(String),
+    /// The instance of this name.
     Instance(String),
     /// The scene's camera: translation moves its position and target together (a dolly),
     /// rotation turns its view about its position (a pan).
@@ -269,26 +313,40 @@ pub struct Tracks {
     pub rotation_y_degrees: Vec<(f32, f32)>,
 }
 
+/// Keyframed tracks and what they drive.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Animation {
+    /// What the tracks drive.
     pub target: AnimationTarget,
+    /// The keyframes.
     pub tracks: Tracks,
 }
 
 /// A complete scene, validated: every index is in range and every number finite.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
+    /// Name: a built-in's, the manifest's `name`, or the mesh file's stem.
     pub name: String,
+    /// The meshes, which instances place.
     pub meshes: Vec<Mesh>,
+    /// Placed meshes: what is rendered.
     pub instances: Vec<Instance>,
+    /// Materials, indexed by [`Mesh::triangle_materials`].
     pub materials: Vec<Material>,
+    /// Textures, indexed by [`Material::base_color_texture`].
     pub textures: Vec<Texture>,
+    /// Lights at rest; [`Scene::pose_at`] gives them at a time.
     pub lights: Vec<Light>,
+    /// The view at rest; [`Scene::pose_at`] gives it at a time.
     pub camera: Camera,
     /// Radiance of rays that leave the scene.
     pub sky: Vec3,
+    /// Probe volumes for the probe-based techniques; empty leaves the choice to the
+    /// renderer.
     pub probe_volumes: Vec<ProbeVolumeDesc>,
+    /// Named regions that the comparison lab measures.
     pub regions: Vec<Region>,
+    /// Keyframed animations; none for a still scene.
     pub animations: Vec<Animation>,
     /// Renderer settings a manifest carries (its `[frame]` and `[technique]` tables), passed
     /// through unread: the renderer owns their meaning.
@@ -320,6 +378,7 @@ impl Scene {
         format!("{:?}{:?}{:?}", self.instances, self.materials, self.sky).hash(h);
     }
 
+    /// Triangles of every instance together: a mesh counts once per instance.
     pub fn triangle_count(&self) -> usize {
         self.instances
             .iter()
@@ -341,6 +400,7 @@ impl Scene {
         (lo, hi)
     }
 
+    /// The region called `name`, if any.
     pub fn region(&self, name: &str) -> Option<&Region> {
         self.regions.iter().find(|r| r.name == name)
     }

@@ -1,6 +1,7 @@
 //! glTF 2.0 loading: node hierarchy, materials (emissive strength, alpha mask, metallic-
 //! roughness), KHR_lights_punctual and cameras, from .gltf (embedded buffer) and .glb.
 
+use base64::prelude::{BASE64_STANDARD, Engine};
 use glam::Vec3;
 use irradiant_scene::{AlphaMode, LightKind, load};
 
@@ -59,27 +60,6 @@ fn document(buffer_uri: Option<String>, length: usize) -> String {
   ]
 }}"#
     )
-}
-
-fn base64(data: &[u8]) -> String {
-    const TABLE: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(TABLE[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
@@ -160,7 +140,7 @@ fn gltf_with_embedded_buffer_and_glb_load_the_same_scene() {
         document(
             Some(format!(
                 "data:application/octet-stream;base64,{}",
-                base64(&data)
+                BASE64_STANDARD.encode(&data)
             )),
             data.len(),
         ),

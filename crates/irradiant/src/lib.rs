@@ -1,7 +1,7 @@
 //! Irradiant: real-time global illumination on any GPU, in compute shaders.
 //!
 //! - [`Session`]: the one frame loop — scene, frame, technique, camera and clock.
-//! - [`technique`]: the [`Technique`](technique::Technique) trait and the registry of
+//! - [`technique`]: the [`Technique`] trait and the registry of
 //!   real-time techniques ([`none`], [`ddgi`]).
 //! - [`frame`]: the real-time frame (G-buffer, direct light, compose, TAA, tonemap).
 //! - [`scene`]: the scene on the GPU (two-level BVH, materials, lights, textures).

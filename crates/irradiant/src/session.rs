@@ -19,8 +19,11 @@ use crate::technique::{Technique, TechniqueContext};
 pub struct SessionSettings {
     /// Image width and height in pixels.
     pub size: (u32, u32),
+    /// The frame's settings: TAA, tonemapping, the G-buffer pyramid, direct light.
     pub frame: FrameSettings,
+    /// The technique to build, with its preset and settings.
     pub technique: TechniqueSpec,
+    /// How the scene is put on the GPU (BVH build quality, texture size).
     pub scene: GpuSceneSettings,
     /// Animation time, in seconds, of the first frame.
     pub time: f32,
@@ -53,6 +56,7 @@ const PROFILED_PASSES: u32 = 64;
 /// 650 MiB between two checks 1000 frames apart on the H100.
 const MAX_FRAMES_IN_FLIGHT: usize = 3;
 
+/// The frame loop: owns the GPU scene, the frame, the technique, the camera and the clock.
 pub struct Session {
     ctx: Arc<GpuContext>,
     scene: Scene,
@@ -137,26 +141,32 @@ impl Session {
         })
     }
 
+    /// The GPU context it renders with.
     pub fn ctx(&self) -> &GpuContext {
         &self.ctx
     }
 
+    /// The scene, as loaded (on the CPU).
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
 
+    /// The scene on the GPU, posed at the current time.
     pub fn gpu_scene(&self) -> &GpuScene {
         &self.gpu_scene
     }
 
+    /// The frame: its resources, settings and history.
     pub fn frame(&self) -> &Frame {
         &self.frame
     }
 
+    /// The technique it renders indirect light with.
     pub fn technique(&self) -> &dyn Technique {
         self.technique.as_ref()
     }
 
+    /// The technique, mutably.
     pub fn technique_mut(&mut self) -> &mut dyn Technique {
         self.technique.as_mut()
     }
@@ -166,10 +176,12 @@ impl Session {
         self.technique.as_any().downcast_ref()
     }
 
+    /// The technique as its concrete type, mutably; None when it is of another type.
     pub fn technique_as_mut<T: Technique>(&mut self) -> Option<&mut T> {
         self.technique.as_any_mut().downcast_mut()
     }
 
+    /// The spec the technique was built (or last reconfigured) from.
     pub fn spec(&self) -> &TechniqueSpec {
         &self.spec
     }
@@ -179,6 +191,7 @@ impl Session {
         &self.warnings
     }
 
+    /// The view the next frame renders.
     pub fn camera(&self) -> &Camera {
         &self.camera
     }
@@ -353,6 +366,7 @@ impl Session {
         self.frame.read(&self.ctx, "indirect")
     }
 
+    /// The last frame's G-buffer, one sample a pixel, row by row.
     pub fn gbuffer(&self) -> Result<Vec<GBufferSample>, RenderError> {
         self.frame.read_gbuffer(&self.ctx)
     }

@@ -31,6 +31,7 @@ use crate::frame::FrameSettings;
 pub enum Preset {
     /// Cheapest settings that still look right: previews, large scenes, slow adapters.
     Fast,
+    /// The default: between fast and quality in cost, noise and lag.
     #[default]
     Balanced,
     /// Less noise and lag for more time: stills, comparisons, fast adapters.
@@ -38,8 +39,10 @@ pub enum Preset {
 }
 
 impl Preset {
+    /// Every preset, cheapest first.
     pub const ALL: [Preset; 3] = [Preset::Fast, Preset::Balanced, Preset::Quality];
 
+    /// Its name in settings files and on the command line (`fast`, `balanced`, `quality`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::Fast => "fast",
@@ -48,6 +51,7 @@ impl Preset {
         }
     }
 
+    /// The preset of this name; an error listing the names when it is none of them.
     pub fn parse(text: &str) -> Result<Self, SettingsError> {
         Self::ALL
             .into_iter()
@@ -62,10 +66,14 @@ impl Preset {
 
 /// A settings type's three named points. `preset` picks one by name.
 pub trait Presets: Sized {
+    /// The settings of [`Preset::Fast`].
     fn fast() -> Self;
+    /// The settings of [`Preset::Balanced`].
     fn balanced() -> Self;
+    /// The settings of [`Preset::Quality`].
     fn quality() -> Self;
 
+    /// The settings of `preset`.
     fn preset(preset: Preset) -> Self {
         match preset {
             Preset::Fast => Self::fast(),
@@ -98,7 +106,9 @@ pub(crate) use presets_from_inherent;
 /// keys on its settings type). Round-trips through TOML without loss.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TechniqueSpec {
+    /// The registered technique's name (`ddgi`; see [`crate::registry`]).
     pub name: String,
+    /// The preset its own settings start from (balanced when a file leaves it out).
     #[serde(default)]
     pub preset: Preset,
     /// The technique's own settings over the preset; unknown keys are warned about when the
@@ -136,20 +146,29 @@ impl Default for TechniqueSpec {
 /// A setting that cannot be used. Every message names the field, the value and the fix.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum SettingsError {
+    /// A setting has a value outside what is allowed (a range, a list of names).
     #[error("setting {field} = {value} is not allowed: use {allowed}")]
     Invalid {
+        /// The setting's dotted path (`frame.taa.blend`).
         field: String,
+        /// The value given, as text.
         value: String,
+        /// What is allowed instead ("a value from 0.001 to 1").
         allowed: String,
     },
+    /// A settings text cannot be read, is not valid TOML, has a value of the wrong type or
+    /// nests too deep.
     #[error("{source_name}: {message}")]
     Malformed {
+        /// Where the text came from: a file's path, or the table's prefix (`frame`).
         source_name: String,
+        /// What is wrong with it.
         message: String,
     },
 }
 
 impl SettingsError {
+    /// An [`SettingsError::Invalid`] naming the field, the value and what is allowed.
     pub fn invalid(
         field: impl Into<String>,
         value: impl Display,
@@ -239,8 +258,11 @@ fn table_depth(table: &toml::Table) -> usize {
 /// What a settings file (or a manifest) sets: the frame and the technique, each optional.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SettingsFile {
+    /// The `[frame]` table, laid over a preset's [`FrameSettings`] by
+    /// [`SettingsFile::frame_settings`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frame: Option<toml::Table>,
+    /// The `[technique]` table.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub technique: Option<TechniqueSpec>,
 }
@@ -255,6 +277,8 @@ impl SettingsFile {
         Self::parse(&text, &path.display().to_string(), warnings)
     }
 
+    /// Parses settings text; `source_name` names it in errors and warnings. Unknown tables
+    /// and keys are warnings; tables nested too deep are refused.
     pub fn parse(
         text: &str,
         source_name: &str,
@@ -293,7 +317,8 @@ impl SettingsFile {
         Ok(file)
     }
 
-    /// The frame settings: the preset's, with this file's [frame] table over them.
+    /// The frame settings: the preset's, with this file's `[frame]` table over them,
+    /// validated.
     pub fn frame_settings(
         &self,
         preset: Preset,
@@ -308,6 +333,7 @@ impl SettingsFile {
         Ok(settings)
     }
 
+    /// Writes it back as TOML text, which parses to an equal `SettingsFile`.
     pub fn to_toml(&self) -> String {
         toml::to_string(self).expect("settings serialise")
     }

@@ -21,9 +21,13 @@ use crate::settings::TechniqueSpec;
 
 /// What a technique is built from.
 pub struct TechniqueContext<'a> {
+    /// The GPU it is built on.
     pub ctx: &'a GpuContext,
+    /// The scene on the CPU (bounds, lights, materials).
     pub scene: &'a Scene,
+    /// The scene on the GPU, whose resources its passes bind.
     pub gpu_scene: &'a GpuScene,
+    /// The frame it is bound to, whose resources its passes bind.
     pub frame: &'a Frame,
     /// Where a technique may cache what it bakes (None: bake every time).
     pub cache_dir: Option<&'a std::path::Path>,
@@ -39,6 +43,7 @@ pub type ProgressFn = dyn Fn(&str, u32, u32) + Send + Sync;
 pub struct Progress(pub std::sync::Arc<ProgressFn>);
 
 impl Progress {
+    /// Tells the callback that `done` of `all` steps of `what` are done.
     pub fn report(&self, what: &str, done: u32, all: u32) {
         (self.0)(what, done, all)
     }
@@ -93,14 +98,18 @@ pub trait TechniqueKind: Sync {
 /// The pass labels a technique records, in order: its update's and its resolve's.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TechniquePasses {
+    /// The labels [`Technique::update`] records.
     pub update: Vec<&'static str>,
+    /// The labels [`Technique::resolve`] records.
     pub resolve: Vec<&'static str>,
 }
 
 /// A figure a technique reports about its last frame (probes updating, rays traced, …).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Counter {
+    /// What it counts (`updating_probes`).
     pub name: &'static str,
+    /// Its value in the last frame.
     pub value: f64,
 }
 
@@ -141,7 +150,9 @@ pub trait Technique: Any {
     fn counters(&self, _ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         Ok(Vec::new())
     }
+    /// Itself as [`Any`], for [`crate::Session::technique_as`]'s downcast.
     fn as_any(&self) -> &dyn Any;
+    /// Itself as mutable [`Any`], for [`crate::Session::technique_as_mut`]'s downcast.
     fn as_any_mut(&mut self) -> &mut dyn Any;
 }
 

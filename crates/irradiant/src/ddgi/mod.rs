@@ -10,8 +10,8 @@
 //! ddgi/probe_states lists for the next frame), and `ddgi/resolve` blends its indirect diffuse
 //! light into the frame's, finest volume first. With the final gather (`gather.rays_per_pixel`)
 //! each pixel's light is traced rays whose hits the probes light, and `ddgi/temporal` averages
-//! it over frames ([`gather`]). The pipelines are compiled once ([`pipelines`]) and shared by
-//! every volume ([`volume`]).
+//! it over frames (gather.rs). The pipelines are compiled once (pipelines.rs) and shared by
+//! every volume ([`DdgiVolume`]).
 
 pub mod constants;
 mod gather;
@@ -50,6 +50,7 @@ pub static DDGI: DdgiKind = DdgiKind { classic: false };
 /// paper improves on.
 pub static CLASSIC_PROBES: DdgiKind = DdgiKind { classic: true };
 
+/// A DDGI registry entry: the full method or classic probes.
 pub struct DdgiKind {
     classic: bool,
 }
@@ -163,6 +164,8 @@ pub struct Ddgi {
 }
 
 impl Ddgi {
+    /// Validates the settings, compiles the pipelines once and builds a volume for each of the
+    /// scene's probe volumes, bound to the frame.
     pub fn new(
         cx: &TechniqueContext,
         name: &'static str,
@@ -213,6 +216,7 @@ impl Ddgi {
         })
     }
 
+    /// The settings it runs with.
     pub fn settings(&self) -> &DdgiSettings {
         &self.settings
     }
@@ -222,6 +226,7 @@ impl Ddgi {
         &self.volumes[0]
     }
 
+    /// The first (finest) volume, mutably.
     pub fn volume_mut(&mut self) -> &mut DdgiVolume {
         &mut self.volumes[0]
     }

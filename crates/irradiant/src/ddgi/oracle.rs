@@ -29,12 +29,15 @@ const ERROR_FLOOR: f32 = 0.02;
 /// Edges of the histogram of per-probe errors: 5 % bins from −50 % to +50 %, and one bin
 /// beyond each end.
 pub const HISTOGRAM_STEP: f32 = 0.05;
+/// Bins on each side of zero between the two open-ended bins.
 pub const HISTOGRAM_HALF_BINS: i32 = 10;
 
 /// One probe, measured.
 #[derive(Clone, Debug)]
 pub struct ProbeError {
+    /// Its index in the volume.
     pub probe: u32,
+    /// Its world position after relocation, where the truth was gathered.
     pub centre: Vec3,
     /// Σ DDGI ÷ Σ truth − 1 over the probe's irradiance texels (luminance): negative is dark.
     pub signed: f32,
@@ -50,10 +53,13 @@ pub struct ProbeOracle {
     /// Every updating probe (sleeping and switched-off ones are not read by the query). With
     /// none, the errors below are NaN.
     pub probes: Vec<ProbeError>,
+    /// Probes not measured: those that do not update (sleeping or off).
     pub skipped_probes: u32,
     /// Probes relocation found tied (`DdgiVolume::read_tied_probes`), measured or not.
     pub tied_probes: u32,
+    /// Interior texels a side of a probe's irradiance tile.
     pub irradiance_texels: u32,
+    /// Interior texels a side of a probe's distance tile.
     pub distance_texels: u32,
     /// Per probe compared, its irradiance texels in row order: (DDGI, truth), linear rgb.
     pub irradiance: Vec<Vec<([f32; 3], [f32; 3])>>,
@@ -71,11 +77,16 @@ pub struct ProbeOracle {
 
 impl ProbeOracle {
     /// The histogram bin of a per-probe error, and each bin's range (`f32::INFINITY` ends).
+    /// A probe whose truth is black reads a huge error (÷ 1e-12): the steps are clamped as
+    /// floats, before the cast, so that it lands in the last bin instead of overflowing.
     pub fn histogram_bin(signed: f32) -> usize {
-        let bin = (signed / HISTOGRAM_STEP).floor() as i32 + HISTOGRAM_HALF_BINS + 1;
+        let outer = (HISTOGRAM_HALF_BINS + 1) as f32;
+        let steps = (signed / HISTOGRAM_STEP).floor().clamp(-outer, outer);
+        let bin = steps as i32 + HISTOGRAM_HALF_BINS + 1;
         bin.clamp(0, 2 * HISTOGRAM_HALF_BINS + 1) as usize
     }
 
+    /// The range of signed errors that bin `bin` holds, [low, high); the end bins are open.
     pub fn histogram_range(bin: usize) -> (f32, f32) {
         let edge = |b: i32| {
             if b <= 0 {
@@ -311,7 +322,9 @@ pub struct QueryOracle {
     /// Per pixel (DDGI − truth) ÷ truth of the indirect diffuse light's luminance; NaN where
     /// no surface is seen or the surface reflects no diffuse light.
     pub error: Vec<f32>,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// The truth's indirect diffuse light (diffuse weight × E/π) at each pixel.
     pub truth: Image,
@@ -466,6 +479,11 @@ mod tests {
         );
         assert_eq!(ProbeOracle::histogram_range(0).0, f32::NEG_INFINITY);
         assert_eq!(ProbeOracle::histogram_bin(5.0), oracle.histogram.len() - 1);
+        // A black truth (a few samples a texel, all dark) reads 1e12: the last bin, no overflow.
+        for huge in [1e12, f32::MAX, f32::INFINITY] {
+            assert_eq!(ProbeOracle::histogram_bin(huge), oracle.histogram.len() - 1);
+            assert_eq!(ProbeOracle::histogram_bin(-huge), 0);
+        }
     }
 
     #[test]

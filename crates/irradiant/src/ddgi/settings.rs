@@ -22,6 +22,7 @@ pub enum ProbeWeights {
     Full,
 }
 
+/// DDGI's settings, in groups by what changing them costs.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DdgiSettings {
     /// Sizes and layouts: changing any rebuilds the volumes, which start over.
@@ -36,6 +37,7 @@ pub struct DdgiSettings {
     pub gather: DdgiGatherSettings,
 }
 
+/// Probe volume sizes and layouts (`[technique.volume]`): a change rebuilds the volumes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DdgiVolumeSettings {
     /// Rays per probe per frame. More rays: less noise and lower usable hysteresis, at a
@@ -65,6 +67,7 @@ pub struct DdgiVolumeSettings {
     pub probe_counts: [u32; 3],
 }
 
+/// The probe update and the query (`[technique.update]`): most apply from the next frame.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DdgiUpdateSettings {
     /// Share of last frame's irradiance kept each frame. Higher: stable, slow to react (about
@@ -148,6 +151,7 @@ pub struct DdgiUpdateSettings {
     pub seed: u32,
 }
 
+/// Switches that change only how fast the same image is made (`[technique.speed]`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DdgiSpeedSettings {
     /// With one light per probe ray: pick the light once for 32 neighbouring rays (a GPU warp)
@@ -184,6 +188,7 @@ pub struct DdgiSpeedSettings {
     pub probes_per_group: u32,
 }
 
+/// The traced final gather at the pixels (`[technique.gather]`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DdgiGatherSettings {
     /// Cosine-distributed rays each pixel traces a frame, each shaded at its hit like a probe
@@ -222,6 +227,7 @@ impl Default for DdgiSettings {
 crate::settings::presets_from_inherent!(DdgiSettings);
 
 impl DdgiSettings {
+    /// Balanced with 64 rays a probe and hysteresis 0.95.
     pub fn fast() -> Self {
         let mut s = Self::balanced();
         s.volume.rays_per_probe = 64;
@@ -229,6 +235,7 @@ impl DdgiSettings {
         s
     }
 
+    /// 256 rays a probe, hysteresis 0.97, relocation and probe states on, no final gather.
     pub fn balanced() -> Self {
         Self {
             volume: DdgiVolumeSettings {
@@ -273,6 +280,8 @@ impl DdgiSettings {
         }
     }
 
+    /// Balanced with the traced and blind bounces, every light shaded, hysteresis 0.98 and a
+    /// one-ray final gather.
     pub fn quality() -> Self {
         let mut s = Self::balanced();
         // The traced bounce, rather than 512 rays a probe: about the same time, every probe

@@ -7,27 +7,48 @@ use bytemuck::{Pod, Zeroable};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuDdgiVolume {
+    /// World position of probe (0, 0, 0), before relocation.
     pub origin: [f32; 3],
+    /// Probes in the volume.
     pub probe_count: u32,
+    /// World distance between neighbouring probes along each axis.
     pub spacing: [f32; 3],
+    /// Rays each probe traces a frame.
     pub rays_per_probe: u32,
+    /// Probes along each axis.
     pub counts: [u32; 3],
+    /// Probe tiles in each row of the atlases.
     pub probes_per_row: u32,
+    /// Row 0 of this frame's random rotation of the ray set (w unused).
     pub ray_rotation0: [f32; 4],
+    /// Row 1 of the rotation.
     pub ray_rotation1: [f32; 4],
+    /// Row 2 of the rotation.
     pub ray_rotation2: [f32; 4],
+    /// Interior texels a side of a probe's irradiance tile (the tile adds a 1-texel border).
     pub irradiance_texels: u32,
+    /// Interior texels a side of a probe's distance tile (the tile adds a 1-texel border).
     pub distance_texels: u32,
+    /// Share of the old irradiance each blend keeps, lowered for a while after a scene change.
     pub irradiance_hysteresis: f32,
+    /// Share of the old distance moments each blend keeps.
     pub distance_hysteresis: f32,
+    /// Longest probe ray, in scene units; misses count as this far.
     pub max_ray_distance: f32,
+    /// Self-shadow bias in probe cells: world bias = (n·0.2 + ωo·0.8) · 0.75 · spacing · this.
+    /// 0 unless every weight is on.
     pub self_shadow_bias: f32,
+    /// Cosine power of the distance blend.
     pub distance_exponent: f32,
+    /// Perceptual encoding: irradiance is stored as value^(1/gamma).
     pub irradiance_gamma: f32,
     /// `WEIGHT_*` bits of [`super::constants`].
     pub weights: u32,
+    /// Frames blended so far; 0 blends with hysteresis 0 (the probes start over).
     pub frame: u32,
+    /// The smallest of `spacing`'s three axes.
     pub min_spacing: f32,
+    /// 1 when the per-texel convergence thresholds (003 §4.3) are on, else 0.
     pub convergence_heuristics: u32,
     /// 1 while probes are being relocated (the volume's first frames).
     pub relocating: u32,
@@ -57,8 +78,11 @@ pub struct GpuDdgiVolume {
     pub gather_history_frames: u32,
     /// Frames between a pixel's gathers (`DdgiGatherSettings::pixel_interval`).
     pub gather_interval: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad0: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad1: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad2: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiVolume>() == 208);
@@ -67,9 +91,13 @@ const _: () = assert!(size_of::<GpuDdgiVolume>() == 208);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuDdgiRayHit {
+    /// Distance to the hit; negative for a miss.
     pub t: f32,
+    /// GPU triangle slot hit.
     pub triangle: u32,
+    /// Instance hit, in instance-buffer order.
     pub instance: u32,
+    /// The hit's barycentrics (u, v), `pack2x16unorm`.
     pub bary: u32,
 }
 
@@ -77,7 +105,9 @@ pub struct GpuDdgiRayHit {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuDdgiRaySample {
+    /// Radiance arriving at the probe along the ray.
     pub radiance: [f32; 3],
+    /// Distance to what the ray hit (`max_ray_distance` for a miss); negative for a backface.
     pub distance: f32,
 }
 
@@ -85,6 +115,7 @@ pub struct GpuDdgiRaySample {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuDdgiShadowRay {
+    /// Start of the shadow ray: the hit point, offset off its surface.
     pub origin: [f32; 3],
     /// Index of the probe ray's [`GpuDdgiRaySample`].
     pub sample: u32,
@@ -100,6 +131,8 @@ const _: () = assert!(size_of::<GpuDdgiShadowRay>() == 32);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuDdgiBlendWeight {
+    /// The ray's index in the probe's ray set; in a header, the texel's entry count.
     pub ray: u32,
+    /// The ray's weight in the texel's blend; in a header, the texel's weight sum.
     pub weight: f32,
 }

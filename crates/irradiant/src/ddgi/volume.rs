@@ -79,6 +79,7 @@ impl Boost {
 /// the test that every dispatch fits the adapter at the largest sizes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DdgiDispatches {
+    /// ddgi/ray_directions (one thread a ray of the set).
     pub ray_directions: Workgroups,
     /// ddgi/trace and ddgi/shade (one thread a probe ray) when every probe updates: they are
     /// dispatched indirectly over the probes that do (`DdgiResources::active_probes`), which
@@ -86,6 +87,7 @@ pub struct DdgiDispatches {
     pub rays: Workgroups,
     /// ddgi/relocate and ddgi/probe_states (one thread a probe).
     pub probes: Workgroups,
+    /// ddgi/blend_weights (one workgroup a tile texel, irradiance and distance).
     pub blend_weights: Workgroups,
     /// The blends: one workgroup a probe (as `rays`, the most of an indirect dispatch).
     pub blends: Workgroups,
@@ -94,6 +96,7 @@ pub struct DdgiDispatches {
 }
 
 impl DdgiDispatches {
+    /// The dispatches of a volume of this grid, with these settings, at this image size.
     pub fn new(grid: &ProbeGrid, settings: &DdgiSettings, (width, height): (u32, u32)) -> Self {
         let v = &settings.volume;
         let per_group = settings.speed.probes_per_group;
@@ -143,10 +146,15 @@ struct VolumePasses {
     visualize: BoundPass,
 }
 
+/// One DDGI probe volume: its grid, atlases and buffers, the passes bound to them, and its
+/// per-frame state.
 pub struct DdgiVolume {
     settings: DdgiSettings,
+    /// Where the probes sit before relocation.
     pub grid: ProbeGrid,
+    /// How probe tiles are laid out in its atlases.
     pub atlas: AtlasLayout,
+    /// Its buffers and textures.
     pub resources: DdgiResources,
     passes: VolumePasses,
     dispatches: DdgiDispatches,
@@ -180,11 +188,16 @@ fn gather_history(history_frames: u32, hysteresis: f32, boost: f32) -> u32 {
 
 /// Where a volume sits among its technique's volumes.
 pub struct VolumePlace {
+    /// Its place among the volumes, finest first (0: the finest).
     pub index: u32,
+    /// Whether it is the coarsest, which fills whatever weight the finer ones left.
     pub is_last: bool,
 }
 
 impl DdgiVolume {
+    /// Allocates the volume for `desc`, binds the shared pipelines to its resources and the
+    /// given tables (scene, frame), and starts its probes from scratch; `dynamic_bounds` are
+    /// the boxes around animated instances, where sleeping probes wake.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         ctx: &GpuContext,
@@ -279,10 +292,12 @@ impl DdgiVolume {
         self.states_pending = true;
     }
 
+    /// Longest probe ray, in scene units: the setting, or 1.5 × the volume's diagonal.
     pub fn max_ray_distance(&self) -> f32 {
         self.max_ray_distance
     }
 
+    /// The workgroups of its dispatches.
     pub fn dispatches(&self) -> &DdgiDispatches {
         &self.dispatches
     }
@@ -308,7 +323,7 @@ impl DdgiVolume {
     /// 003 §4.3's scene-level heuristics: a small lighting change lowers the irradiance
     /// hysteresis by 15 % for 4 frames, a large one by 50 % for 10 frames; an object that moves
     /// lowers irradiance hysteresis by 50 % for 10 frames and visibility's by 50 % for 7 — each
-    /// then fading back over as many frames (see [`Boost`]).
+    /// then fading back over as many frames (see `Boost`).
     pub fn scene_changed(&mut self, change: &SceneChange) {
         self.wake_boxes = Some(change.dynamic_bounds.clone());
         if !self.settings.update.convergence_heuristics {
@@ -621,6 +636,7 @@ impl DdgiVolume {
         Ok(offsets.iter().map(|o| o[3] > 0.5).collect())
     }
 
+    /// Reads back the irradiance atlas (decoded to linear) and the distance atlas.
     pub fn read_atlases(&self, ctx: &GpuContext) -> Result<Atlases, RenderError> {
         let packed: Vec<[half::f16; 4]> = read_buffer_as(ctx, &self.resources.irradiance)?;
         let distance: Vec<[f32; 2]> = read_buffer_as(ctx, &self.resources.distance)?;
@@ -640,9 +656,13 @@ impl DdgiVolume {
 
 /// Decoded probe atlases (see [`DdgiVolume::read_atlases`]).
 pub struct Atlases {
+    /// Linear irradiance, one RGB a texel, row by row.
     pub irradiance: Vec<[f32; 3]>,
+    /// Width and height of the irradiance atlas in texels, borders included.
     pub irradiance_size: (u32, u32),
+    /// Distance moments (mean distance, mean squared distance), one a texel, row by row.
     pub distance: Vec<[f32; 2]>,
+    /// Width and height of the distance atlas in texels, borders included.
     pub distance_size: (u32, u32),
 }
 

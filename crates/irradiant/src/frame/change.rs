@@ -6,6 +6,7 @@ use irradiant_scene::Pose;
 /// How much the lighting changed between two poses (003 §4.3's scene-level heuristics).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub enum LightingChange {
+    /// No light changed.
     #[default]
     None,
     /// A light moved, turned, or changed its power by less than half.
@@ -17,6 +18,7 @@ pub enum LightingChange {
 /// What changed between two poses of the scene.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SceneChange {
+    /// How much the lights changed: the largest change of any one light.
     pub lighting: LightingChange,
     /// An instance moved.
     pub geometry: bool,
@@ -25,6 +27,8 @@ pub struct SceneChange {
 }
 
 impl SceneChange {
+    /// Compares the lights and instance transforms of two poses; `dynamic_bounds` is left
+    /// empty for the caller to fill.
     pub fn between(old: &Pose, new: &Pose) -> Self {
         let mut lighting = LightingChange::None;
         for (a, b) in old.lights.iter().zip(&new.lights) {
@@ -47,6 +51,7 @@ impl SceneChange {
         }
     }
 
+    /// True when neither the lighting nor the geometry changed.
     pub fn is_empty(&self) -> bool {
         self.lighting == LightingChange::None && !self.geometry
     }

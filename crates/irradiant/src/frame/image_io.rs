@@ -7,12 +7,16 @@ use crate::RenderError;
 /// Linear RGB radiance, rows top to bottom.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// One linear RGB value a pixel, row by row: `width × height` of them.
     pub pixels: Vec<[f32; 3]>,
 }
 
 impl Image {
+    /// The mean of every pixel, per channel (zero for an empty image).
     pub fn mean(&self) -> [f64; 3] {
         let mut sum = [0f64; 3];
         for p in &self.pixels {

@@ -41,6 +41,7 @@ pub struct GBufferSample {
     pub position: [f32; 3],
     /// Distance along the primary ray; negative where it left the scene.
     pub depth: f32,
+    /// Radiance the surface emits towards the camera.
     pub emission: [f32; 3],
     /// Shading normal.
     pub normal: [f32; 3],
@@ -59,7 +60,10 @@ struct FramePasses {
     pyramid: Vec<BoundPass>,
 }
 
+/// The real-time frame: its resources (G-buffer, light buffers, history), passes and
+/// accumulation state.
 pub struct Frame {
+    /// Its textures and buffers, which techniques read by name.
     pub resources: FrameResources,
     settings: FrameSettings,
     passes: FramePasses,
@@ -78,6 +82,8 @@ impl Frame {
         FrameResources::plan(width, height, needs)
     }
 
+    /// Validates the settings, allocates the resources for this size and needs, and builds
+    /// the passes bound to the scene.
     pub fn new(
         ctx: &GpuContext,
         scene: &GpuScene,
@@ -151,10 +157,12 @@ impl Frame {
         })
     }
 
+    /// Width and height in pixels.
     pub fn size(&self) -> (u32, u32) {
         (self.resources.width, self.resources.height)
     }
 
+    /// The current settings.
     pub fn settings(&self) -> &FrameSettings {
         &self.settings
     }

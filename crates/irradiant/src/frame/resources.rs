@@ -16,6 +16,7 @@ pub struct FrameNeeds {
 }
 
 impl FrameNeeds {
+    /// What satisfies both needs: the most of each.
     pub fn union(self, other: Self) -> Self {
         Self {
             pyramid_levels: self.pyramid_levels.max(other.pyramid_levels),
@@ -73,9 +74,13 @@ pub(crate) struct FrameTexture {
     pub levels: Vec<(String, wgpu::TextureView)>,
 }
 
+/// The frame's buffers, textures and sampler, bound by name (see [`FrameResources::table`]).
 pub struct FrameResources {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
+    /// What the technique asked of the frame (the pyramid's levels).
     pub needs: FrameNeeds,
     /// `GpuFrameParams`
     pub params: wgpu::Buffer,
@@ -113,6 +118,8 @@ impl FrameResources {
         plan
     }
 
+    /// Checks the plan against the adapter, then allocates every resource and uploads the sky
+    /// radiance.
     pub fn new(
         ctx: &GpuContext,
         width: u32,
@@ -206,6 +213,7 @@ impl FrameResources {
             .view
     }
 
+    /// Pixels in the image: width × height.
     pub fn pixels(&self) -> u64 {
         self.width as u64 * self.height as u64
     }

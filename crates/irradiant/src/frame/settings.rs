@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::settings::{SettingsError, check_range};
 
+/// The frame's settings (the `[frame]` table): direct light, TAA, tonemapping, the pyramid.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FrameSettings {
     /// Emitter samples per pixel per frame for direct light from emissive surfaces. More:
@@ -12,8 +13,11 @@ pub struct FrameSettings {
     pub area_light_samples: u32,
     /// Random seed of the frame's sampling (area lights); change it for independent noise.
     pub seed: u32,
+    /// Temporal anti-aliasing.
     pub taa: TaaSettings,
+    /// Exposure and tone curve.
     pub tone: ToneSettings,
+    /// The G-buffer pyramid's filter (used only where a technique asks for a pyramid).
     pub pyramid: PyramidSettings,
 }
 
@@ -85,6 +89,7 @@ impl Default for FrameSettings {
 crate::settings::presets_from_inherent!(FrameSettings);
 
 impl FrameSettings {
+    /// One area-light sample a pixel and a shorter TAA memory (blend 0.2).
     pub fn fast() -> Self {
         Self {
             area_light_samples: 1,
@@ -96,6 +101,7 @@ impl FrameSettings {
         }
     }
 
+    /// Four area-light samples a pixel, TAA at blend 0.1.
     pub fn balanced() -> Self {
         Self {
             area_light_samples: 4,
@@ -110,6 +116,7 @@ impl FrameSettings {
         }
     }
 
+    /// Eight area-light samples a pixel and a longer TAA memory (blend 0.05).
     pub fn quality() -> Self {
         Self {
             area_light_samples: 8,

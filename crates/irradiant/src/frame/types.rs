@@ -9,13 +9,19 @@ use crate::scene::types::GpuCamera;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuFrameParams {
+    /// The view this frame renders.
     pub camera: GpuCamera,
+    /// Last frame's view (this frame's on the first), for motion vectors and reprojection.
     pub previous_camera: GpuCamera,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
+    /// Frames recorded since the frame was made: seeds per-frame random numbers.
     pub frame_index: u32,
     /// Emitter samples per pixel per frame for direct light from emissive surfaces.
     pub area_light_samples: u32,
+    /// Random seed of the frame's sampling.
     pub seed: u32,
     /// Frames already in the direct-light running mean; 0 restarts it.
     pub accumulated_frames: u32,
@@ -27,13 +33,16 @@ pub struct GpuFrameParams {
     pub history_frames: u32,
     /// Neighbourhood clip box half-width, in standard deviations.
     pub taa_clip_sigma: f32,
+    /// frame/tonemap's multiplier before the curve.
     pub exposure: f32,
     /// [`super::constants::TONE_FILMIC`] or [`super::constants::TONE_CLAMP`].
     pub tone_curve: u32,
     /// The G-buffer pyramid's voting filter: Gaussian widths of the pixel distance, of
     /// 1 − n·n' and of the relative depth difference.
     pub pyramid_pixel_sigma: f32,
+    /// Gaussian width of 1 − n·n' in the pyramid's voting filter.
     pub pyramid_normal_sigma: f32,
+    /// Gaussian width of the relative depth difference in the pyramid's voting filter.
     pub pyramid_depth_sigma: f32,
 }
 const _: () = assert!(size_of::<GpuFrameParams>() == 192);

@@ -24,6 +24,7 @@ pub struct Agreement {
     pub wrong_distance: u32,
     /// The light field hit where the BVH saw nothing, and the reverse.
     pub false_hits: u32,
+    /// The BVH hit where the light field saw nothing.
     pub false_misses: u32,
     /// The distance tolerance, in scene units: the widest thickness a probe texel's surface is
     /// given plus the width of a map texel seen from the farthest corner of a probe cage —

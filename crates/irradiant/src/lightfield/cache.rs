@@ -44,6 +44,7 @@ pub fn bake_key(
     h.finish()
 }
 
+/// The file of the entry for `key` in the cache folder `dir`.
 pub fn entry_path(dir: &Path, key: u64) -> PathBuf {
     dir.join(format!("lightfield-{key:016x}.bin"))
 }
@@ -57,7 +58,9 @@ fn layout(texture: &wgpu::Texture, texel_bytes: u32) -> [u32; 4] {
 /// texel] with its texels, then each buffer's bytes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EntryLayout {
+    /// Each map's [width, height, layers, bytes a texel], in the entry's order.
     pub maps: Vec<[u32; 4]>,
+    /// Each buffer's bytes: the probe states, then the offsets.
     pub buffers: Vec<u64>,
 }
 

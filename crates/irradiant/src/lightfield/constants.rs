@@ -14,8 +14,11 @@ irradiant_gpu::wgsl_constants! {
     LF_UNKNOWN: u32 = 2;
     /// A stored distance where a probe's ray met nothing (f16's largest).
     LF_NO_SURFACE: f32 = 65504.0;
-    /// Runtime buffers' channels (`GpuLightfieldParams::algorithm`).
+    /// Runtime buffers' channels (`GpuLightfieldParams::algorithm`): the naive Monte Carlo
+    /// renderer.
     ALGORITHM_NAIVE: u32 = 0;
+    /// `GpuLightfieldParams::algorithm`: one Lambertian and one glossy ray a pixel, filtered.
     ALGORITHM_FILTERED: u32 = 1;
+    /// `GpuLightfieldParams::algorithm`: prefiltered irradiance and one filtered glossy ray.
     ALGORITHM_PREFILTERED: u32 = 2;
 }

@@ -10,6 +10,7 @@ pub struct LightfieldKind {
 }
 
 impl LightfieldKind {
+    /// The settings a spec asks for, with this entry's shading algorithm.
     pub fn settings(
         &self,
         spec: &TechniqueSpec,

@@ -173,6 +173,8 @@ impl Pipelines {
     }
 }
 
+/// Light-field probes (McGuire et al. 2017): baked (or loaded from the cache) once, then
+/// traced through each frame with the registry entry's shading algorithm.
 pub struct Lightfield {
     name: &'static str,
     settings: LightfieldSettings,
@@ -195,6 +197,8 @@ pub struct Lightfield {
 }
 
 impl Lightfield {
+    /// Validates the settings, allocates the probe maps and the frame buffers, builds the
+    /// passes, then bakes the probes or loads them from the cache.
     pub fn new(
         cx: &TechniqueContext,
         name: &'static str,
@@ -319,10 +323,12 @@ impl Lightfield {
         Ok(lightfield)
     }
 
+    /// The settings it runs with.
     pub fn settings(&self) -> &LightfieldSettings {
         &self.settings
     }
 
+    /// The probe grid, before relocation.
     pub fn grid(&self) -> &ProbeGrid {
         &self.grid
     }
@@ -555,8 +561,11 @@ impl Lightfield {
 /// One texel of a probe's baked maps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProbeTexel {
+    /// Radiance leaving the nearest surface towards the probe (emission excluded).
     pub radiance: Vec3,
+    /// That surface's normal.
     pub normal: Vec3,
+    /// Radial distance from the probe to that surface.
     pub distance: f32,
 }
 

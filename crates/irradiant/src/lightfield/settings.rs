@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use crate::settings::TechniqueSpec;
 use crate::settings::{Presets, SettingsError, check_range, overlay};
 
+/// Light-field probes' settings, in two groups by what changing them costs.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LightfieldSettings {
     /// The probe data. Changing any of these bakes again (or finds another cache entry).
@@ -16,6 +17,7 @@ pub struct LightfieldSettings {
     pub shade: LightfieldShadeSettings,
 }
 
+/// The probe data (`[technique.bake]`): a change bakes again or finds another cache entry.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LightfieldBakeSettings {
     /// Probes per axis; [0, 0, 0] takes the scene's first probe volume (or one over its bounds);
@@ -72,6 +74,7 @@ pub enum ShadingAlgorithm {
     Prefiltered,
 }
 
+/// How the frame shades with the probes (`[technique.shade]`): applied between frames.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LightfieldShadeSettings {
     /// Set by the registry entry (`lightfield`, `lightfield-traced`, `lightfield-naive`), not
@@ -98,10 +101,12 @@ pub struct LightfieldShadeSettings {
     /// Thinner: rays slip behind surfaces and fall back to other probes; thicker: rays hit
     /// surfaces they pass near.
     pub min_thickness: f32,
+    /// The thickness at grazing views, as `min_thickness` is head-on.
     pub max_thickness: f32,
     /// Cross-bilateral filter of the Lambertian buffer: radius and stride in pixels (the paper:
     /// 12 and 2). Wider: less noise, blurrier indirect shadows.
     pub lambert_radius: u32,
+    /// Pixels between the Lambertian filter's taps.
     pub lambert_stride: u32,
     /// Share of last frame's Lambertian light kept (the paper: 98 %). Higher: less noise, more
     /// lag after a change of view.
@@ -109,6 +114,7 @@ pub struct LightfieldShadeSettings {
     /// The same for the glossy buffer (the paper: 3 px, stride 1, 75 %): glossy light moves
     /// over surfaces with the view, so it is filtered less.
     pub glossy_radius: u32,
+    /// Share of last frame's glossy light kept.
     pub glossy_hysteresis: f32,
     /// DDGI's self-shadow bias for the prefiltered irradiance query (003 eq. 2). The bake's
     /// bounces gather through the same query: a session started with another bias bakes anew,
@@ -130,6 +136,7 @@ impl Default for LightfieldSettings {
 crate::settings::presets_from_inherent!(LightfieldSettings);
 
 impl LightfieldSettings {
+    /// Balanced with 256² maps, 16² irradiance tiles, 4 bounces and fewer samples.
     pub fn fast() -> Self {
         let mut s = Self::balanced();
         s.bake.resolution = 256;
@@ -140,6 +147,7 @@ impl LightfieldSettings {
         s
     }
 
+    /// 512² maps, 32² irradiance tiles, 8 bounces, irradiance queried in 4×4 blocks.
     pub fn balanced() -> Self {
         Self {
             bake: LightfieldBakeSettings {
@@ -172,6 +180,8 @@ impl LightfieldSettings {
         }
     }
 
+    /// Balanced with 1024² maps, 64² irradiance tiles, 16 bounces, irradiance at every pixel
+    /// and glossy rays on every specular surface.
     pub fn quality() -> Self {
         let mut s = Self::balanced();
         s.bake.resolution = 1024;
@@ -198,6 +208,7 @@ impl LightfieldSettings {
         Ok(s)
     }
 
+    /// Refuses settings that cannot work, naming the field, the value and what is allowed.
     pub fn validate(&self) -> Result<(), SettingsError> {
         let (b, s) = (&self.bake, &self.shade);
         for (axis, &count) in ["x", "y", "z"].iter().zip(&b.probe_counts) {

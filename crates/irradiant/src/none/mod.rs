@@ -10,6 +10,7 @@ use crate::RenderError;
 use crate::settings::TechniqueSpec;
 use crate::technique::{Technique, TechniqueContext, TechniqueKind, TechniquePasses};
 
+/// The `none` technique's kind: builds a technique that leaves `indirect` black.
 pub struct NoneKind;
 
 /// The registry entry.

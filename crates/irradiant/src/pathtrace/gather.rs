@@ -19,15 +19,22 @@ pub enum GatherKind {
     /// Path-traced radiance arriving along each sample, the first surface's emission left out.
     Radiance,
     /// The first hit's distance and its square, misses and longer hits counted as `far`.
-    Distance { far: f32 },
+    Distance {
+        /// The distance misses and longer hits count as.
+        far: f32,
+    },
 }
 
 /// A point, and the lobe cos^exponent about `axis` whose samples it averages.
 #[derive(Clone, Copy, Debug)]
 pub struct GatherQuery {
+    /// World-space point the samples start from.
     pub origin: Vec3,
+    /// Axis of the lobe (normalised on upload; zero becomes +z).
     pub axis: Vec3,
+    /// The lobe's exponent: 1 is cosine-weighted, so a radiance query's mean is E/π.
     pub exponent: f32,
+    /// Radiance or distance.
     pub kind: GatherKind,
     /// The origin lies on a surface whose normal is `axis`: rays start just off it.
     pub on_surface: bool,
@@ -56,6 +63,7 @@ impl GatherQuery {
 pub struct Gathered {
     /// Radiance: (rgb sum, sum of luminance²); distance: (sum, sum of squares, 0, 0).
     pub sums: Vec<[f32; 4]>,
+    /// Samples each query took.
     pub samples: u32,
 }
 

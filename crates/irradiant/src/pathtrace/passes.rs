@@ -18,7 +18,9 @@ pub struct PathTracer {
     /// rgba32float: rgb sum, sample count.
     pub accumulation: wgpu::Texture,
     accumulation_view: wgpu::TextureView,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Samples per pixel accumulated since the last reset.
     pub samples_done: u32,
@@ -36,6 +38,8 @@ impl PathTracer {
         )]
     }
 
+    /// Checks its allocation, compiles the pass with the scene's traversal constants and
+    /// makes the accumulation texture.
     pub fn new(
         ctx: &GpuContext,
         scene: &GpuScene,

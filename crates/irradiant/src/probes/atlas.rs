@@ -7,7 +7,9 @@ use irradiant_gpu::wgpu;
 /// How probe tiles are laid out in an atlas.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AtlasLayout {
+    /// Probe tiles in each row of the atlas.
     pub probes_per_row: u32,
+    /// Rows of tiles (the last may be partly empty).
     pub rows: u32,
 }
 

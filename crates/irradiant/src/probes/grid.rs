@@ -9,12 +9,17 @@ use irradiant_scene::ProbeVolumeDesc;
 pub struct ProbeGrid {
     /// Position of probe (0, 0, 0).
     pub origin: Vec3,
+    /// World distance between neighbouring probes along each axis (for an axis of one probe,
+    /// the volume's extent).
     pub spacing: Vec3,
+    /// Probes along each axis, at least 1.
     pub counts: UVec3,
+    /// Probes in all: the product of `counts`.
     pub probe_count: u32,
 }
 
 impl ProbeGrid {
+    /// The grid a volume description asks for.
     pub fn new(desc: &ProbeVolumeDesc) -> Self {
         let counts = UVec3::from(desc.counts).max(UVec3::ONE);
         let steps = (counts.as_vec3() - 1.0).max(Vec3::ONE);
@@ -28,6 +33,7 @@ impl ProbeGrid {
         }
     }
 
+    /// The smallest spacing of the three axes.
     pub fn min_spacing(&self) -> f32 {
         self.spacing.min_element()
     }
@@ -38,6 +44,7 @@ impl ProbeGrid {
         UVec3::new(probe % c.x, (probe / c.x) % c.y, probe / (c.x * c.y))
     }
 
+    /// World position of probe `probe` (x fastest).
     pub fn probe_position(&self, probe: u32) -> Vec3 {
         self.origin + self.coord(probe).as_vec3() * self.spacing
     }

@@ -11,6 +11,7 @@ fn sign_not_zero(v: Vec2) -> Vec2 {
     )
 }
 
+/// The octahedral coordinates, in [-1, 1]², of direction `n` (need not be unit length).
 pub fn oct_encode(n: Vec3) -> Vec2 {
     let p = Vec2::new(n.x, n.y) / (n.x.abs() + n.y.abs() + n.z.abs());
     if n.z < 0.0 {
@@ -20,6 +21,7 @@ pub fn oct_encode(n: Vec3) -> Vec2 {
     }
 }
 
+/// The unit direction of octahedral coordinates `p` in [-1, 1]²: [`oct_encode`]'s inverse.
 pub fn oct_decode(p: Vec2) -> Vec3 {
     let mut n = Vec3::new(p.x, p.y, 1.0 - p.x.abs() - p.y.abs());
     if n.z < 0.0 {

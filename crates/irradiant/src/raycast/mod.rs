@@ -15,18 +15,22 @@ use crate::RenderError;
 use crate::scene::GpuScene;
 use types::{GpuRay, GpuRayCastParams, GpuRayHit};
 
+/// The compiled `raycast/trace` pass, for one scene's traversal settings.
 pub struct RayCaster {
     pass: Arc<ComputePass>,
 }
 
 /// Rays and hits resident on the GPU, for repeated timed traces.
 pub struct RayBatch {
+    /// Rays in the batch.
     pub count: u32,
     bound: BoundPass,
+    /// One [`GpuRayHit`] a ray, written by each trace.
     pub hits: wgpu::Buffer,
 }
 
 impl RayCaster {
+    /// Compiles the pass with the scene's traversal constants.
     pub fn new(ctx: &GpuContext, scene: &GpuScene) -> Result<Self, RenderError> {
         let pass = crate::shaders::pass(
             ctx,
@@ -36,6 +40,8 @@ impl RayCaster {
         Ok(Self { pass })
     }
 
+    /// Uploads `rays` and binds them with a hit buffer, ready for [`RayCaster::record`];
+    /// `any_hit` stops each ray at its first hit (shadow rays).
     pub fn upload(
         &self,
         ctx: &GpuContext,

@@ -7,9 +7,13 @@ use bytemuck::{Pod, Zeroable};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuRay {
+    /// World-space origin.
     pub origin: [f32; 3],
+    /// Farthest ray parameter a hit may have.
     pub t_max: f32,
+    /// World-space direction (unit length makes `t` a distance).
     pub dir: [f32; 3],
+    /// Padding to a 16-byte multiple; 0.
     pub _pad: u32,
 }
 
@@ -17,18 +21,26 @@ pub struct GpuRay {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuRayHit {
+    /// Ray parameter of the hit; -1 on a miss.
     pub t: f32,
+    /// GPU triangle slot hit (see [`crate::GpuScene::triangle_sources`]).
     pub triangle: u32,
+    /// Instance hit, in instance-buffer order (see [`crate::GpuScene::instance_order`]).
     pub instance: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad: u32,
 }
 
+/// The ray-cast pass's parameters (its uniform).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuRayCastParams {
+    /// Rays in the batch; threads past it do nothing.
     pub ray_count: u32,
     /// 1: stop at the first hit (shadow rays).
     pub any_hit: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad0: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad1: u32,
 }

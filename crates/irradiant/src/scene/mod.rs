@@ -63,6 +63,7 @@ impl Default for GpuSceneSettings {
 }
 
 impl GpuSceneSettings {
+    /// 256² textures and `Fast` BVH builds: quicker to load, slower rays.
     pub fn fast() -> Self {
         Self {
             texture_size: 256,
@@ -74,6 +75,7 @@ impl GpuSceneSettings {
     pub fn balanced() -> Self {
         Self::default()
     }
+    /// 1024² textures, otherwise the default.
     pub fn quality() -> Self {
         Self {
             texture_size: 1024,
@@ -85,6 +87,8 @@ impl GpuSceneSettings {
 /// Where each GPU triangle slot came from: (mesh, triangle of the mesh).
 pub type TriangleSource = (u32, u32);
 
+/// The scene on the GPU: its buffers, textures and BVH, bound by name by every ray-tracing
+/// pass ([`GpuScene::resources`]); [`GpuScene::update`] uploads each new pose.
 pub struct GpuScene {
     nodes: wgpu::Buffer,
     wide_nodes: wgpu::Buffer,
@@ -121,21 +125,32 @@ pub struct GpuScene {
     tlas_stack: u32,
     stack_in_workgroup: bool,
     blas_layout: BlasLayout,
+    /// Per GPU triangle slot (what a hit reports): the mesh triangle it came from.
     pub triangle_sources: Vec<TriangleSource>,
+    /// Sizes and build time, for logs and benchmarks.
     pub stats: GpuSceneStats,
 }
 
+/// What putting the scene on the GPU made, and what it took.
 #[derive(Clone, Debug, Default)]
 pub struct GpuSceneStats {
+    /// Triangle slots, over every mesh.
     pub triangles: usize,
+    /// BVH nodes, binary and wide together (the top level's room included).
     pub bvh_nodes: usize,
+    /// Wall time of building every bottom-level tree and laying out the triangles.
     pub bvh_build: Duration,
+    /// Depth of the deepest bottom-level tree (sizes the traversal stack).
     pub max_blas_depth: u32,
+    /// Layers of the texture array (one a texture, at least one).
     pub texture_layers: u32,
+    /// Bytes of every scene buffer and the texture array.
     pub gpu_bytes: u64,
 }
 
 impl GpuScene {
+    /// Builds the BVHs, checks every allocation against the adapter, then uploads the scene
+    /// posed at time 0.
     pub fn new(
         ctx: &GpuContext,
         scene: &Scene,

@@ -9,12 +9,17 @@ pub use irradiant_bvh::{GpuBvhNode, GpuWideBvhNode};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuTriangle {
+    /// First vertex, in the mesh's object space.
     pub v0: [f32; 3],
+    /// Index into the materials buffer.
     pub material: u32,
+    /// Second vertex minus the first.
     pub e1: [f32; 3],
-    /// bit 0: [`TRIANGLE_ALPHA_TESTED`]
+    /// bit 0: [`TRIANGLE_ALPHA_TESTED`](super::constants::TRIANGLE_ALPHA_TESTED)
     pub flags: u32,
+    /// Third vertex minus the first.
     pub e2: [f32; 3],
+    /// Padding to a 16-byte multiple; 0.
     pub _pad: u32,
 }
 const _: () = assert!(size_of::<GpuTriangle>() == 48);
@@ -23,15 +28,25 @@ const _: () = assert!(size_of::<GpuTriangle>() == 48);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuTriangleShading {
+    /// Normal at the first vertex, object space.
     pub n0: [f32; 3],
+    /// Padding after a vec3; 0.
     pub _pad0: u32,
+    /// Normal at the second vertex.
     pub n1: [f32; 3],
+    /// Padding after a vec3; 0.
     pub _pad1: u32,
+    /// Normal at the third vertex.
     pub n2: [f32; 3],
+    /// Padding after a vec3; 0.
     pub _pad2: u32,
+    /// Texture coordinates of the first vertex.
     pub uv0: [f32; 2],
+    /// Texture coordinates of the second vertex.
     pub uv1: [f32; 2],
+    /// Texture coordinates of the third vertex.
     pub uv2: [f32; 2],
+    /// Padding to a 16-byte multiple; 0.
     pub _pad3: [f32; 2],
 }
 const _: () = assert!(size_of::<GpuTriangleShading>() == 80);
@@ -41,72 +56,110 @@ const _: () = assert!(size_of::<GpuTriangleShading>() == 80);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuInstance {
+    /// Row 0 of the world-to-object matrix.
     pub world_to_object0: [f32; 4],
+    /// Row 1 of the world-to-object matrix.
     pub world_to_object1: [f32; 4],
+    /// Row 2 of the world-to-object matrix.
     pub world_to_object2: [f32; 4],
+    /// Row 0 of the object-to-world matrix.
     pub object_to_world0: [f32; 4],
+    /// Row 1 of the object-to-world matrix.
     pub object_to_world1: [f32; 4],
+    /// Row 2 of the object-to-world matrix.
     pub object_to_world2: [f32; 4],
+    /// Row 0 of last frame's object-to-world matrix (motion vectors).
     pub previous_object_to_world0: [f32; 4],
+    /// Row 1 of last frame's object-to-world matrix.
     pub previous_object_to_world1: [f32; 4],
+    /// Row 2 of last frame's object-to-world matrix.
     pub previous_object_to_world2: [f32; 4],
+    /// Root node of the mesh's bottom-level tree, in the binary or the wide node buffer as
+    /// [`BlasLayout`](super::BlasLayout) picks.
     pub blas_root: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad0: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad1: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad2: u32,
 }
 const _: () = assert!(size_of::<GpuInstance>() == 160);
 
+/// A material: metallic-roughness, as glTF.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
+    /// Linear base colour; alpha is coverage for alpha-masked materials.
     pub base_color: [f32; 4],
+    /// Emitted radiance.
     pub emission: [f32; 3],
     /// Texture array layer, or -1.
     pub texture: i32,
+    /// 0: dielectric, 1: metal.
     pub metallic: f32,
+    /// Perceptual roughness (GGX alpha = roughness²).
     pub roughness: f32,
+    /// Scale of the dielectric specular lobe (F0 = 0.04 × specular).
     pub specular: f32,
     /// Alpha below this is a hole; -1 for opaque materials.
     pub alpha_cutoff: f32,
 }
 const _: () = assert!(size_of::<GpuMaterial>() == 48);
 
+/// A punctual light: point, spot or directional.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuLight {
+    /// World position (unused by directional lights).
     pub position: [f32; 3],
-    /// [`LIGHT_POINT`], [`LIGHT_SPOT`] or [`LIGHT_DIRECTIONAL`]
+    /// [`LIGHT_POINT`](super::constants::LIGHT_POINT),
+    /// [`LIGHT_SPOT`](super::constants::LIGHT_SPOT) or
+    /// [`LIGHT_DIRECTIONAL`](super::constants::LIGHT_DIRECTIONAL)
     pub kind: u32,
     /// The direction light travels.
     pub direction: [f32; 3],
+    /// Spot lights: cosine of the cone's inner angle (full power inside); 1 otherwise.
     pub cos_inner: f32,
     /// Colour × intensity, zero when off.
     pub power: [f32; 3],
+    /// Spot lights: cosine of the cone's outer angle (no light outside); 1 otherwise.
     pub cos_outer: f32,
 }
 const _: () = assert!(size_of::<GpuLight>() == 48);
 
+/// One emissive triangle of one instance for next-event estimation, chosen with probability
+/// ∝ luminance(emission) × world area.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuEmitter {
+    /// Its triangle slot.
     pub triangle: u32,
+    /// Its instance, in instance-buffer (top-level leaf) order.
     pub instance: u32,
     /// Cumulative selection probability up to and including this emitter.
     pub cdf: f32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad: u32,
 }
 const _: () = assert!(size_of::<GpuEmitter>() == 16);
 
+/// Scene-wide figures, uploaded with each pose (the `scene_info` uniform).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuSceneInfo {
+    /// Radiance of rays that leave the scene.
     pub sky: [f32; 3],
+    /// Entries of the lights buffer.
     pub light_count: u32,
+    /// Entries of the emitters buffer.
     pub emitter_count: u32,
-    /// Σ luminance(emission) × world area over the emitters.
+    /// Σ luminance(emission) × world area over the emitters: an emissive point's area pdf is
+    /// luminance(emission) / emissive_power.
     pub emissive_power: f32,
+    /// Root node of the top-level tree, in the binary node buffer after every mesh's nodes.
     pub tlas_root: u32,
+    /// Entries of the instances buffer.
     pub instance_count: u32,
 }
 const _: () = assert!(size_of::<GpuSceneInfo>() == 32);
@@ -115,18 +168,27 @@ const _: () = assert!(size_of::<GpuSceneInfo>() == 32);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuCamera {
+    /// World position of the eye.
     pub position: [f32; 3],
+    /// tan of half the vertical field of view.
     pub tan_half_fov_y: f32,
+    /// Unit vector to the image's right.
     pub right: [f32; 3],
+    /// Width over height.
     pub aspect: f32,
+    /// Unit vector up the image.
     pub up: [f32; 3],
+    /// Padding after a vec3; 0.
     pub _pad0: f32,
+    /// Unit view direction.
     pub forward: [f32; 3],
+    /// Padding after a vec3; 0.
     pub _pad1: f32,
 }
 const _: () = assert!(size_of::<GpuCamera>() == 64);
 
 impl GpuCamera {
+    /// The camera's frame for a `width`×`height` image.
     pub fn new(camera: &irradiant_scene::Camera, width: u32, height: u32) -> Self {
         let forward = (camera.target - camera.position).normalize();
         let right = forward.cross(camera.up).normalize_or(glam::Vec3::X);

@@ -5,6 +5,7 @@ use std::sync::{Arc, OnceLock};
 
 use irradiant_gpu::{ComputePass, GpuContext, PassDesc, PassError, ShaderLibrary};
 
+/// Every shared WGSL module by its `#import` name, built once.
 pub fn library() -> &'static ShaderLibrary {
     static LIBRARY: OnceLock<ShaderLibrary> = OnceLock::new();
     LIBRARY.get_or_init(|| {

@@ -16,25 +16,31 @@ use crate::technique::{Counter, Technique, TechniquePasses};
 /// The settings of `ssil+ddgi`: each technique's own, under its name.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HybridSettings {
+    /// The screen-space part's settings (`[technique.ssil]`).
     pub ssil: SsilSettings,
+    /// The probes' settings (`[technique.ddgi]`).
     pub ddgi: DdgiSettings,
 }
 
 crate::settings::presets_from_inherent!(HybridSettings);
 
 impl HybridSettings {
+    /// Each technique's fast preset.
     pub fn fast() -> Self {
         Self {
             ssil: SsilSettings::fast(),
             ddgi: DdgiSettings::fast(),
         }
     }
+    /// Each technique's balanced preset.
     pub fn balanced() -> Self {
         Self {
             ssil: SsilSettings::balanced(),
             ddgi: DdgiSettings::balanced(),
         }
     }
+    /// Each technique's quality preset, less DDGI's final gather and traced and blind
+    /// bounces (512 rays a probe instead).
     pub fn quality() -> Self {
         let mut ddgi = DdgiSettings::quality();
         // The screen-space light stands in for the probes where the screen sees; DDGI's traced
@@ -57,7 +63,9 @@ impl HybridSettings {
 /// `ssil+ddgi`: DDGI's probes light everything, then the screen-space light replaces them in
 /// the share of each pixel's hemisphere the screen covers.
 pub struct SsilDdgi {
+    /// The probes, which light every pixel first.
     pub ddgi: Ddgi,
+    /// The screen-space light, built as the hybrid's part (over the probes' light).
     pub ssil: Ssil,
 }
 

@@ -79,6 +79,7 @@ struct BouncePasses {
     upsamples: Vec<(BoundPass, Workgroups)>,
 }
 
+/// Hierarchical screen-space indirect illumination over the frame's G-buffer pyramid.
 pub struct Ssil {
     settings: SsilSettings,
     hybrid: bool,
@@ -96,6 +97,8 @@ pub struct Ssil {
 }
 
 impl Ssil {
+    /// Validates the settings, allocates its textures and binds its passes to the frame;
+    /// `hybrid` builds it as `ssil+ddgi`'s part, over the probes' light.
     pub fn new(
         cx: &TechniqueContext,
         settings: &SsilSettings,
@@ -309,6 +312,7 @@ impl Ssil {
         })
     }
 
+    /// The settings it runs with.
     pub fn settings(&self) -> &SsilSettings {
         &self.settings
     }

@@ -10,8 +10,11 @@ use crate::settings::{SettingsError, check_range, overlay};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum StartResolution {
+    /// Full resolution: pyramid level 0.
     Full,
+    /// Half resolution: level 1.
     Half,
+    /// Quarter resolution: level 2.
     Quarter,
 }
 
@@ -26,6 +29,7 @@ impl StartResolution {
     }
 }
 
+/// Screen-space indirect illumination's settings (the `ssil` technique's keys).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SsilSettings {
     /// Where the gathers start. Lower resolutions lose the high frequencies of close-range
@@ -85,6 +89,7 @@ impl Default for SsilSettings {
 crate::settings::presets_from_inherent!(SsilSettings);
 
 impl SsilSettings {
+    /// Balanced from a quarter-resolution start, with 32 samples and no visibility.
     pub fn fast() -> Self {
         Self {
             start: StartResolution::Quarter,
@@ -94,6 +99,7 @@ impl SsilSettings {
         }
     }
 
+    /// Half-resolution start, 4 levels, 64 samples, visibility, one glossy bounce.
     pub fn balanced() -> Self {
         Self {
             start: StartResolution::Half,
@@ -113,6 +119,7 @@ impl SsilSettings {
         }
     }
 
+    /// Balanced with 5 levels, 128 samples, 12 visibility steps and two bounces.
     pub fn quality() -> Self {
         Self {
             levels: 5,
@@ -148,6 +155,7 @@ impl SsilSettings {
         self.radius * height as f32 / 720.0
     }
 
+    /// Refuses settings that cannot work, naming the field, the value and what is allowed.
     pub fn validate(&self) -> Result<(), SettingsError> {
         check_range("technique.levels", self.levels, 1, 6)?;
         check_range("technique.radius", self.radius, 2.0, 512.0)?;

@@ -9,7 +9,9 @@ use bytemuck::{Pod, Zeroable};
 pub struct GpuSsilParams {
     /// Pyramid level of the first gather (0 full, 1 half, 2 quarter resolution).
     pub start_level: u32,
+    /// Pyramid levels gathered from the start level on.
     pub levels: u32,
+    /// Samples a level gathers per pixel.
     pub samples: u32,
     /// 1: march the voxel grid for visibility.
     pub visibility: u32,
@@ -17,13 +19,22 @@ pub struct GpuSsilParams {
     pub radius: f32,
     /// The voxel grid's 128 slices span these view depths.
     pub near: f32,
+    /// Far end of the voxel slices' view depths (`near` is the near end).
     pub far: f32,
+    /// Steps of each visibility march.
     pub visibility_steps: u32,
+    /// Share of each march skipped at its start and at its end.
     pub visibility_bias: f32,
+    /// α of the glossy importance function f(θ) = α + exp(−s(θr − θ)²/2π); 1e9 (uniform
+    /// samples) with the glossy gather off.
     pub importance_alpha: f32,
+    /// Share of last frame's filtered light a still diffuse pixel keeps.
     pub hysteresis: f32,
+    /// Motion, in pixels a frame, at which the hysteresis has fallen to a third.
     pub motion_pixels: f32,
+    /// Relative depth difference past which last frame's pixel is another surface.
     pub depth_tolerance: f32,
+    /// Smallest cosine between this and last frame's normal for the history to count.
     pub normal_tolerance: f32,
     /// 0 on the first frame after a reset.
     pub history_valid: u32,
@@ -48,7 +59,9 @@ pub struct GpuSsilPass {
     pub coarse_level: u32,
     /// ssil/upsample: 1 to add this level's own gather.
     pub with_gather: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad0: u32,
+    /// Padding to a 16-byte multiple; 0.
     pub _pad1: u32,
 }
 const _: () = assert!(size_of::<GpuSsilPass>() == 32);
