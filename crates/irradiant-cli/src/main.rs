@@ -13,6 +13,7 @@ mod over_time;
 mod reference;
 mod render;
 mod soak;
+mod view;
 
 use std::process::ExitCode;
 
@@ -46,13 +47,17 @@ enum Command {
     Oracle(oracle::OracleArgs),
     /// Trace rays through a light field and through the BVH; report the share that agree.
     Agreement(agreement::AgreementArgs),
+    /// Fly through a scene with every technique live (docs/view.md).
+    View(view::ViewArgs),
 }
 
 fn main() -> ExitCode {
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_env("IRRADIANT_LOG")
-                .unwrap_or_else(|_| "warn".into()),
+                // winit's warnings about the X server's settings (Xvfb's especially) say
+                // nothing a user can act on.
+                .unwrap_or_else(|_| "warn,winit=error".into()),
         )
         .with_writer(std::io::stderr)
         .without_time()
@@ -71,6 +76,7 @@ fn main() -> ExitCode {
         Command::Soak(args) => soak::run(&args, &adapter),
         Command::Oracle(args) => oracle::run(&args, &adapter),
         Command::Agreement(args) => agreement::run(&args, &adapter),
+        Command::View(args) => view::run(&args, &adapter),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -110,13 +110,15 @@ fn oracle_measures_ddgi_probes_and_query_and_draws_the_worst() {
             .unwrap()
             .is_finite()
     );
+    // Each variant's files go into a folder named after its label.
+    let first = out.join("ddgi_volume.probe_counts__2_2_2__".replace('.', "_"));
     for file in [
         "histogram.txt",
         "worst-probes.png",
         "probe-view.png",
         "query-error.png",
     ] {
-        assert!(out.join("ddgi").join(file).is_file(), "{file}");
+        assert!(first.join(file).is_file(), "{}/{file}", first.display());
     }
     let (ok, _, stderr) = irradiant(&["oracle", "--techniques", "ssil", "--out", out_text]);
     assert!(!ok && stderr.contains("'ssil' is not DDGI"), "{stderr}");

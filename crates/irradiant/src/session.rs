@@ -296,6 +296,40 @@ impl Session {
         Ok(())
     }
 
+    /// Changes the image size: the frame and the technique are built anew at it (the scene and
+    /// its trees stay). Waits for the frames in flight, which use the old textures.
+    pub fn resize(&mut self, size: (u32, u32)) -> Result<(), RenderError> {
+        if size == self.frame.size() {
+            return Ok(());
+        }
+        self.ctx.wait()?;
+        self.in_flight.clear();
+        let kind = self.spec.kind()?;
+        let needs = kind.frame_needs(&self.spec);
+        let mut plan = Frame::plan(size.0, size.1, needs);
+        plan.extend(kind.plan(&self.spec, &self.scene, size)?);
+        self.ctx.check_allocations(&plan)?;
+        self.frame = Frame::new(
+            &self.ctx,
+            &self.gpu_scene,
+            size,
+            self.frame.settings().clone(),
+            needs,
+        )?;
+        self.technique = kind.build(
+            &TechniqueContext {
+                ctx: &self.ctx,
+                scene: &self.scene,
+                gpu_scene: &self.gpu_scene,
+                frame: &self.frame,
+                cache_dir: self.cache_dir.as_deref(),
+                progress: self.progress.as_ref(),
+            },
+            &self.spec,
+        )?;
+        Ok(())
+    }
+
     /// Renders one frame.
     pub fn render(&mut self) -> Result<(), RenderError> {
         self.record_and_submit(false)?;

@@ -132,7 +132,7 @@ impl TechniqueSpec {
         Self {
             name: name.into(),
             preset: Preset::Balanced,
-            settings: toml::Table::try_from(settings).expect("settings serialise to a table"),
+            settings: as_table(settings),
         }
     }
 }
@@ -141,6 +141,11 @@ impl Default for TechniqueSpec {
     fn default() -> Self {
         Self::new("ddgi", Preset::Balanced)
     }
+}
+
+/// A settings struct as the TOML table a settings file writes for it.
+pub fn as_table<T: Serialize>(settings: &T) -> toml::Table {
+    toml::Table::try_from(settings).expect("settings serialise to a TOML table")
 }
 
 /// A setting that cannot be used. Every message names the field, the value and the fix.

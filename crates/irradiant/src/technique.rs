@@ -64,6 +64,10 @@ pub trait TechniqueKind: Sync {
     /// Parses and validates the spec's settings, returning the warnings (unknown keys): what
     /// tools call before any GPU work, so that a settings error comes first.
     fn check(&self, spec: &TechniqueSpec) -> Result<Vec<String>, RenderError>;
+    /// Every setting the spec resolves to — its preset with the spec's own keys over it — as a
+    /// settings file's `[technique]` table writes them (without `name` and `preset`): what the
+    /// viewer's panel shows and edits, key by key.
+    fn resolved_settings(&self, spec: &TechniqueSpec) -> Result<toml::Table, RenderError>;
     /// What it needs of the frame beyond the G-buffer and the light buffers.
     fn frame_needs(&self, _spec: &TechniqueSpec) -> FrameNeeds {
         FrameNeeds::default()

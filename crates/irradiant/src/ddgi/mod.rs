@@ -109,6 +109,11 @@ impl TechniqueKind for DdgiKind {
         self.settings(spec, &mut warnings)?;
         Ok(warnings)
     }
+    fn resolved_settings(&self, spec: &TechniqueSpec) -> Result<toml::Table, RenderError> {
+        Ok(crate::settings::as_table(
+            &self.settings(spec, &mut Vec::new())?,
+        ))
+    }
     fn plan(
         &self,
         spec: &TechniqueSpec,

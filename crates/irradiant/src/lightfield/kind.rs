@@ -139,6 +139,11 @@ impl TechniqueKind for LightfieldKind {
         self.settings(spec, &mut warnings)?;
         Ok(warnings)
     }
+    fn resolved_settings(&self, spec: &TechniqueSpec) -> Result<toml::Table, RenderError> {
+        Ok(crate::settings::as_table(
+            &self.settings(spec, &mut Vec::new())?,
+        ))
+    }
     fn plan(
         &self,
         spec: &TechniqueSpec,

@@ -30,6 +30,9 @@ impl TechniqueKind for NoneKind {
             .map(|k| format!("unknown setting technique.{k} is ignored: 'none' has no settings"))
             .collect())
     }
+    fn resolved_settings(&self, _spec: &TechniqueSpec) -> Result<toml::Table, RenderError> {
+        Ok(toml::Table::new())
+    }
     fn plan(
         &self,
         _: &TechniqueSpec,

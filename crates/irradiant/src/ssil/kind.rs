@@ -53,6 +53,12 @@ impl TechniqueKind for SsilKind {
         self.settings(spec, &mut warnings)?;
         Ok(warnings)
     }
+    fn resolved_settings(&self, spec: &TechniqueSpec) -> Result<toml::Table, RenderError> {
+        Ok(match self.settings(spec, &mut Vec::new())? {
+            (ssil, Some(ddgi)) => crate::settings::as_table(&HybridSettings { ssil, ddgi }),
+            (ssil, None) => crate::settings::as_table(&ssil),
+        })
+    }
     fn frame_needs(&self, spec: &TechniqueSpec) -> FrameNeeds {
         let levels = self
             .settings(spec, &mut Vec::new())

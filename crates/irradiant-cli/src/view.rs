@@ -1,0 +1,68 @@
+//! `irradiant view`: the interactive viewer (crates/irradiant-view) from the command line.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use irradiant::AdapterChoice;
+
+use crate::CliError;
+use crate::options::parse_size;
+
+#[derive(Args)]
+pub struct ViewArgs {
+    /// A built-in scene, a manifest (.toml) or a mesh (.obj, .gltf, .glb).
+    #[arg(long, default_value = "cornell")]
+    pub scene: String,
+    /// The technique shown first: a spec as `render --technique` takes (`ddgi{preset =
+    /// "quality"}`), or `path`. The panel and the number keys switch it.
+    #[arg(long, default_value = "ddgi")]
+    pub technique: String,
+    /// The window's size, WIDTHxHEIGHT (the frame renders at the window's size).
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Run the steps of this TOML script instead of a person (docs/view.md): technique
+    /// switches, camera moves, key presses, frames, screenshots, quit.
+    #[arg(long)]
+    pub script: Option<PathBuf>,
+    /// Draw into a texture instead of a window: no display needed (tests, measurements). Prints
+    /// the mean frame time at the end.
+    #[arg(long)]
+    pub offscreen: bool,
+    /// Leave the panel out (to measure what it costs).
+    #[arg(long)]
+    pub no_panel: bool,
+    /// Where screenshots (F12), bookmarks (B) and saved settings go.
+    #[arg(long, default_value = ".")]
+    pub out_dir: PathBuf,
+}
+
+pub fn run(args: &ViewArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
+    if !args.out_dir.is_dir() {
+        return Err(CliError::Io {
+            path: args.out_dir.clone(),
+            message: "the output folder does not exist; create it first".into(),
+        });
+    }
+    let options = irradiant_view::ViewOptions {
+        scene: args.scene.clone(),
+        size: args.size,
+        technique: args.technique.clone(),
+        adapter: adapter.clone(),
+        script: args.script.clone(),
+        offscreen: args.offscreen,
+        panel: !args.no_panel,
+        out_dir: args.out_dir.clone(),
+        cache_dir: Some(crate::cache::dir(None)),
+    };
+    let report = irradiant_view::run(&options).map_err(|e| CliError::Usage(e.to_string()))?;
+    if args.offscreen {
+        println!(
+            "view: {} frames, {:.3} ms a frame (the GPU waited for), {:.3} ms of it building the panel{}",
+            report.frames,
+            report.frame_ms,
+            report.ui_cpu_ms,
+            if args.no_panel { " (no panel)" } else { "" }
+        );
+    }
+    Ok(())
+}

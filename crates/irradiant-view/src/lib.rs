@@ -1,0 +1,280 @@
+//! `irradiant view`: fly through a scene with every technique live, switch them, turn their
+//! settings, and put the path-traced reference one key away — on the same [`Session`] that
+//! `irradiant render` drives. A window (winit + egui), or with `--offscreen` the same frames and
+//! panel drawn into a texture, for tests and for measuring the viewer where there is no display.
+//! The library crates never depend on this one.
+
+#![warn(missing_docs)]
+
+pub mod camera;
+pub mod present;
+pub mod script;
+pub mod ui;
+pub mod viewer;
+mod window;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use irradiant::{AdapterChoice, GpuContext, Session, SessionSettings, TechniqueSpec};
+
+pub use viewer::Viewer;
+
+/// Why the viewer stopped. Each message names the problem and the fix.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewError {
+    /// Rendering failed: a technique, a size or the device.
+    #[error(transparent)]
+    Render(#[from] irradiant::RenderError),
+    /// The GPU context could not be made or was lost.
+    #[error(transparent)]
+    Gpu(#[from] irradiant::GpuError),
+    /// The scene did not load.
+    #[error(transparent)]
+    Scene(#[from] irradiant_scene::SceneError),
+    /// A setting could not be used.
+    #[error(transparent)]
+    SettingsFile(#[from] irradiant::SettingsError),
+    /// A technique or setting typed into the viewer could not be used.
+    #[error("{0}")]
+    Settings(String),
+    /// A script could not be read or run.
+    #[error("{path}: {problem}")]
+    Script {
+        /// The script.
+        path: PathBuf,
+        /// What is wrong, and the fix.
+        problem: String,
+    },
+    /// A file could not be written.
+    #[error("{path}: {message}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+    /// No window: no display, or the adapter cannot present to it.
+    #[error("{0}")]
+    Window(String),
+}
+
+/// How the viewer starts.
+#[derive(Clone, Debug)]
+pub struct ViewOptions {
+    /// A built-in scene, a manifest or a mesh file.
+    pub scene: String,
+    /// The window's (or the offscreen target's) size in pixels.
+    pub size: (u32, u32),
+    /// The technique shown first, as a spec (`ddgi{preset = "quality"}`) or `path`.
+    pub technique: String,
+    /// The GPU adapter.
+    pub adapter: AdapterChoice,
+    /// Steps to run instead of a person (`--script`).
+    pub script: Option<PathBuf>,
+    /// Draw into a texture instead of a window (no display needed).
+    pub offscreen: bool,
+    /// Draw the panel (off: the frame alone, to measure what the panel costs).
+    pub panel: bool,
+    /// Where screenshots, bookmarks and settings files go.
+    pub out_dir: PathBuf,
+    /// Where the light field's bakes are cached.
+    pub cache_dir: Option<PathBuf>,
+}
+
+/// Frames a second a script's frames stand for: every scripted frame advances the scene by its
+/// reciprocal, so a script renders the same frames on every machine.
+pub const SCRIPT_FPS: f32 = 60.0;
+
+/// What the viewer measured over a run (`--offscreen`): the frames and the time they took.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunReport {
+    /// Frames rendered.
+    pub frames: u64,
+    /// Mean wall-clock milliseconds a frame, the GPU waited for (offscreen only).
+    pub frame_ms: f64,
+    /// Mean CPU milliseconds a frame spent building and tessellating the panel.
+    pub ui_cpu_ms: f64,
+}
+
+/// Builds the viewer: the scene, the GPU context and the session showing the first technique.
+pub fn start(options: &ViewOptions) -> Result<Viewer, ViewError> {
+    let loaded = irradiant_scene::load(&options.scene)?;
+    for w in &loaded.warnings {
+        eprintln!("warning: {w}");
+    }
+    let first = if options.technique.trim() == viewer::PATH {
+        "ddgi"
+    } else {
+        options.technique.as_str()
+    };
+    // The spec is checked before the adapter is opened: a bad setting comes first.
+    let spec = parse_spec(first)?;
+    let ctx = Arc::new(GpuContext::new(&options.adapter)?);
+    let session = Session::new(
+        ctx,
+        loaded.scene,
+        SessionSettings {
+            size: options.size,
+            technique: spec,
+            cache_dir: options.cache_dir.clone(),
+            ..Default::default()
+        },
+    )?;
+    for w in session.warnings() {
+        eprintln!("warning: {w}");
+    }
+    let mut viewer = Viewer::new(session, options.out_dir.clone());
+    if options.technique.trim() == viewer::PATH {
+        viewer.switch_to(viewer::PATH)?;
+    }
+    viewer.camera_moved()?;
+    Ok(viewer)
+}
+
+/// A spec as the command line writes it: `name` or `name{key = value, preset = "…"}`.
+pub fn parse_spec(text: &str) -> Result<TechniqueSpec, ViewError> {
+    let text = text.trim();
+    let (name, inner) = match text.split_once('{') {
+        Some((name, rest)) => (
+            name.trim(),
+            rest.trim_end().strip_suffix('}').ok_or_else(|| {
+                ViewError::Settings(format!(
+                    "technique '{text}': settings in braces must end with '}}'"
+                ))
+            })?,
+        ),
+        None => (text, ""),
+    };
+    let table: toml::Table = toml::from_str(&format!("v = {{{inner}}}"))
+        .map_err(|e| ViewError::Settings(format!("technique '{text}': {}", e.message())))?;
+    let mut settings = match table.get("v") {
+        Some(toml::Value::Table(t)) => t.clone(),
+        _ => toml::Table::new(),
+    };
+    let preset = match settings.remove("preset") {
+        Some(toml::Value::String(p)) => irradiant::Preset::parse(&p)?,
+        Some(other) => {
+            return Err(ViewError::Settings(format!(
+                "technique '{text}': preset = {other} is not a preset name: use \"fast\", \"balanced\" or \"quality\""
+            )));
+        }
+        None => irradiant::Preset::Balanced,
+    };
+    let spec = TechniqueSpec {
+        name: name.to_owned(),
+        preset,
+        settings,
+    };
+    spec.kind()?.check(&spec)?;
+    Ok(spec)
+}
+
+/// Opens the window and runs until it closes (or the script quits).
+pub fn run(options: &ViewOptions) -> Result<RunReport, ViewError> {
+    if options.offscreen {
+        return run_offscreen(options);
+    }
+    window::run(options)
+}
+
+/// What a script does next, frame by frame.
+pub struct ScriptRunner {
+    steps: std::collections::VecDeque<script::Step>,
+    frames_left: u32,
+}
+
+impl ScriptRunner {
+    /// Runs `steps` from the first.
+    pub fn new(steps: Vec<script::Step>) -> Self {
+        Self {
+            steps: steps.into(),
+            frames_left: 0,
+        }
+    }
+
+    /// Does the steps due before the next frame; false when the script has quit or ended.
+    pub fn before_frame(&mut self, viewer: &mut Viewer) -> Result<bool, ViewError> {
+        use script::Step;
+        while self.frames_left == 0 {
+            let Some(step) = self.steps.pop_front() else {
+                return Ok(false);
+            };
+            match step {
+                Step::Technique(t) => viewer.apply_text(&t)?,
+                Step::Camera(c) => viewer.set_camera(&c)?,
+                Step::Move(m, seconds) => viewer.fly(m, seconds)?,
+                Step::Key(k) => viewer.press(&k)?,
+                Step::Frames(n) => self.frames_left = n,
+                Step::Screenshot(path) => viewer.screenshot(&path)?,
+                Step::Quit => return Ok(false),
+            }
+        }
+        self.frames_left -= 1;
+        Ok(true)
+    }
+}
+
+/// The viewer without a window: frames and panel drawn into a texture, driven by the script
+/// (without one, a single frame).
+pub fn run_offscreen(options: &ViewOptions) -> Result<RunReport, ViewError> {
+    let steps = match &options.script {
+        Some(path) => script::read_script(path)?,
+        None => vec![script::Step::Frames(1)],
+    };
+    let mut viewer = start(options)?;
+    let mut presenter =
+        present::Presenter::new(viewer.ctx(), irradiant_gpu::wgpu::TextureFormat::Rgba8Unorm);
+    let egui_ctx = egui::Context::default();
+    let mut panel = ui::PanelState::default();
+    let mut runner = ScriptRunner::new(steps);
+    let mut report = RunReport::default();
+    let (mut frame_total, mut ui_total) = (0.0, 0.0);
+    let mut last_ms = 0.0;
+    let mut target: Option<((u32, u32), present::Offscreen)> = None;
+    while runner.before_frame(&mut viewer)? {
+        let start = Instant::now();
+        viewer.render(1.0 / SCRIPT_FPS)?;
+        let size = viewer.session.frame().size();
+        if target.as_ref().is_none_or(|(s, _)| *s != size) {
+            target = Some((size, present::Offscreen::new(viewer.ctx(), size)));
+        }
+        let target = &target.as_ref().expect("made above").1;
+        let ui_start = Instant::now();
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(size.0 as f32, size.1 as f32),
+            )),
+            ..Default::default()
+        };
+        let output = egui_ctx.run_ui(input, |ui| {
+            if options.panel {
+                ui::draw(ui, &mut viewer, &mut panel, last_ms);
+            }
+        });
+        ui_total += ui_start.elapsed().as_secs_f64() * 1e3;
+        let ctx = viewer.ctx();
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        presenter.record(
+            ctx,
+            &mut encoder,
+            &target.view,
+            size,
+            viewer.image_view(),
+            output,
+            &egui_ctx,
+        );
+        ctx.queue.submit([encoder.finish()]);
+        ctx.wait()?;
+        last_ms = start.elapsed().as_secs_f64() * 1e3;
+        frame_total += last_ms;
+        report.frames += 1;
+    }
+    if report.frames > 0 {
+        report.frame_ms = frame_total / report.frames as f64;
+        report.ui_cpu_ms = ui_total / report.frames as f64;
+    }
+    Ok(report)
+}

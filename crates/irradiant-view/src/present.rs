@@ -1,0 +1,191 @@
+//! The frame and the UI drawn into a target: the session's tonemapped output (or the path
+//! tracer's image) copied by `view/blit`, then egui's shapes over it. The same code draws into a
+//! window's surface and into an offscreen texture (tests, measurements on a machine with no
+//! display).
+
+use irradiant_gpu::{GpuContext, wgpu};
+
+/// The blit's WGSL: a full-screen triangle that loads the image texel under each pixel (the
+/// image is the target's size; a texel past its edge repeats the last, during a resize).
+const BLIT_WGSL: &str = r#"
+@group(0) @binding(0) var image: texture_2d<f32>;
+
+@vertex
+fn vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
+    let corner = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4f(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
+    let last = vec2i(textureDimensions(image)) - 1;
+    return textureLoad(image, min(vec2i(pixel.xy), last), 0);
+}
+"#;
+
+/// What draws the frame and the UI into a target of one format.
+pub struct Presenter {
+    blit: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    /// egui's renderer, for the target's format.
+    pub egui: egui_wgpu::Renderer,
+    /// The format drawn into: never an sRGB one, since the image already holds sRGB-encoded
+    /// values (and egui encodes its own colours for a plain target).
+    pub format: wgpu::TextureFormat,
+}
+
+impl Presenter {
+    /// The blit and egui's renderer for targets of `format` (its sRGB suffix removed).
+    pub fn new(ctx: &GpuContext, format: wgpu::TextureFormat) -> Self {
+        let format = format.remove_srgb_suffix();
+        let device = &ctx.device;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("view/blit"),
+            source: wgpu::ShaderSource::Wgsl(BLIT_WGSL.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("view/blit"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            }],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("view/blit"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let blit = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("view/blit"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vertex"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fragment"),
+                compilation_options: Default::default(),
+                targets: &[Some(format.into())],
+            }),
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            multiview_mask: None,
+            cache: None,
+        });
+        let egui = egui_wgpu::Renderer::new(device, format, egui_wgpu::RendererOptions::default());
+        Self {
+            blit,
+            layout,
+            egui,
+            format,
+        }
+    }
+
+    /// Records the image's blit and the UI's shapes into `target` (`size` pixels).
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        size: (u32, u32),
+        image: &wgpu::TextureView,
+        mut ui: egui::FullOutput,
+        egui_ctx: &egui::Context,
+    ) {
+        let device = &ctx.device;
+        for (id, deltas) in &ui.textures_delta.set {
+            for delta in deltas {
+                self.egui.update_texture(device, &ctx.queue, *id, delta);
+            }
+        }
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [size.0, size.1],
+            pixels_per_point: ui.pixels_per_point,
+        };
+        let shapes = egui_ctx.tessellate(std::mem::take(&mut ui.shapes), ui.pixels_per_point);
+        let extra = self
+            .egui
+            .update_buffers(device, &ctx.queue, encoder, &shapes, &screen);
+        assert!(
+            extra.is_empty(),
+            "egui paint callbacks are not used by the viewer"
+        );
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("view/blit"),
+            layout: &self.layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(image),
+            }],
+        });
+        let mut pass = encoder
+            .begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("view/present"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: target,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            })
+            .forget_lifetime();
+        pass.set_pipeline(&self.blit);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..3, 0..1);
+        self.egui.render(&mut pass, &shapes, &screen);
+        drop(pass);
+        for id in &ui.textures_delta.free {
+            self.egui.free_texture(id);
+        }
+        // Applied above: egui checks that no delta is dropped unapplied.
+        ui.textures_delta.clear();
+    }
+}
+
+/// A texture the viewer draws into when there is no window: the target of tests and of the
+/// viewer's measurements, read back for screenshots.
+pub struct Offscreen {
+    /// Rgba8Unorm, the size of the frame.
+    pub texture: wgpu::Texture,
+    /// Its view, the render target.
+    pub view: wgpu::TextureView,
+}
+
+impl Offscreen {
+    /// A target of `size` pixels.
+    pub fn new(ctx: &GpuContext, size: (u32, u32)) -> Self {
+        let texture = irradiant_gpu::texture_2d(
+            &ctx.device,
+            "view/offscreen",
+            size,
+            wgpu::TextureFormat::Rgba8Unorm,
+            1,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
+        let view = texture.create_view(&Default::default());
+        Self { texture, view }
+    }
+
+    /// What was drawn, RGBA8 rows top to bottom.
+    pub fn read(&self, ctx: &GpuContext) -> Result<Vec<u8>, irradiant_gpu::GpuError> {
+        irradiant_gpu::read_texture(ctx, &self.texture, 4)
+    }
+}
