@@ -209,8 +209,12 @@ fn shrink(words: Vec<String>) -> Vec<String> {
     }
     let renders = matches!(
         command.as_str(),
-        "render" | "compare" | "soak" | "oracle" | "agreement"
+        "render" | "compare" | "soak" | "oracle" | "agreement" | "view"
     );
+    // The viewer draws one frame into a texture: the test has no display.
+    if command == "view" && !out.iter().any(|w| w == "--offscreen") {
+        out.push("--offscreen".into());
+    }
     if renders && !has_size {
         out.extend(["--size".into(), TINY_SIZE.into()]);
     }

@@ -183,6 +183,8 @@ pub fn run(options: &ViewOptions) -> Result<RunReport, ViewError> {
 pub struct ScriptRunner {
     steps: std::collections::VecDeque<script::Step>,
     frames_left: u32,
+    /// Where the next frame, panel included, is to be written.
+    capture: Option<PathBuf>,
 }
 
 impl ScriptRunner {
@@ -191,7 +193,13 @@ impl ScriptRunner {
         Self {
             steps: steps.into(),
             frames_left: 0,
+            capture: None,
         }
+    }
+
+    /// A capture the frame just drawn is due for (taken once).
+    pub fn take_capture(&mut self) -> Option<PathBuf> {
+        self.capture.take()
     }
 
     /// Does the steps due before the next frame; false when the script has quit or ended.
@@ -208,6 +216,11 @@ impl ScriptRunner {
                 Step::Key(k) => viewer.press(&k)?,
                 Step::Frames(n) => self.frames_left = n,
                 Step::Screenshot(path) => viewer.screenshot(&path)?,
+                Step::Capture(path) => {
+                    // The frame after the step: one more is rendered for it.
+                    self.capture = Some(path);
+                    self.frames_left = 1;
+                }
                 Step::Quit => return Ok(false),
             }
         }
@@ -269,6 +282,10 @@ pub fn run_offscreen(options: &ViewOptions) -> Result<RunReport, ViewError> {
         ctx.queue.submit([encoder.finish()]);
         ctx.wait()?;
         last_ms = start.elapsed().as_secs_f64() * 1e3;
+        if let Some(path) = runner.take_capture() {
+            let pixels = target.read(ctx)?;
+            irradiant::frame::write_png(&path, &pixels, size.0, size.1)?;
+        }
         frame_total += last_ms;
         report.frames += 1;
     }

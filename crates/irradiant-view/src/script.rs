@@ -9,11 +9,13 @@
 //! [[step]]
 //! move = { forward = 1.0, seconds = 0.5 }   # fly, as WASD/QE would
 //! [[step]]
-//! key = "Space"                             # press a key: Space, F, P, 1…9
+//! key = "Space"                             # press a key: Space, F, P, B, F1, F12, 1…9
 //! [[step]]
 //! frames = 30                                # render this many frames
 //! [[step]]
 //! screenshot = "ddgi.png"                    # the frame as shown (.png) or linear (.exr)
+//! [[step]]
+//! capture = "panel.png"                      # the frame with the panel over it (--offscreen)
 //! [[step]]
 //! quit = true
 //! ```
@@ -45,6 +47,8 @@ pub enum Step {
     Frames(u32),
     /// Save the frame as shown.
     Screenshot(PathBuf),
+    /// Save the next frame with the panel over it (offscreen only).
+    Capture(PathBuf),
     /// Close the viewer.
     Quit,
 }
@@ -65,6 +69,7 @@ struct StepDesc {
     key: Option<String>,
     frames: Option<u32>,
     screenshot: Option<PathBuf>,
+    capture: Option<PathBuf>,
     quit: Option<bool>,
 }
 
@@ -84,7 +89,7 @@ struct MoveDesc {
 
 /// The keys a script may press.
 pub const SCRIPT_KEYS: &[&str] = &[
-    "Space", "F", "P", "1", "2", "3", "4", "5", "6", "7", "8", "9",
+    "Space", "F", "P", "B", "F1", "F12", "1", "2", "3", "4", "5", "6", "7", "8", "9",
 ];
 
 /// Reads and checks a script; relative screenshot paths are relative to the script's folder.
@@ -104,7 +109,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
     };
     let file: File = toml::from_str(text).map_err(|e| {
         error(format!(
-            "{}; write [[step]] tables, each with one of technique, camera, move, key, frames, screenshot or quit",
+            "{}; write [[step]] tables, each with one of technique, camera, move, key, frames, screenshot, capture or quit",
             e.message()
         ))
     })?;
@@ -119,6 +124,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
             s.key.is_some(),
             s.frames.is_some(),
             s.screenshot.is_some(),
+            s.capture.is_some(),
             s.quit.is_some(),
         ]
         .iter()
@@ -126,7 +132,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
         .count();
         if given != 1 {
             return Err(error(format!(
-                "step {n} does {given} things: give each [[step]] exactly one of technique, camera, move, key, frames, screenshot or quit"
+                "step {n} does {given} things: give each [[step]] exactly one of technique, camera, move, key, frames, screenshot, capture or quit"
             )));
         }
         let step = if let Some(t) = s.technique {
@@ -186,6 +192,14 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
                 )));
             }
             Step::Screenshot(folder.join(p))
+        } else if let Some(p) = s.capture {
+            if p.extension().is_none_or(|e| !e.eq_ignore_ascii_case("png")) {
+                return Err(error(format!(
+                    "step {n}: capture {} must end in .png",
+                    p.display()
+                )));
+            }
+            Step::Capture(folder.join(p))
         } else {
             Step::Quit
         };

@@ -42,9 +42,12 @@ pub struct PanelState {
 
 /// Draws the panel and the help overlay, and applies what the person changed.
 pub fn draw(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState, frame_ms: f64) {
+    // Translucent: the frame stays visible under the panel, at the window's full size.
+    let frame = egui::Frame::side_top_panel(ui.style()).fill(egui::Color32::from_black_alpha(170));
     egui::Panel::left("irradiant")
         .resizable(true)
-        .default_size(300.0)
+        .default_size(260.0)
+        .frame(frame)
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| panel(ui, viewer, state, frame_ms));
         });
@@ -165,7 +168,7 @@ fn settings(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState) {
             state.settings_path = viewer.out_dir.join("settings.toml").display().to_string();
         }
         let label = ui.label("file");
-        ui.text_edit_singleline(&mut state.settings_path)
+        ui.add(egui::TextEdit::singleline(&mut state.settings_path).desired_width(120.0))
             .labelled_by(label.id);
         if ui
             .button("save settings as…")

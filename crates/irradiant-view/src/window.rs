@@ -165,6 +165,12 @@ impl App {
             if !script.before_frame(&mut open.viewer)? {
                 return Ok(false);
             }
+            if let Some(path) = script.take_capture() {
+                return Err(ViewError::Script {
+                    path,
+                    problem: "a capture (the frame with the panel) needs --offscreen; in a window, screenshot writes the frame".into(),
+                });
+            }
             dt = 1.0 / SCRIPT_FPS;
         } else {
             open.viewer.fly(self.held.movement(), dt)?;
