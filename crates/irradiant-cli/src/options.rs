@@ -465,6 +465,20 @@ mod tests {
             let e = technique_list(&[bad.into()]).unwrap_err().to_string();
             assert!(e.contains(expected), "{bad}: {e}");
         }
+        // A preset in the braces is the technique's own; the other keys stay settings.
+        let quality =
+            TechniqueChoice::parse("ddgi{preset = \"quality\", update.hysteresis = 0.9}").unwrap();
+        assert_eq!(quality.preset, Some(Preset::Quality));
+        assert!(!quality.overrides.contains_key("preset"));
+        assert_eq!(
+            quality.overrides["update"]["hysteresis"].as_float(),
+            Some(0.9)
+        );
+        assert_eq!(TechniqueChoice::parse("ddgi").unwrap().preset, None);
+        for bad in ["ddgi{preset = \"best\"}", "ddgi{preset = 3}"] {
+            let e = TechniqueChoice::parse(bad).unwrap_err().to_string();
+            assert!(e.contains("fast") && e.contains("quality"), "{bad}: {e}");
+        }
         assert_eq!(
             technique_list(&["all".into()]).unwrap().len(),
             irradiant::registry::names().len()

@@ -13,12 +13,20 @@ use common::*;
 const SIZE: &str = "64x48";
 const FRAMES: u32 = 8;
 
-/// A script: `FRAMES` frames of DDGI, a screenshot; `FRAMES` of direct light alone (key 1),
-/// a screenshot; a bookmark of the view; quit.
-fn script(dir: &Path) -> std::path::PathBuf {
+/// A script: `FRAMES` frames of DDGI, a screenshot (and, offscreen, captures of its indirect
+/// light and its normals); `FRAMES` of direct light alone (key 1), a screenshot; a camera, the
+/// path tracer, a screenshot; quit.
+fn script(dir: &Path, offscreen: bool) -> std::path::PathBuf {
     let path = dir.join("script.toml");
+    let captures = if offscreen {
+        "[[step]]\nshow = \"indirect\"\n[[step]]\ncapture = \"indirect.png\"\n\
+         [[step]]\nshow = \"normal\"\n[[step]]\ncapture = \"normal.png\"\n\
+         [[step]]\nshow = \"final\"\n"
+    } else {
+        ""
+    };
     let text = format!(
-        "[[step]]\nframes = {FRAMES}\n[[step]]\nscreenshot = \"ddgi.png\"\n\
+        "[[step]]\nframes = {FRAMES}\n[[step]]\nscreenshot = \"ddgi.png\"\n{captures}\
          [[step]]\nkey = \"1\"\n[[step]]\nframes = {FRAMES}\n[[step]]\nscreenshot = \"none.png\"\n\
          [[step]]\ncamera = {{ position = [0.0, 1.0, 3.4], target = [0.0, 1.0, 0.0] }}\n\
          [[step]]\nkey = \"Space\"\n[[step]]\nframes = 2\n[[step]]\nscreenshot = \"path.png\"\n\
@@ -63,7 +71,7 @@ fn check_screenshots(dir: &Path) {
 #[test]
 fn the_offscreen_viewer_switches_techniques_and_matches_render() {
     let dir = scratch("view-offscreen");
-    let script = script(&dir);
+    let script = script(&dir, true);
     let out = dir.to_str().unwrap();
     let (ok, stdout, stderr) = irradiant(&[
         "view",
@@ -81,6 +89,20 @@ fn the_offscreen_viewer_switches_techniques_and_matches_render() {
     assert!(ok, "{stdout}\n{stderr}");
     assert!(stdout.contains("frames"), "{stdout}");
     check_screenshots(&dir);
+    // The debug views show the frame's textures: the indirect light and the normals differ
+    // from each other where the frame is (the panel, over the left, is the same in both).
+    let (indirect, ..) = rgb(&dir.join("indirect.png"));
+    let (normal, ..) = rgb(&dir.join("normal.png"));
+    assert!(mean(&indirect) > 5.0 && mean(&normal) > 5.0);
+    let differing = indirect
+        .chunks(3)
+        .zip(normal.chunks(3))
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        differing > indirect.len() / 3 / 4,
+        "the indirect light and the normals look alike ({differing} pixels differ)"
+    );
     let rendered = dir.join("render.png");
     let frames = FRAMES.to_string();
     let (ok, _, stderr) = irradiant(&[
@@ -130,7 +152,7 @@ fn the_viewer_runs_a_script_in_a_window_under_xvfb() {
         return;
     };
     let dir = scratch("view-window");
-    let script = script(&dir);
+    let script = script(&dir, false);
     // Xvfb has no DRI3, which hardware Vulkan drivers need to present: lavapipe is pinned.
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 640x480x24"])

@@ -214,6 +214,7 @@ impl ScriptRunner {
                 Step::Camera(c) => viewer.set_camera(&c)?,
                 Step::Move(m, seconds) => viewer.fly(m, seconds)?,
                 Step::Key(k) => viewer.press(&k)?,
+                Step::Show(v) => viewer.show(&v)?,
                 Step::Frames(n) => self.frames_left = n,
                 Step::Screenshot(path) => viewer.screenshot(&path)?,
                 Step::Capture(path) => {

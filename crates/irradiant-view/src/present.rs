@@ -5,10 +5,49 @@
 
 use irradiant_gpu::{GpuContext, wgpu};
 
-/// The blit's WGSL: a full-screen triangle that loads the image texel under each pixel (the
-/// image is the target's size; a texel past its edge repeats the last, during a resize).
+/// How the blit turns a texel into a pixel: each of the viewer's debug views is a frame texture
+/// read one of these ways.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Decode {
+    /// Already sRGB-encoded, shown as it is (the frame's output, the path tracer's image).
+    Shown = 0,
+    /// Linear radiance: exposure, a Reinhard curve, sRGB (direct light).
+    Radiance = 1,
+    /// A weighted sum, rgb ÷ a, then as radiance (the technique's indirect light).
+    WeightedRadiance = 2,
+    /// Octahedral normals in xy: the direction as colour, (n + 1) ÷ 2.
+    Normal = 3,
+    /// Distance along the ray: near bright, far dark, the sky black.
+    Depth = 4,
+    /// Linear reflectance or emission in rgb, sRGB-encoded.
+    Colour = 5,
+    /// Screen-space motion in pixels: x red, y green, around grey.
+    Motion = 6,
+}
+
+/// The blit's uniforms (WGSL `Show`).
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GpuShow {
+    decode: u32,
+    exposure: f32,
+    _pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<GpuShow>() == 16);
+
+/// The blit's WGSL, after the octahedral mapping's: a full-screen triangle that loads the image
+/// texel under each pixel (the image is the target's size; a texel past its edge repeats the
+/// last, during a resize) and decodes it as `Show.decode` says.
 const BLIT_WGSL: &str = r#"
+struct Show {
+    decode: u32,
+    exposure: f32,
+    pad0: u32,
+    pad1: u32,
+}
+
 @group(0) @binding(0) var image: texture_2d<f32>;
+@group(0) @binding(1) var<uniform> show: Show;
 
 @vertex
 fn vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
@@ -16,10 +55,32 @@ fn vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
     return vec4f(corner * 2.0 - 1.0, 0.0, 1.0);
 }
 
+fn encode_srgb(c: vec3f) -> vec3f {
+    let x = clamp(c, vec3f(0.0), vec3f(1.0));
+    return select(1.055 * pow(x, vec3f(1.0 / 2.4)) - 0.055, 12.92 * x, x <= vec3f(0.0031308));
+}
+
+fn radiance(c: vec3f) -> vec4f {
+    let x = max(c, vec3f(0.0)) * show.exposure;
+    return vec4f(encode_srgb(x / (1.0 + x)), 1.0);
+}
+
 @fragment
 fn fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
     let last = vec2i(textureDimensions(image)) - 1;
-    return textureLoad(image, min(vec2i(pixel.xy), last), 0);
+    let t = textureLoad(image, min(vec2i(pixel.xy), last), 0);
+    switch show.decode {
+        case 1u: { return radiance(t.rgb); }
+        case 2u: { return radiance(t.rgb / max(t.a, 1e-6)); }
+        case 3u: { return vec4f(oct_decode(t.xy) * 0.5 + 0.5, 1.0); }
+        case 4u: {
+            let d = select(1.0 / (1.0 + 0.25 * t.r), 0.0, t.r < 0.0);
+            return vec4f(vec3f(d), 1.0);
+        }
+        case 5u: { return vec4f(encode_srgb(t.rgb), 1.0); }
+        case 6u: { return vec4f(clamp(0.5 + 0.05 * t.xy, vec2f(0.0), vec2f(1.0)), 0.5, 1.0); }
+        default: { return t; }
+    }
 }
 "#;
 
@@ -27,6 +88,7 @@ fn fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
 pub struct Presenter {
     blit: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
+    show: wgpu::Buffer,
     /// egui's renderer, for the target's format.
     pub egui: egui_wgpu::Renderer,
     /// The format drawn into: never an sRGB one, since the image already holds sRGB-encoded
@@ -41,20 +103,44 @@ impl Presenter {
         let device = &ctx.device;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("view/blit"),
-            source: wgpu::ShaderSource::Wgsl(BLIT_WGSL.into()),
+            source: wgpu::ShaderSource::Wgsl(
+                format!(
+                    "{}\n{BLIT_WGSL}",
+                    irradiant::probes::octahedral::OCTAHEDRAL_WGSL
+                )
+                .into(),
+            ),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("view/blit"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
                 },
-                count: None,
-            }],
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let show = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("view/show"),
+            size: std::mem::size_of::<GpuShow>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("view/blit"),
@@ -86,12 +172,14 @@ impl Presenter {
         Self {
             blit,
             layout,
+            show,
             egui,
             format,
         }
     }
 
-    /// Records the image's blit and the UI's shapes into `target` (`size` pixels).
+    /// Records the image's blit (decoded as `decode` says, radiance at `exposure`) and the UI's
+    /// shapes into `target` (`size` pixels).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -99,7 +187,7 @@ impl Presenter {
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
         size: (u32, u32),
-        image: &wgpu::TextureView,
+        (image, decode, exposure): (&wgpu::TextureView, Decode, f32),
         mut ui: egui::FullOutput,
         egui_ctx: &egui::Context,
     ) {
@@ -121,13 +209,26 @@ impl Presenter {
             extra.is_empty(),
             "egui paint callbacks are not used by the viewer"
         );
+        let show = GpuShow {
+            decode: decode as u32,
+            exposure,
+            _pad: [0; 2],
+        };
+        ctx.queue
+            .write_buffer(&self.show, 0, bytemuck::bytes_of(&show));
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("view/blit"),
             layout: &self.layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(image),
-            }],
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(image),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.show.as_entire_binding(),
+                },
+            ],
         });
         let mut pass = encoder
             .begin_render_pass(&wgpu::RenderPassDescriptor {

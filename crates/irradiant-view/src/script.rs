@@ -11,6 +11,8 @@
 //! [[step]]
 //! key = "Space"                             # press a key: Space, F, P, B, F1, F12, 1…9
 //! [[step]]
+//! show = "normal"                            # a debug view: final, direct, indirect, normal, …
+//! [[step]]
 //! frames = 30                                # render this many frames
 //! [[step]]
 //! screenshot = "ddgi.png"                    # the frame as shown (.png) or linear (.exr)
@@ -43,6 +45,8 @@ pub enum Step {
     Move(crate::camera::Movement, f32),
     /// Press a key, as a person would.
     Key(String),
+    /// Show one of the frame's debug views (`final`, `direct`, `indirect`, `normal`, …).
+    Show(String),
     /// Render this many frames.
     Frames(u32),
     /// Save the frame as shown.
@@ -67,6 +71,7 @@ struct StepDesc {
     #[serde(rename = "move")]
     movement: Option<MoveDesc>,
     key: Option<String>,
+    show: Option<String>,
     frames: Option<u32>,
     screenshot: Option<PathBuf>,
     capture: Option<PathBuf>,
@@ -109,7 +114,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
     };
     let file: File = toml::from_str(text).map_err(|e| {
         error(format!(
-            "{}; write [[step]] tables, each with one of technique, camera, move, key, frames, screenshot, capture or quit",
+            "{}; write [[step]] tables, each with one of technique, camera, move, key, show, frames, screenshot, capture or quit",
             e.message()
         ))
     })?;
@@ -122,6 +127,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
             s.camera.is_some(),
             s.movement.is_some(),
             s.key.is_some(),
+            s.show.is_some(),
             s.frames.is_some(),
             s.screenshot.is_some(),
             s.capture.is_some(),
@@ -132,7 +138,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
         .count();
         if given != 1 {
             return Err(error(format!(
-                "step {n} does {given} things: give each [[step]] exactly one of technique, camera, move, key, frames, screenshot, capture or quit"
+                "step {n} does {given} things: give each [[step]] exactly one of technique, camera, move, key, show, frames, screenshot, capture or quit"
             )));
         }
         let step = if let Some(t) = s.technique {
@@ -173,6 +179,15 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
                 )));
             }
             Step::Key(k)
+        } else if let Some(v) = s.show {
+            if !crate::viewer::DEBUG_VIEWS.iter().any(|d| d.0 == v) {
+                let names: Vec<&str> = crate::viewer::DEBUG_VIEWS.iter().map(|d| d.0).collect();
+                return Err(error(format!(
+                    "step {n}: show = \"{v}\" is not a view: use one of {}",
+                    names.join(", ")
+                )));
+            }
+            Step::Show(v)
         } else if let Some(f) = s.frames {
             if !(1..=MAX_SCRIPT_FRAMES).contains(&f) {
                 return Err(error(format!(

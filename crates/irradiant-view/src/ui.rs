@@ -96,6 +96,17 @@ fn panel(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState, frame_m
         let result = viewer.switch_to(&chosen);
         report(viewer, result);
     }
+    if !viewer.path_tracing() {
+        let mut view = viewer.debug_view;
+        egui::ComboBox::from_label("show")
+            .selected_text(crate::viewer::DEBUG_VIEWS[view].0)
+            .show_ui(ui, |ui| {
+                for (i, (name, ..)) in crate::viewer::DEBUG_VIEWS.iter().enumerate() {
+                    ui.selectable_value(&mut view, i, *name);
+                }
+            });
+        viewer.debug_view = view;
+    }
     if !viewer.path_tracing() && viewer.technique() != PATH {
         settings(ui, viewer, state);
     }

@@ -14,6 +14,7 @@ use irradiant_gpu::wgpu;
 
 use crate::ViewError;
 use crate::camera::{FlyCamera, Movement};
+use crate::present::Decode;
 
 /// The reference path tracer's name in the technique list, beside the registered techniques.
 pub const PATH: &str = "path";
@@ -22,6 +23,20 @@ pub const PATH: &str = "path";
 const PATH_SAMPLES_PER_UPDATE: u32 = 4;
 /// Frames between two timed frames: a timed frame waits for its timestamps.
 pub const PROFILE_EVERY: u64 = 30;
+
+/// What the viewer can show instead of the final frame: a frame texture and how to read it.
+/// Name, frame texture, decoding.
+pub const DEBUG_VIEWS: &[(&str, &str, Decode)] = &[
+    ("final", "output", Decode::Shown),
+    ("direct", "direct", Decode::Radiance),
+    ("indirect", "indirect", Decode::WeightedRadiance),
+    ("radiance", "radiance", Decode::Radiance),
+    ("albedo", "gbuffer_albedo", Decode::Colour),
+    ("normal", "gbuffer_normal", Decode::Normal),
+    ("depth", "gbuffer_depth", Decode::Depth),
+    ("emission", "gbuffer_emission", Decode::Colour),
+    ("motion", "gbuffer_motion", Decode::Motion),
+];
 
 /// The path tracer accumulating while the camera rests.
 struct PathView {
@@ -51,6 +66,8 @@ pub struct Viewer {
     pub show_probes: bool,
     /// The key list (`F1`).
     pub show_help: bool,
+    /// Index into [`DEBUG_VIEWS`] of what is shown of the frame (0: the final image).
+    pub debug_view: usize,
     /// The scene's animation runs.
     pub playing: bool,
     /// How fast the animation runs.
@@ -97,6 +114,7 @@ impl Viewer {
             path: None,
             show_probes: false,
             show_help: false,
+            debug_view: 0,
             playing: true,
             speed: 1.0,
             status: String::new(),
@@ -333,12 +351,36 @@ impl Viewer {
         Ok(())
     }
 
-    /// The image shown: the frame's tonemapped output, or the path tracer's.
-    pub fn image_view(&self) -> &wgpu::TextureView {
+    /// The image shown and how to decode it: the frame's tonemapped output or one of its
+    /// textures ([`DEBUG_VIEWS`]), or the path tracer's image; with the exposure.
+    pub fn image_view(&self) -> (&wgpu::TextureView, Decode, f32) {
+        let exposure = self.session.frame().settings().tone.exposure;
         match &self.path {
-            Some(path) => &path.display_view,
-            None => self.session.frame().resources.view("output"),
+            Some(path) => (&path.display_view, Decode::Shown, exposure),
+            None => {
+                let (_, texture, decode) = DEBUG_VIEWS[self.debug_view];
+                (
+                    self.session.frame().resources.view(texture),
+                    decode,
+                    exposure,
+                )
+            }
         }
+    }
+
+    /// Shows the debug view named `name` (one of [`DEBUG_VIEWS`]).
+    pub fn show(&mut self, name: &str) -> Result<(), ViewError> {
+        self.debug_view = DEBUG_VIEWS
+            .iter()
+            .position(|(n, ..)| *n == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = DEBUG_VIEWS.iter().map(|v| v.0).collect();
+                ViewError::Settings(format!(
+                    "unknown view '{name}': use one of {}",
+                    names.join(", ")
+                ))
+            })?;
+        Ok(())
     }
 
     /// Changes the image size (the window's): the session's frame and technique are rebuilt.

@@ -4,6 +4,10 @@
 
 use glam::{UVec2, Vec2, Vec3};
 
+/// The WGSL of the mapping (`oct_encode`, `oct_decode`), for shaders outside the library's
+/// composition (the viewer decodes the G-buffer's normals with it).
+pub const OCTAHEDRAL_WGSL: &str = include_str!("octahedral.wgsl");
+
 fn sign_not_zero(v: Vec2) -> Vec2 {
     Vec2::new(
         if v.x >= 0.0 { 1.0 } else { -1.0 },

@@ -26,7 +26,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("camera", include_str!("camera.wgsl"))
             .with("path", include_str!("../pathtrace/path.wgsl"))
             .with("surface", include_str!("surface.wgsl"))
-            .with("octahedral", include_str!("../probes/octahedral.wgsl"))
+            .with("octahedral", crate::probes::octahedral::OCTAHEDRAL_WGSL)
             .with("probe_grid", include_str!("../probes/grid.wgsl"))
             .with("probe_atlas", include_str!("../probes/atlas.wgsl"))
             .with("frame_types", include_str!("../frame/frame_types.wgsl"))
