@@ -25,7 +25,7 @@ pub struct ViewArgs {
     #[arg(long)]
     pub script: Option<PathBuf>,
     /// Draw into a texture instead of a window: no display needed (tests, measurements). Prints
-    /// the mean frame time at the end.
+    /// the median frame time at the end.
     #[arg(long)]
     pub offscreen: bool,
     /// Leave the panel out (to measure what it costs).
@@ -57,7 +57,7 @@ pub fn run(args: &ViewArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
     let report = irradiant_view::run(&options).map_err(|e| CliError::Usage(e.to_string()))?;
     if args.offscreen {
         println!(
-            "view: {} frames, {:.3} ms a frame (the GPU waited for), {:.3} ms of it building the panel{}",
+            "view: {} frames, median {:.3} ms a frame (the GPU waited for), {:.3} ms (mean) of it building the panel{}",
             report.frames,
             report.frame_ms,
             report.ui_cpu_ms,
