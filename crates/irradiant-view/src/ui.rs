@@ -170,7 +170,7 @@ fn settings(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState) {
         });
     if let Some((key, value)) = edit {
         let mut changed = spec.clone();
-        set(&mut changed.settings, &key, value);
+        irradiant::settings::set_path(&mut changed.settings, &key, value);
         let result = viewer.apply(changed);
         report(viewer, result);
     }
@@ -269,24 +269,6 @@ fn number(ui: &mut egui::Ui, key: &str, id: &str, value: f64, speed: f64) -> Opt
     }
     ui.data_mut(|d| d.remove::<f64>(id));
     (v != value).then_some(v)
-}
-
-/// `table[key[0]][key[1]]… = value`, making the tables on the way.
-pub fn set(table: &mut toml::Table, key: &[String], value: toml::Value) {
-    match key {
-        [] => {}
-        [last] => {
-            table.insert(last.clone(), value);
-        }
-        [first, rest @ ..] => {
-            let entry = table
-                .entry(first.clone())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            if let toml::Value::Table(t) = entry {
-                set(t, rest, value);
-            }
-        }
-    }
 }
 
 fn animation(ui: &mut egui::Ui, viewer: &mut Viewer) {

@@ -280,7 +280,19 @@ impl Session {
                 needs,
             )?;
         }
-        self.technique = kind.build(
+        self.technique = self.build_technique(kind, &spec)?;
+        self.spec = spec;
+        self.frame.invalidate();
+        Ok(())
+    }
+
+    /// Builds a technique bound to the session's scene and frame.
+    fn build_technique(
+        &self,
+        kind: &dyn crate::technique::TechniqueKind,
+        spec: &TechniqueSpec,
+    ) -> Result<Box<dyn Technique>, RenderError> {
+        kind.build(
             &TechniqueContext {
                 ctx: &self.ctx,
                 scene: &self.scene,
@@ -289,11 +301,8 @@ impl Session {
                 cache_dir: self.cache_dir.as_deref(),
                 progress: self.progress.as_ref(),
             },
-            &spec,
-        )?;
-        self.spec = spec;
-        self.frame.invalidate();
-        Ok(())
+            spec,
+        )
     }
 
     /// Changes the image size: the frame and the technique are built anew at it (the scene and
@@ -316,17 +325,7 @@ impl Session {
             self.frame.settings().clone(),
             needs,
         )?;
-        self.technique = kind.build(
-            &TechniqueContext {
-                ctx: &self.ctx,
-                scene: &self.scene,
-                gpu_scene: &self.gpu_scene,
-                frame: &self.frame,
-                cache_dir: self.cache_dir.as_deref(),
-                progress: self.progress.as_ref(),
-            },
-            &self.spec,
-        )?;
+        self.technique = self.build_technique(kind, &self.spec)?;
         Ok(())
     }
 

@@ -143,6 +143,29 @@ impl Default for TechniqueSpec {
     }
 }
 
+/// Sets `table[key[0]][key[1]]… = value`, making (or replacing with) tables on the way: a
+/// setting's dotted path, as `bench --vary` and the viewer's panel change one setting of a
+/// spec.
+pub fn set_path(table: &mut toml::Table, key: &[String], value: toml::Value) {
+    match key {
+        [] => {}
+        [last] => {
+            table.insert(last.clone(), value);
+        }
+        [first, rest @ ..] => {
+            let entry = table
+                .entry(first.clone())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            if !entry.is_table() {
+                *entry = toml::Value::Table(toml::Table::new());
+            }
+            if let toml::Value::Table(t) = entry {
+                set_path(t, rest, value);
+            }
+        }
+    }
+}
+
 /// A settings struct as the TOML table a settings file writes for it.
 pub fn as_table<T: Serialize>(settings: &T) -> toml::Table {
     toml::Table::try_from(settings).expect("settings serialise to a TOML table")

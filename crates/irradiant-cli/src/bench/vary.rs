@@ -73,7 +73,7 @@ pub fn expand(
             applied = true;
             for value in &vary.values {
                 let mut choice = choice.clone();
-                set(&mut choice.overrides, &vary.key, value.clone());
+                irradiant::settings::set_path(&mut choice.overrides, &vary.key, value.clone());
                 choice.label = format!("{} {}={}", choice.label, vary.key.join("."), value);
                 next.push(choice);
             }
@@ -101,33 +101,12 @@ fn has_setting(choice: &TechniqueChoice, vary: &Vary) -> Result<bool, CliError> 
     );
     spec.settings = choice.overrides.clone();
     let before = kind.check(&spec);
-    set(&mut spec.settings, &vary.key, vary.values[0].clone());
+    irradiant::settings::set_path(&mut spec.settings, &vary.key, vary.values[0].clone());
     let after = kind.check(&spec);
     Ok(match (before, after) {
         (Ok(before), Ok(after)) => after.len() <= before.len(),
         _ => true,
     })
-}
-
-/// `table[key[0]][key[1]]… = value`, making the tables on the way.
-fn set(table: &mut toml::Table, key: &[String], value: toml::Value) {
-    match key {
-        [] => {}
-        [last] => {
-            table.insert(last.clone(), value);
-        }
-        [first, rest @ ..] => {
-            let entry = table
-                .entry(first.clone())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            if !entry.is_table() {
-                *entry = toml::Value::Table(toml::Table::new());
-            }
-            if let toml::Value::Table(t) = entry {
-                set(t, rest, value);
-            }
-        }
-    }
 }
 
 #[cfg(test)]
