@@ -339,7 +339,7 @@ impl Viewer {
         if self.playing && dt > 0.0 {
             self.session.advance(dt * self.speed);
         }
-        if self.frames % PROFILE_EVERY == 0 {
+        if self.frames.is_multiple_of(PROFILE_EVERY) {
             let timings = self.session.render_profiled()?;
             self.timings = timings
                 .into_iter()
