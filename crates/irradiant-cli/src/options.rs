@@ -111,45 +111,13 @@ impl TechniqueChoice {
     /// Parses the text; whether the name is registered is the caller's to check (`path`, the
     /// reference, is a technique on the command line but not in the registry).
     pub fn parse(text: &str) -> Result<Self, CliError> {
-        let text = text.trim();
-        if text.is_empty() {
-            return Err(CliError::Usage(
-                "a technique is empty: name one, e.g. ddgi or ddgi{preset = \"quality\"}".into(),
-            ));
-        }
-        let (name, overrides) = match text.split_once('{') {
-            Some((name, rest)) => {
-                let inner = rest.strip_suffix('}').ok_or_else(|| {
-                    CliError::Usage(format!("technique '{text}': settings in braces must end with '}}', e.g. ssil{{visibility = false}}"))
-                })?;
-                let table: toml::Table = toml::from_str(&format!("v = {{{inner}}}")).map_err(|e| {
-                    CliError::Usage(format!("technique '{text}': the settings in braces are not a TOML inline table ({}); write them as key = value, comma-separated", e.message()))
-                })?;
-                let Some(toml::Value::Table(t)) = table.get("v") else {
-                    unreachable!("a table parsed from `v = {{…}}` holds the table v")
-                };
-                (name.trim(), t.clone())
-            }
-            None => (text, toml::Table::new()),
-        };
-        let mut overrides = overrides;
-        let preset = match overrides.remove("preset") {
-            None => None,
-            Some(toml::Value::String(p)) => Some(
-                Preset::parse(&p)
-                    .map_err(|e| CliError::Usage(format!("technique '{text}': {e}")))?,
-            ),
-            Some(other) => {
-                return Err(CliError::Usage(format!(
-                    "technique '{text}': preset = {other} is not a preset name; write preset = \"fast\", \"balanced\" or \"quality\" (in quotes)"
-                )));
-            }
-        };
+        let parsed = irradiant::settings::SpecText::parse(text)
+            .map_err(|e| CliError::Usage(e.to_string()))?;
         Ok(Self {
             label: text.split_whitespace().collect(),
-            name: name.to_owned(),
-            preset,
-            overrides,
+            name: parsed.name,
+            preset: parsed.preset,
+            overrides: parsed.settings,
         })
     }
 

@@ -136,37 +136,11 @@ pub fn start(options: &ViewOptions) -> Result<Viewer, ViewError> {
 
 /// A spec as the command line writes it: `name` or `name{key = value, preset = "…"}`.
 pub fn parse_spec(text: &str) -> Result<TechniqueSpec, ViewError> {
-    let text = text.trim();
-    let (name, inner) = match text.split_once('{') {
-        Some((name, rest)) => (
-            name.trim(),
-            rest.trim_end().strip_suffix('}').ok_or_else(|| {
-                ViewError::Settings(format!(
-                    "technique '{text}': settings in braces must end with '}}'"
-                ))
-            })?,
-        ),
-        None => (text, ""),
-    };
-    let table: toml::Table = toml::from_str(&format!("v = {{{inner}}}"))
-        .map_err(|e| ViewError::Settings(format!("technique '{text}': {}", e.message())))?;
-    let mut settings = match table.get("v") {
-        Some(toml::Value::Table(t)) => t.clone(),
-        _ => toml::Table::new(),
-    };
-    let preset = match settings.remove("preset") {
-        Some(toml::Value::String(p)) => irradiant::Preset::parse(&p)?,
-        Some(other) => {
-            return Err(ViewError::Settings(format!(
-                "technique '{text}': preset = {other} is not a preset name: use \"fast\", \"balanced\" or \"quality\""
-            )));
-        }
-        None => irradiant::Preset::Balanced,
-    };
+    let parsed = irradiant::settings::SpecText::parse(text)?;
     let spec = TechniqueSpec {
-        name: name.to_owned(),
-        preset,
-        settings,
+        name: parsed.name,
+        preset: parsed.preset.unwrap_or(irradiant::Preset::Balanced),
+        settings: parsed.settings,
     };
     spec.kind()?.check(&spec)?;
     Ok(spec)

@@ -143,6 +143,69 @@ impl Default for TechniqueSpec {
     }
 }
 
+/// A technique as the command line and the viewer write it: `name` or `name{key = value, …}`,
+/// the braces a TOML inline table over the preset, `preset = "…"` among them the technique's
+/// own preset. Whether the name is registered is the caller's to check.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpecText {
+    /// The name before the braces.
+    pub name: String,
+    /// `preset = "…"` in the braces, if given.
+    pub preset: Option<Preset>,
+    /// The other keys in the braces.
+    pub settings: toml::Table,
+}
+
+impl SpecText {
+    /// Parses `text`; every error names the text and how to write it.
+    pub fn parse(text: &str) -> Result<Self, SettingsError> {
+        let text = text.trim();
+        let malformed = |message: String| SettingsError::Malformed {
+            source_name: format!("technique '{text}'"),
+            message,
+        };
+        if text.is_empty() {
+            return Err(malformed(
+                "a technique is empty: name one, e.g. ddgi or ddgi{preset = \"quality\"}".into(),
+            ));
+        }
+        let (name, mut settings) = match text.split_once('{') {
+            Some((name, rest)) => {
+                let inner = rest.strip_suffix('}').ok_or_else(|| {
+                    malformed(
+                        "settings in braces must end with '}', e.g. ssil{visibility = false}"
+                            .into(),
+                    )
+                })?;
+                let table: toml::Table = toml::from_str(&format!("v = {{{inner}}}")).map_err(|e| {
+                    malformed(format!("the settings in braces are not a TOML inline table ({}); write them as key = value, comma-separated", e.message()))
+                })?;
+                let Some(toml::Value::Table(t)) = table.get("v") else {
+                    unreachable!("a table parsed from `v = {{…}}` holds the table v")
+                };
+                (name.trim(), t.clone())
+            }
+            None => (text, toml::Table::new()),
+        };
+        let preset = match settings.remove("preset") {
+            None => None,
+            Some(toml::Value::String(p)) => {
+                Some(Preset::parse(&p).map_err(|e| malformed(e.to_string()))?)
+            }
+            Some(other) => {
+                return Err(malformed(format!(
+                    "preset = {other} is not a preset name; write preset = \"fast\", \"balanced\" or \"quality\" (in quotes)"
+                )));
+            }
+        };
+        Ok(Self {
+            name: name.to_owned(),
+            preset,
+            settings,
+        })
+    }
+}
+
 /// Sets `table[key[0]][key[1]]… = value`, making (or replacing with) tables on the way: a
 /// setting's dotted path, as `bench --vary` and the viewer's panel change one setting of a
 /// spec.
