@@ -7,18 +7,9 @@ use std::sync::{Arc, Mutex};
 use indicatif::{ProgressBar, ProgressStyle};
 use irradiant::technique::Progress;
 
-/// `explicit` (--cache), else $XDG_CACHE_HOME/irradiant, ~/.cache/irradiant, or the temporary
-/// directory.
+/// `explicit` (--cache), else the user's cache directory (the library's one rule).
 pub fn dir(explicit: Option<&Path>) -> PathBuf {
-    explicit
-        .map(Path::to_owned)
-        .or_else(|| {
-            std::env::var_os("XDG_CACHE_HOME")
-                .map(PathBuf::from)
-                .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-                .map(|d| d.join("irradiant"))
-        })
-        .unwrap_or_else(|| std::env::temp_dir().join("irradiant-cache"))
+    irradiant::pathtrace::reference_cache::cache_dir(explicit)
 }
 
 /// A progress bar on stderr for bakes (hidden where stderr is not a terminal).

@@ -12,7 +12,7 @@ use crate::RenderError;
 use crate::frame::{Frame, FrameNeeds, FrameSettings, GBufferSample, Image, SceneChange};
 use crate::scene::{GpuScene, GpuSceneSettings};
 use crate::settings::TechniqueSpec;
-use crate::technique::{Technique, TechniqueContext};
+use crate::technique::{ProbeView, Technique, TechniqueContext};
 
 /// How a session starts.
 #[derive(Clone, Debug)]
@@ -56,6 +56,18 @@ const PROFILED_PASSES: u32 = 64;
 /// 650 MiB between two checks 1000 frames apart on the H100.
 const MAX_FRAMES_IN_FLIGHT: usize = 3;
 
+/// What a frame of `size` and the technique of `spec` allocate on the GPU.
+fn plan_of(
+    scene: &Scene,
+    spec: &TechniqueSpec,
+    size: (u32, u32),
+) -> Result<Vec<Allocation>, RenderError> {
+    let kind = spec.kind()?;
+    let mut plan = Frame::plan(size.0, size.1, kind.frame_needs(spec));
+    plan.extend(kind.plan(spec, scene, size)?);
+    Ok(plan)
+}
+
 /// The frame loop: owns the GPU scene, the frame, the technique, the camera and the clock.
 pub struct Session {
     ctx: Arc<GpuContext>,
@@ -67,7 +79,10 @@ pub struct Session {
     camera: Camera,
     time: f32,
     pose: Pose,
-    show_probes: bool,
+    /// Lights switched off by hand ([`Session::set_light_enabled`]), in the scene's order.
+    lights_off: Vec<bool>,
+    /// The technique's probe overlay, when drawn.
+    probes_shown: Option<ProbeView>,
     profiler: Profiler,
     warnings: Vec<String>,
     cache_dir: Option<std::path::PathBuf>,
@@ -78,11 +93,7 @@ pub struct Session {
 impl Session {
     /// Every GPU allocation the frame and the technique would make, before any is made.
     pub fn plan(scene: &Scene, settings: &SessionSettings) -> Result<Vec<Allocation>, RenderError> {
-        let kind = settings.technique.kind()?;
-        let (w, h) = settings.size;
-        let mut plan = Frame::plan(w, h, kind.frame_needs(&settings.technique));
-        plan.extend(kind.plan(&settings.technique, scene, settings.size)?);
-        Ok(plan)
+        plan_of(scene, &settings.technique, settings.size)
     }
 
     /// Checks the settings and every size, then builds the scene, the frame and the technique.
@@ -122,6 +133,7 @@ impl Session {
         )?;
         warnings.dedup();
         let profiler = Profiler::new(&ctx, PROFILED_PASSES);
+        let lights_off = vec![false; scene.lights.len()];
         Ok(Self {
             camera: pose.camera.clone(),
             ctx,
@@ -131,8 +143,9 @@ impl Session {
             technique,
             spec: settings.technique,
             time: settings.time,
+            lights_off,
             pose,
-            show_probes: false,
+            probes_shown: None,
             profiler,
             warnings,
             cache_dir: settings.cache_dir,
@@ -211,7 +224,10 @@ impl Session {
     /// it affects.
     pub fn seek(&mut self, time: f32) {
         self.time = time;
-        let next = self.scene.pose_at(time);
+        let mut next = self.scene.pose_at(time);
+        for (light, off) in next.lights.iter_mut().zip(&self.lights_off) {
+            light.enabled &= !off;
+        }
         if next == self.pose {
             return;
         }
@@ -238,9 +254,42 @@ impl Session {
         self.seek(self.time + dt);
     }
 
-    /// Draws the technique's debug overlay (DDGI: the probes) over the image.
+    /// The scene as posed now: its lights (those switched off by hand disabled), instances
+    /// and camera path.
+    pub fn pose(&self) -> &Pose {
+        &self.pose
+    }
+
+    /// Switches the scene's light `index` (in [`Scene::lights`]' order) on or off, from the
+    /// next frame; the technique is told as of any light change. An index past the lights is
+    /// ignored.
+    pub fn set_light_enabled(&mut self, index: usize, on: bool) {
+        if let Some(off) = self.lights_off.get_mut(index) {
+            *off = !on;
+            self.seek(self.time);
+        }
+    }
+
+    /// Whether light `index` is on by hand (an animation may still dim it).
+    pub fn light_enabled(&self, index: usize) -> bool {
+        self.lights_off.get(index).is_some_and(|off| !off)
+    }
+
+    /// Draws the technique's debug overlay (DDGI: the probes, lit by their light) over the
+    /// image.
     pub fn set_show_probes(&mut self, show: bool) {
-        self.show_probes = show;
+        self.probes_shown = show.then_some(ProbeView::Light);
+    }
+
+    /// Draws the technique's probes as `view` says, or none.
+    pub fn set_probe_view(&mut self, view: Option<ProbeView>) {
+        self.probes_shown = view;
+    }
+
+    /// Every GPU allocation the frame and the technique hold now, as planned before they were
+    /// made (the memory the viewer reports).
+    pub fn allocations(&self) -> Result<Vec<Allocation>, RenderError> {
+        plan_of(&self.scene, &self.spec, self.frame.size())
     }
 
     /// Forgets every kind of history — the frame's running means, TAA's history, the
@@ -361,8 +410,8 @@ impl Session {
             .resolve(&mut encoder, profiler.as_deref_mut());
         self.frame
             .record_compose(&mut encoder, profiler.as_deref_mut());
-        if self.show_probes {
-            self.technique.visualize(&mut encoder);
+        if let Some(view) = self.probes_shown {
+            self.technique.visualize(&mut encoder, view);
         }
         self.frame
             .record_output(&mut encoder, profiler.as_deref_mut());

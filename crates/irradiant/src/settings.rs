@@ -101,6 +101,35 @@ macro_rules! presets_from_inherent {
 }
 pub(crate) use presets_from_inherent;
 
+/// A settings type whose every setting's doc comment (what it does and what it trades) is
+/// found by its path (`["update", "hysteresis"]`): the viewer's tooltips, from the comments
+/// the code already carries.
+pub trait SettingDocs {
+    /// The doc comment of the setting, or group, at `path`.
+    fn setting_doc(path: &[&str]) -> Option<&'static str>;
+}
+
+/// Implements [`SettingDocs`] from the type's field docs (`documented::DocumentedFields`),
+/// with each named group's settings found through its own type.
+macro_rules! setting_docs {
+    ($settings:ty $({ $($group:literal => $group_type:ty),* $(,)? })?) => {
+        impl $crate::settings::SettingDocs for $settings {
+            fn setting_doc(path: &[&str]) -> Option<&'static str> {
+                match path {
+                    [name] => {
+                        <$settings as documented::DocumentedFields>::get_field_docs(name).ok()
+                    }
+                    $($([$group, rest @ ..] => {
+                        <$group_type as $crate::settings::SettingDocs>::setting_doc(rest)
+                    })*)?
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+pub(crate) use setting_docs;
+
 /// A technique as settings describe it: a registered name, a preset, and the technique's own
 /// keys over the preset (tables such as `[technique.update]`; each technique documents its
 /// keys on its settings type). Round-trips through TOML without loss.

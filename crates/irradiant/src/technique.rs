@@ -68,6 +68,12 @@ pub trait TechniqueKind: Sync {
     /// settings file's `[technique]` table writes them (without `name` and `preset`): what the
     /// viewer's panel shows and edits, key by key.
     fn resolved_settings(&self, spec: &TechniqueSpec) -> Result<toml::Table, RenderError>;
+    /// The doc comment of the setting at `path` (`["update", "hysteresis"]`): what it does
+    /// and what it trades (the viewer's tooltips). `spec` picks the settings type where a kind
+    /// has more than one.
+    fn setting_doc(&self, _spec: &TechniqueSpec, _path: &[&str]) -> Option<&'static str> {
+        None
+    }
     /// What it needs of the frame beyond the G-buffer and the light buffers.
     fn frame_needs(&self, _spec: &TechniqueSpec) -> FrameNeeds {
         FrameNeeds::default()
@@ -117,6 +123,17 @@ pub struct Counter {
     pub value: f64,
 }
 
+/// How a technique's debug overlay draws its probes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ProbeView {
+    /// Each probe a small sphere lit by the light it stores (`render --show-probes`).
+    #[default]
+    Light,
+    /// Each probe coloured by its state (vigilant, awake, sleeping, off; tied), with a line
+    /// from its grid point to where relocation moved it.
+    States,
+}
+
 /// A built technique, bound to the frame it was built for.
 pub trait Technique: Any {
     /// The registry name it was built from.
@@ -130,8 +147,9 @@ pub trait Technique: Any {
     fn update(&mut self, _encoder: &mut wgpu::CommandEncoder, _profiler: Option<&mut Profiler>) {}
     /// Records the resolve: indirect light into the frame's `indirect`.
     fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>);
-    /// Records a debug overlay into the frame's `radiance` (after compose).
-    fn visualize(&self, _encoder: &mut wgpu::CommandEncoder) {}
+    /// Records a debug overlay of its probes, drawn as `view` says, into the frame's
+    /// `radiance` (after compose).
+    fn visualize(&self, _encoder: &mut wgpu::CommandEncoder, _view: ProbeView) {}
     /// Forgets all history (the next frame starts from scratch).
     fn invalidate(&mut self);
     /// Told when the scene changes between frames, so that it can adapt.
@@ -149,6 +167,11 @@ pub trait Technique: Any {
     /// histories), read back from the GPU: one line per place holding any. For soak runs.
     fn check_state(&self, _ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
         Ok(Vec::new())
+    }
+    /// Its state as pictures (probe atlases, pyramid levels, voxel grids) and its probes'
+    /// places, read back from the GPU: the viewer's inspector.
+    fn inspect(&self, _ctx: &GpuContext) -> Result<crate::inspect::Inspection, RenderError> {
+        Ok(Default::default())
     }
     /// Figures about the last frame, read back from the GPU where needed.
     fn counters(&self, _ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {

@@ -128,6 +128,22 @@ fn the_baked_maps_hold_what_the_bvh_sees() {
         front as f64 >= 0.85 * surfaces as f64,
         "{front} of {surfaces}"
     );
+    // The inspector's pictures hold each probe's maps in its tile, and its probes are where
+    // the probes are.
+    let inspection = s.technique().inspect(&ctx).unwrap();
+    assert_eq!(inspection.images.len(), 3);
+    assert_eq!(inspection.probes.len(), positions.len());
+    let probe = &inspection.probes[13];
+    assert_eq!(probe.position, positions[13]);
+    let tile = inspection.images[probe.images.0].tile(probe.tile).unwrap();
+    assert_eq!((tile.width, tile.height), (res, res));
+    let expected: Vec<u8> = lf
+        .read_probe(&ctx, 13)
+        .unwrap()
+        .iter()
+        .flat_map(|t| irradiant::inspect::radiance_pixel(t.radiance.to_array()))
+        .collect();
+    assert_eq!(tile.rgba8, expected, "probe 13's radiance tile");
 }
 
 /// Rays from the visible surfaces, traced through the light field alone, meet what the BVH

@@ -40,7 +40,9 @@ use irradiant_scene::{ProbeVolumeDesc, Scene};
 use crate::RenderError;
 use crate::frame::SceneChange;
 use crate::settings::TechniqueSpec;
-use crate::technique::{Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses};
+use crate::technique::{
+    Counter, ProbeView, Technique, TechniqueContext, TechniqueKind, TechniquePasses,
+};
 use pipelines::DdgiPipelines;
 
 /// The registry entry `ddgi`: the full method.
@@ -113,6 +115,9 @@ impl TechniqueKind for DdgiKind {
         Ok(crate::settings::as_table(
             &self.settings(spec, &mut Vec::new())?,
         ))
+    }
+    fn setting_doc(&self, _spec: &TechniqueSpec, path: &[&str]) -> Option<&'static str> {
+        <DdgiSettings as crate::settings::SettingDocs>::setting_doc(path)
     }
     fn plan(
         &self,
@@ -304,9 +309,9 @@ impl Technique for Ddgi {
             gather.record(encoder, profiler);
         }
     }
-    fn visualize(&self, encoder: &mut wgpu::CommandEncoder) {
+    fn visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {
         for v in &self.volumes {
-            v.record_visualize(encoder);
+            v.record_visualize(encoder, view);
         }
     }
     fn invalidate(&mut self) {
@@ -346,6 +351,18 @@ impl Technique for Ddgi {
         }
         Ok(all)
     }
+    fn inspect(&self, ctx: &GpuContext) -> Result<crate::inspect::Inspection, RenderError> {
+        let mut out = crate::inspect::Inspection::default();
+        for (i, volume) in self.volumes.iter().enumerate() {
+            let label = if self.volumes.len() > 1 {
+                format!(", volume {i}")
+            } else {
+                String::new()
+            };
+            volume.inspect(ctx, &label, &mut out)?;
+        }
+        Ok(out)
+    }
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let probes: u32 = self.volumes.iter().map(|v| v.grid.probe_count).sum();
         let rays = self.settings.volume.rays_per_probe as f64;
@@ -353,7 +370,24 @@ impl Technique for Ddgi {
         for v in &self.volumes {
             updating += v.read_updating_probes(ctx)?;
         }
+        let states = self.read_state_counts(ctx)?;
         Ok(vec![
+            Counter {
+                name: "probes_vigilant",
+                value: states.vigilant as f64,
+            },
+            Counter {
+                name: "probes_awake",
+                value: states.awake as f64,
+            },
+            Counter {
+                name: "probes_sleeping",
+                value: states.sleeping as f64,
+            },
+            Counter {
+                name: "probes_off",
+                value: states.off as f64,
+            },
             Counter {
                 name: "probes",
                 value: probes as f64,

@@ -29,6 +29,8 @@ pub struct DdgiPipelines {
     /// Present with the final gather (`gather.rays_per_pixel` > 0): its running mean.
     pub temporal: Option<Arc<ComputePass>>,
     pub visualize: Arc<ComputePass>,
+    /// The probes coloured by state, with their relocation offsets (ProbeView::States).
+    pub visualize_states: Arc<ComputePass>,
 }
 
 impl DdgiPipelines {
@@ -140,7 +142,16 @@ impl DdgiPipelines {
             } else {
                 None
             },
-            visualize: compile("ddgi/visualize", include_str!("visualize.wgsl"), vec![])?,
+            visualize: compile(
+                "ddgi/visualize",
+                include_str!("visualize.wgsl"),
+                vec![("COLOUR_BY_STATE", "0u".into())],
+            )?,
+            visualize_states: compile(
+                "ddgi/visualize_states",
+                include_str!("visualize.wgsl"),
+                vec![("COLOUR_BY_STATE", "1u".into())],
+            )?,
         })
     }
 }

@@ -3,6 +3,7 @@
 //! (switches that change only how fast the same image is made: for measuring; a rebuild).
 //! Every setting states its trade-off; `fast`, `balanced` and `quality` are the presets.
 
+use documented::DocumentedFields;
 use serde::{Deserialize, Serialize};
 
 use crate::settings::TechniqueSpec;
@@ -23,7 +24,7 @@ pub enum ProbeWeights {
 }
 
 /// DDGI's settings, in groups by what changing them costs.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct DdgiSettings {
     /// Sizes and layouts: changing any rebuilds the volumes, which start over.
     pub volume: DdgiVolumeSettings,
@@ -38,7 +39,7 @@ pub struct DdgiSettings {
 }
 
 /// Probe volume sizes and layouts (`[technique.volume]`): a change rebuilds the volumes.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct DdgiVolumeSettings {
     /// Rays per probe per frame. More rays: less noise and lower usable hysteresis, at a
     /// linear cost in trace and shade time (the paper's m; 256 by default).
@@ -68,7 +69,7 @@ pub struct DdgiVolumeSettings {
 }
 
 /// The probe update and the query (`[technique.update]`): most apply from the next frame.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct DdgiUpdateSettings {
     /// Share of last frame's irradiance kept each frame. Higher: stable, slow to react (about
     /// 1/(1−h) frames of lag); lower: fast but flickering.
@@ -152,7 +153,7 @@ pub struct DdgiUpdateSettings {
 }
 
 /// Switches that change only how fast the same image is made (`[technique.speed]`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct DdgiSpeedSettings {
     /// With one light per probe ray: pick the light once for 32 neighbouring rays (a GPU warp)
     /// rather than for each ray. The warp's shadow rays then all go to one light instead of
@@ -189,7 +190,7 @@ pub struct DdgiSpeedSettings {
 }
 
 /// The traced final gather at the pixels (`[technique.gather]`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct DdgiGatherSettings {
     /// Cosine-distributed rays each pixel traces a frame, each shaded at its hit like a probe
     /// ray (direct light with a shadow ray, one emitter sample, the probes' irradiance), in
@@ -225,6 +226,16 @@ impl Default for DdgiSettings {
 }
 
 crate::settings::presets_from_inherent!(DdgiSettings);
+crate::settings::setting_docs!(DdgiSettings {
+    "volume" => DdgiVolumeSettings,
+    "update" => DdgiUpdateSettings,
+    "speed" => DdgiSpeedSettings,
+    "gather" => DdgiGatherSettings,
+});
+crate::settings::setting_docs!(DdgiVolumeSettings);
+crate::settings::setting_docs!(DdgiUpdateSettings);
+crate::settings::setting_docs!(DdgiSpeedSettings);
+crate::settings::setting_docs!(DdgiGatherSettings);
 
 impl DdgiSettings {
     /// Balanced with 64 rays a probe and hysteresis 0.95.

@@ -18,7 +18,7 @@ use super::types::GpuDdgiVolume;
 use crate::RenderError;
 use crate::frame::{IMAGE_TILE, LightingChange, SceneChange};
 use crate::probes::{AtlasLayout, ProbeGrid, atlas::copy_atlas_to_texture, rays::random_rotation};
-use crate::technique::non_finite;
+use crate::technique::{ProbeView, non_finite};
 
 mod readback;
 pub use readback::{Atlases, ProbeStateCounts};
@@ -109,6 +109,7 @@ impl DdgiDispatches {
             ("ddgi/blend_distance", self.blends),
             ("ddgi/resolve", self.image),
             ("ddgi/visualize", self.image),
+            ("ddgi/visualize_states", self.image),
         ]
     }
 }
@@ -126,6 +127,7 @@ struct VolumePasses {
     blend_distance: BoundPass,
     resolve: BoundPass,
     visualize: BoundPass,
+    visualize_states: BoundPass,
 }
 
 /// One DDGI probe volume: its grid, atlases and buffers, the passes bound to them, and its
@@ -218,6 +220,7 @@ impl DdgiVolume {
                 blend_distance: bind(&pipelines.blend_distance)?,
                 resolve: bind(&pipelines.resolve)?,
                 visualize: bind(&pipelines.visualize)?,
+                visualize_states: bind(&pipelines.visualize_states)?,
             }
         };
         let diagonal = (desc.max - desc.min).length().max(1e-3);
@@ -540,11 +543,14 @@ impl DdgiVolume {
             .dispatch(encoder, profiler, self.dispatches.image);
     }
 
-    /// Records ddgi/visualize: probes drawn as spheres into the composed radiance.
-    pub fn record_visualize(&self, encoder: &mut wgpu::CommandEncoder) {
-        self.passes
-            .visualize
-            .dispatch(encoder, None, self.dispatches.image);
+    /// Records ddgi/visualize: probes drawn as spheres into the composed radiance, lit by
+    /// their irradiance or coloured by their state (`view`).
+    pub fn record_visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {
+        let pass = match view {
+            ProbeView::Light => &self.passes.visualize,
+            ProbeView::States => &self.passes.visualize_states,
+        };
+        pass.dispatch(encoder, None, self.dispatches.image);
     }
 }
 

@@ -144,6 +144,9 @@ impl TechniqueKind for LightfieldKind {
             &self.settings(spec, &mut Vec::new())?,
         ))
     }
+    fn setting_doc(&self, _spec: &TechniqueSpec, path: &[&str]) -> Option<&'static str> {
+        <LightfieldSettings as crate::settings::SettingDocs>::setting_doc(path)
+    }
     fn plan(
         &self,
         spec: &TechniqueSpec,

@@ -61,7 +61,7 @@ use crate::raycast::types::GpuRay;
 use crate::settings::SettingsError;
 use crate::settings::TechniqueSpec;
 use crate::technique::{
-    Counter, Technique, TechniqueContext, TechniqueKind, TechniquePasses, non_finite,
+    Counter, ProbeView, Technique, TechniqueContext, TechniqueKind, TechniquePasses, non_finite,
 };
 use constants::{ALGORITHM_FILTERED, ALGORITHM_NAIVE, ALGORITHM_PREFILTERED, MIN_MIP_FACTOR};
 use resources::LightfieldResources;
@@ -523,6 +523,61 @@ impl Lightfield {
             .collect())
     }
 
+    /// Every probe's baked maps as tiles (radiance, normal, distance; one tile a probe) and
+    /// the probes' places (the viewer's inspector).
+    fn inspect_maps(&self, ctx: &GpuContext) -> Result<crate::inspect::Inspection, RenderError> {
+        use crate::inspect::{
+            DebugImage, InspectedProbe, TileLayout, direction_pixel, distance_pixel, radiance_pixel,
+        };
+        let res = self.settings.bake.resolution;
+        let probes = self.grid.probe_count;
+        let per_row = (probes as f32).sqrt().ceil() as u32;
+        let rows = probes.div_ceil(per_row);
+        let radiance = irradiant_gpu::read_texture(ctx, &self.resources.maps.radiance.texture, 4)?;
+        let geometry = irradiant_gpu::read_texture(ctx, &self.resources.maps.geometry.texture, 4)?;
+        let radiance: Vec<u32> = bytemuck::pod_collect_to_vec(&radiance);
+        let geometry: Vec<u32> = bytemuck::pod_collect_to_vec(&geometry);
+        // The layers side by side: texel (x, y) of the atlas is texel (x mod res, y mod res) of
+        // probe (y ÷ res) × per_row + x ÷ res.
+        let (w, h) = (per_row * res, rows * res);
+        let texels: Vec<Option<ProbeTexel>> = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                let probe = (y / res) * per_row + x / res;
+                (probe < probes).then(|| {
+                    let at = (probe * res * res + (y % res) * res + x % res) as usize;
+                    ProbeTexel::unpack(radiance[at], geometry[at])
+                })
+            })
+            .collect();
+        let far = self.grid.spacing.max_element() * 2.0;
+        let tiles = TileLayout {
+            size: (res, res),
+            per_row,
+        };
+        let picture = |name: &str, encode: &dyn Fn(&ProbeTexel) -> [u8; 4]| {
+            DebugImage::from_texels(format!("lightfield/{name}"), (w, h), &texels, |t| {
+                t.as_ref().map_or([0, 0, 0, 255], encode)
+            })
+            .tiled(tiles)
+        };
+        let images = vec![
+            picture("radiance", &|t| radiance_pixel(t.radiance.to_array())),
+            picture("normal", &|t| direction_pixel(t.normal)),
+            picture("distance", &|t| distance_pixel(t.distance, far)),
+        ];
+        let radius = 0.1 * self.grid.min_spacing();
+        let probes = (self.probe_positions(ctx)?.into_iter().zip(0..))
+            .map(|(position, tile)| InspectedProbe {
+                position,
+                radius,
+                tile,
+                images: (0, images.len()),
+            })
+            .collect();
+        Ok(crate::inspect::Inspection { images, probes })
+    }
+
     /// Every probe's min-mip, layer after layer: the nearest distance of each 16×16 block.
     pub fn read_min_mip(&self, ctx: &GpuContext) -> Result<Vec<f32>, RenderError> {
         let bytes = irradiant_gpu::read_texture(ctx, &self.resources.maps.low.texture, 4)?;
@@ -612,7 +667,8 @@ impl Technique for Lightfield {
     fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
         self.record_frame(encoder, profiler);
     }
-    fn visualize(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Light-field probes have no states: both views draw them lit by their radiance.
+    fn visualize(&self, encoder: &mut wgpu::CommandEncoder, _view: ProbeView) {
         let (pass, groups) = &self.view;
         pass.dispatch(encoder, None, *groups);
     }
@@ -666,6 +722,9 @@ impl Technique for Lightfield {
             all.extend(non_finite(label, halves.iter().map(|h| h.to_f32())));
         }
         Ok(all)
+    }
+    fn inspect(&self, ctx: &GpuContext) -> Result<crate::inspect::Inspection, RenderError> {
+        self.inspect_maps(ctx)
     }
     fn counters(&self, _ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         Ok(vec![

@@ -3,13 +3,14 @@
 //! applied between frames). Every setting states its trade-off; `fast`, `balanced` and
 //! `quality` are the presets.
 
+use documented::DocumentedFields;
 use serde::{Deserialize, Serialize};
 
 use crate::settings::TechniqueSpec;
 use crate::settings::{Presets, SettingsError, check_range, overlay};
 
 /// Light-field probes' settings, in two groups by what changing them costs.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct LightfieldSettings {
     /// The probe data. Changing any of these bakes again (or finds another cache entry).
     pub bake: LightfieldBakeSettings,
@@ -18,7 +19,7 @@ pub struct LightfieldSettings {
 }
 
 /// The probe data (`[technique.bake]`): a change bakes again or finds another cache entry.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct LightfieldBakeSettings {
     /// Probes per axis; [0, 0, 0] takes the scene's first probe volume (or one over its bounds);
     /// other counts place that many probes at the centres of equal cells of that volume's box.
@@ -75,7 +76,7 @@ pub enum ShadingAlgorithm {
 }
 
 /// How the frame shades with the probes (`[technique.shade]`): applied between frames.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct LightfieldShadeSettings {
     /// Set by the registry entry (`lightfield`, `lightfield-traced`, `lightfield-naive`), not
     /// by settings files: one name, one algorithm.
@@ -134,6 +135,12 @@ impl Default for LightfieldSettings {
 }
 
 crate::settings::presets_from_inherent!(LightfieldSettings);
+crate::settings::setting_docs!(LightfieldSettings {
+    "bake" => LightfieldBakeSettings,
+    "shade" => LightfieldShadeSettings,
+});
+crate::settings::setting_docs!(LightfieldBakeSettings);
+crate::settings::setting_docs!(LightfieldShadeSettings);
 
 impl LightfieldSettings {
     /// Balanced with 256² maps, 16² irradiance tiles, 4 bounces and fewer samples.

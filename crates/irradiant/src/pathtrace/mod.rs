@@ -4,6 +4,7 @@
 pub mod constants;
 pub mod gather;
 mod passes;
+pub mod reference_cache;
 pub mod types;
 
 pub use gather::{GatherKind, GatherQuery, Gathered, gather};

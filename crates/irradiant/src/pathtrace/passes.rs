@@ -58,7 +58,10 @@ impl PathTracer {
             (width, height),
             wgpu::TextureFormat::Rgba32Float,
             1,
-            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            // Sampled too: the viewer tonemaps the running mean on the GPU, without a readback.
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
         );
         Ok(Self {
             pass,
@@ -158,6 +161,11 @@ impl PathTracer {
             progress(self.samples_done, settings.samples_per_pixel);
         }
         self.image(ctx)
+    }
+
+    /// The accumulation as a sampled view: rgb sums over the count in alpha.
+    pub fn accumulation_view(&self) -> &wgpu::TextureView {
+        &self.accumulation_view
     }
 
     /// The accumulated mean radiance so far.

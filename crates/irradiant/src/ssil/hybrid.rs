@@ -3,6 +3,7 @@
 
 use std::any::Any;
 
+use documented::DocumentedFields;
 use irradiant_gpu::{GpuContext, Profiler, wgpu};
 use irradiant_scene::Camera;
 use serde::{Deserialize, Serialize};
@@ -11,10 +12,10 @@ use super::{Ssil, SsilSettings};
 use crate::RenderError;
 use crate::ddgi::{Ddgi, DdgiSettings};
 use crate::frame::SceneChange;
-use crate::technique::{Counter, Technique, TechniquePasses};
+use crate::technique::{Counter, ProbeView, Technique, TechniquePasses};
 
 /// The settings of `ssil+ddgi`: each technique's own, under its name.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct HybridSettings {
     /// The screen-space part's settings (`[technique.ssil]`).
     pub ssil: SsilSettings,
@@ -23,6 +24,10 @@ pub struct HybridSettings {
 }
 
 crate::settings::presets_from_inherent!(HybridSettings);
+crate::settings::setting_docs!(HybridSettings {
+    "ssil" => SsilSettings,
+    "ddgi" => DdgiSettings,
+});
 
 impl HybridSettings {
     /// Each technique's fast preset.
@@ -91,8 +96,8 @@ impl Technique for SsilDdgi {
         self.ddgi.resolve(encoder, profiler.as_deref_mut());
         self.ssil.resolve(encoder, profiler);
     }
-    fn visualize(&self, encoder: &mut wgpu::CommandEncoder) {
-        self.ddgi.visualize(encoder);
+    fn visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {
+        self.ddgi.visualize(encoder, view);
     }
     fn invalidate(&mut self) {
         self.ddgi.invalidate();
@@ -105,6 +110,11 @@ impl Technique for SsilDdgi {
         let mut all = self.ddgi.check_state(ctx)?;
         all.extend(self.ssil.check_state(ctx)?);
         Ok(all)
+    }
+    fn inspect(&self, ctx: &GpuContext) -> Result<crate::inspect::Inspection, RenderError> {
+        let mut out = self.ddgi.inspect(ctx)?;
+        out.images.extend(self.ssil.inspect(ctx)?.images);
+        Ok(out)
     }
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let mut all = self.ddgi.counters(ctx)?;

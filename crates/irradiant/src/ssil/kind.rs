@@ -59,6 +59,14 @@ impl TechniqueKind for SsilKind {
             (ssil, None) => crate::settings::as_table(&ssil),
         })
     }
+    fn setting_doc(&self, _spec: &TechniqueSpec, path: &[&str]) -> Option<&'static str> {
+        use crate::settings::SettingDocs;
+        if self.hybrid {
+            HybridSettings::setting_doc(path)
+        } else {
+            SsilSettings::setting_doc(path)
+        }
+    }
     fn frame_needs(&self, spec: &TechniqueSpec) -> FrameNeeds {
         let levels = self
             .settings(spec, &mut Vec::new())

@@ -472,6 +472,44 @@ impl Technique for Ssil {
                 .collect(),
         )
     }
+    /// Each level of the pyramid's gathers (irradiance ÷ π, as radiance) and of the voxel grid
+    /// (the share of its 128 depth slices that are solid, as grey).
+    fn inspect(&self, ctx: &GpuContext) -> Result<crate::inspect::Inspection, RenderError> {
+        use crate::inspect::{DebugImage, grey_pixel, radiance_pixel};
+        let mut out = crate::inspect::Inspection::default();
+        let pi = std::f32::consts::PI;
+        for level in 0..self.resources.gather.levels.len() as u32 {
+            let size = self
+                .resources
+                .gather
+                .texture
+                .size()
+                .mip_level_size(level, wgpu::TextureDimension::D2);
+            let gather = self.read_gather(ctx, level)?;
+            out.images.push(DebugImage::from_texels(
+                format!("ssil/gather, level {level}"),
+                (size.width, size.height),
+                &gather,
+                |e| radiance_pixel([e[0] / pi, e[1] / pi, e[2] / pi]),
+            ));
+        }
+        for level in 0..self.resources.voxels.levels.len() as u32 {
+            let size = self
+                .resources
+                .voxels
+                .texture
+                .size()
+                .mip_level_size(level, wgpu::TextureDimension::D2);
+            let voxels = self.read_voxels(ctx, level)?;
+            out.images.push(DebugImage::from_texels(
+                format!("ssil/voxels, level {level}"),
+                (size.width, size.height),
+                &voxels,
+                |bits| grey_pixel(bits.iter().map(|b| b.count_ones()).sum::<u32>() as f32 / 128.0),
+            ));
+        }
+        Ok(out)
+    }
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let (open, total) = self.read_open_rays(ctx)?;
         Ok(vec![

@@ -1,6 +1,7 @@
 //! Screen-space indirect illumination's settings: what each trades, three presets, and checks
 //! that name the field, the value and what is allowed.
 
+use documented::DocumentedFields;
 use serde::{Deserialize, Serialize};
 
 use crate::settings::TechniqueSpec;
@@ -30,7 +31,7 @@ impl StartResolution {
 }
 
 /// Screen-space indirect illumination's settings (the `ssil` technique's keys).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct SsilSettings {
     /// Where the gathers start. Lower resolutions lose the high frequencies of close-range
     /// indirect light but cost a quarter (half) or a sixteenth (quarter) of the full one; the
@@ -87,6 +88,7 @@ impl Default for SsilSettings {
 }
 
 crate::settings::presets_from_inherent!(SsilSettings);
+crate::settings::setting_docs!(SsilSettings);
 
 impl SsilSettings {
     /// Balanced from a quarter-resolution start, with 32 samples and no visibility.

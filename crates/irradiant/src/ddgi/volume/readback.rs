@@ -97,6 +97,56 @@ impl DdgiVolume {
         Ok(offsets.iter().map(|o| o[3] > 0.5).collect())
     }
 
+    /// The atlases as pictures and the probes' places (the viewer's inspector); `label` names
+    /// the volume.
+    pub fn inspect(
+        &self,
+        ctx: &GpuContext,
+        label: &str,
+        out: &mut crate::inspect::Inspection,
+    ) -> Result<(), RenderError> {
+        use crate::inspect::{
+            DebugImage, InspectedProbe, TileLayout, distance_pixel, radiance_pixel,
+        };
+        let atlases = self.read_atlases(ctx)?;
+        let tiles = |texels: u32| TileLayout {
+            size: (texels + 2, texels + 2),
+            per_row: self.atlas.probes_per_row,
+        };
+        let v = &self.settings.volume;
+        // Distances past a few cells are all "far": the shading only looks that far.
+        let far = 4.0 * self.grid.min_spacing();
+        let first = out.images.len();
+        out.images.push(
+            DebugImage::from_texels(
+                format!("ddgi/irradiance atlas{label}"),
+                atlases.irradiance_size,
+                &atlases.irradiance,
+                |&rgb| radiance_pixel(rgb),
+            )
+            .tiled(tiles(v.irradiance_texels)),
+        );
+        out.images.push(
+            DebugImage::from_texels(
+                format!("ddgi/distance atlas{label}"),
+                atlases.distance_size,
+                &atlases.distance,
+                |d| distance_pixel(d[0], far),
+            )
+            .tiled(tiles(v.distance_texels)),
+        );
+        let radius = 0.1 * self.grid.min_spacing();
+        for (tile, (position, _)) in self.read_probe_centres(ctx)?.into_iter().enumerate() {
+            out.probes.push(InspectedProbe {
+                position,
+                radius,
+                tile: tile as u32,
+                images: (first, 2),
+            });
+        }
+        Ok(())
+    }
+
     /// Reads back the irradiance atlas (decoded to linear) and the distance atlas.
     pub fn read_atlases(&self, ctx: &GpuContext) -> Result<Atlases, RenderError> {
         let packed: Vec<[half::f16; 4]> = read_buffer_as(ctx, &self.resources.irradiance)?;
