@@ -34,6 +34,15 @@ pub struct ViewArgs {
     /// Where screenshots (F12), bookmarks (B) and saved settings go.
     #[arg(long, default_value = ".")]
     pub out_dir: PathBuf,
+    /// Samples a pixel of the truth (T): the path-traced reference of the view, cached as
+    /// `compare --reference-spp` caches it (the same default, so they share entries). Fewer:
+    /// sooner, and noise in the FLIP map.
+    #[arg(long, default_value = "2048", value_parser = crate::options::parse_samples)]
+    pub truth_spp: u32,
+    /// Where the truth's references and the light field's bakes are cached (default: the
+    /// user's cache folder, as `compare --cache`).
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
 }
 
 pub fn run(args: &ViewArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
@@ -52,7 +61,9 @@ pub fn run(args: &ViewArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         offscreen: args.offscreen,
         panel: !args.no_panel,
         out_dir: args.out_dir.clone(),
-        cache_dir: Some(crate::cache::dir(None)),
+        cache_dir: Some(crate::cache::dir(args.cache.as_deref())),
+        truth_spp: args.truth_spp,
+        build: crate::reference::BUILD.into(),
     };
     let report = irradiant_view::run(&options).map_err(|e| CliError::Usage(e.to_string()))?;
     if args.offscreen {
@@ -63,6 +74,15 @@ pub fn run(args: &ViewArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
             report.ui_cpu_ms,
             if args.no_panel { " (no panel)" } else { "" }
         );
+        if let Some(ms) = report.present_gpu_ms {
+            println!(
+                "view: the viewer's own pass (blit{}) {ms:.3} ms of GPU time a frame (median)",
+                if args.no_panel { "" } else { " and panel" }
+            );
+        }
+        if report.restarts > 0 {
+            println!("view: {} restarts after a lost device", report.restarts);
+        }
     }
     Ok(())
 }

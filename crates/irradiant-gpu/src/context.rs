@@ -371,6 +371,11 @@ impl GpuContext {
         })
     }
 
+    /// Why the device was lost, if it was (the viewer then offers a restart on a new one).
+    pub fn lost(&self) -> Option<String> {
+        self.lost.lock().unwrap().clone()
+    }
+
     /// Reports the first error the device raised since the last check, or its loss.
     pub fn check(&self, what: &str) -> Result<(), GpuError> {
         if let Some(reason) = self.lost.lock().unwrap().clone() {

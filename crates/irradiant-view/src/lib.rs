@@ -7,8 +7,10 @@
 #![warn(missing_docs)]
 
 pub mod camera;
+pub mod inspector;
 pub mod present;
 pub mod script;
+pub mod truth;
 pub mod ui;
 pub mod viewer;
 mod window;
@@ -79,8 +81,13 @@ pub struct ViewOptions {
     pub panel: bool,
     /// Where screenshots, bookmarks and settings files go.
     pub out_dir: PathBuf,
-    /// Where the light field's bakes are cached.
+    /// Where the light field's bakes and the truth's references are cached.
     pub cache_dir: Option<PathBuf>,
+    /// The truth's samples a pixel (`T`).
+    pub truth_spp: u32,
+    /// The program's version and commit: part of a cached reference's key, so that `compare`
+    /// and the viewer share references rendered by the same build.
+    pub build: String,
 }
 
 /// Frames a second a script's frames stand for: every scripted frame advances the scene by its
@@ -97,6 +104,11 @@ pub struct RunReport {
     pub frame_ms: f64,
     /// Mean CPU milliseconds a frame spent building and tessellating the panel.
     pub ui_cpu_ms: f64,
+    /// Median GPU milliseconds of the viewer's own passes a frame (the blit, and the panel
+    /// when drawn), from timestamp queries; None where the adapter has none.
+    pub present_gpu_ms: Option<f64>,
+    /// Sessions restarted after the device was lost.
+    pub restarts: u32,
 }
 
 /// Builds the viewer: the scene, the GPU context and the session showing the first technique.
@@ -127,11 +139,38 @@ pub fn start(options: &ViewOptions) -> Result<Viewer, ViewError> {
         eprintln!("warning: {w}");
     }
     let mut viewer = Viewer::new(session, options.out_dir.clone());
+    viewer.cache_dir =
+        irradiant::pathtrace::reference_cache::cache_dir(options.cache_dir.as_deref());
+    viewer.build = options.build.clone();
+    viewer.truth_spp = options.truth_spp;
     if options.technique.trim() == viewer::PATH {
         viewer.switch_to(viewer::PATH)?;
     }
     viewer.camera_moved()?;
     Ok(viewer)
+}
+
+/// A viewer on a new device showing what `old` showed (technique, camera, debug view): the
+/// restart a lost device offers (`R`).
+pub fn restart(options: &ViewOptions, old: &Viewer) -> Result<Viewer, ViewError> {
+    let mut viewer = start(options)?;
+    viewer.apply(old.session.spec().clone())?;
+    viewer.fly = old.fly.clone();
+    viewer.debug_view = old.debug_view;
+    viewer.camera_moved()?;
+    viewer.status = "restarted on a new device after the last one was lost".into();
+    Ok(viewer)
+}
+
+/// Whether an error is the device's loss (the viewer then waits for `R`, not an exit).
+pub fn is_device_lost(error: &ViewError) -> bool {
+    matches!(
+        error,
+        ViewError::Gpu(irradiant::GpuError::DeviceLost(_))
+            | ViewError::Render(irradiant::RenderError::Gpu(
+                irradiant::GpuError::DeviceLost(_)
+            ))
+    )
 }
 
 /// A spec as the command line writes it: `name` or `name{key = value, preset = "…"}`.
@@ -158,6 +197,9 @@ pub fn run(options: &ViewOptions) -> Result<RunReport, ViewError> {
 pub struct ScriptRunner {
     steps: std::collections::VecDeque<script::Step>,
     frames_left: u32,
+    /// Frames rendered while waiting for the truth (`wait = "truth"`).
+    waited: u32,
+    waiting_truth: bool,
     /// Where the next frame, panel included, is to be written.
     capture: Option<PathBuf>,
 }
@@ -168,6 +210,8 @@ impl ScriptRunner {
         Self {
             steps: steps.into(),
             frames_left: 0,
+            waited: 0,
+            waiting_truth: false,
             capture: None,
         }
     }
@@ -180,6 +224,24 @@ impl ScriptRunner {
     /// Does the steps due before the next frame; false when the script has quit or ended.
     pub fn before_frame(&mut self, viewer: &mut Viewer) -> Result<bool, ViewError> {
         use script::Step;
+        if self.waiting_truth {
+            let Some(truth) = &viewer.truth else {
+                return Err(ViewError::Settings(
+                    "wait = \"truth\": the truth was dropped (the view moved?)".into(),
+                ));
+            };
+            if truth.verdict().is_none() {
+                self.waited += 1;
+                if self.waited > script::MAX_SCRIPT_FRAMES {
+                    return Err(ViewError::Settings(
+                        "wait = \"truth\": no verdict after the most frames a script may render"
+                            .into(),
+                    ));
+                }
+                return Ok(true);
+            }
+            self.waiting_truth = false;
+        }
         while self.frames_left == 0 {
             let Some(step) = self.steps.pop_front() else {
                 return Ok(false);
@@ -197,6 +259,35 @@ impl ScriptRunner {
                     self.capture = Some(path);
                     self.frames_left = 1;
                 }
+                Step::Light(index, on) => viewer.set_light(index, on)?,
+                Step::Truth(show) => match &mut viewer.truth {
+                    Some(truth) => truth.show = show,
+                    None => {
+                        return Err(ViewError::Settings(
+                            "truth = …: there is no truth to show; press T first".into(),
+                        ));
+                    }
+                },
+                Step::WaitTruth => {
+                    if viewer.truth.is_none() {
+                        return Err(ViewError::Settings(
+                            "wait = \"truth\": there is no truth to wait for; press T first".into(),
+                        ));
+                    }
+                    self.waiting_truth = true;
+                    self.waited = 0;
+                    return self.before_frame(viewer);
+                }
+                Step::Click(x, y) => {
+                    viewer.pick_probe((x, y));
+                }
+                Step::LoseDevice => {
+                    viewer.ctx().device.destroy();
+                    let _ = viewer
+                        .ctx()
+                        .device
+                        .poll(irradiant_gpu::wgpu::PollType::wait_indefinitely());
+                }
                 Step::Quit => return Ok(false),
             }
         }
@@ -213,19 +304,43 @@ pub fn run_offscreen(options: &ViewOptions) -> Result<RunReport, ViewError> {
         None => vec![script::Step::Frames(1)],
     };
     let mut viewer = start(options)?;
-    let mut presenter =
-        present::Presenter::new(viewer.ctx(), irradiant_gpu::wgpu::TextureFormat::Rgba8Unorm);
-    let egui_ctx = egui::Context::default();
+    let presenter_for = |viewer: &Viewer| {
+        present::Presenter::new(viewer.ctx(), irradiant_gpu::wgpu::TextureFormat::Rgba8Unorm)
+            .timed(viewer.ctx())
+    };
+    let mut presenter = presenter_for(&viewer);
+    let mut egui_ctx = egui::Context::default();
     let mut panel = ui::PanelState::default();
     let mut runner = ScriptRunner::new(steps);
     let mut report = RunReport::default();
     let mut frame_times = Vec::new();
+    let mut present_times = Vec::new();
     let mut ui_total = 0.0;
     let mut last_ms = 0.0;
     let mut target: Option<((u32, u32), present::Offscreen)> = None;
+    let mut lost = false;
     while runner.before_frame(&mut viewer)? {
+        if viewer.restart_requested {
+            // Everything made on the lost device goes with it: a new one, and egui anew.
+            viewer = restart(options, &viewer)?;
+            presenter = presenter_for(&viewer);
+            egui_ctx = egui::Context::default();
+            target = None;
+            lost = false;
+            report.restarts += 1;
+        }
+        if lost {
+            continue;
+        }
         let start = Instant::now();
-        viewer.render(1.0 / SCRIPT_FPS)?;
+        match viewer.render(1.0 / SCRIPT_FPS) {
+            Err(e) if is_device_lost(&e) => {
+                eprintln!("{e}\npress R to restart the session on a new device");
+                lost = true;
+                continue;
+            }
+            other => other?,
+        }
         let size = viewer.session.frame().size();
         if target.as_ref().is_none_or(|(s, _)| *s != size) {
             target = Some((size, present::Offscreen::new(viewer.ctx(), size)));
@@ -259,6 +374,9 @@ pub fn run_offscreen(options: &ViewOptions) -> Result<RunReport, ViewError> {
         ctx.queue.submit([encoder.finish()]);
         ctx.wait()?;
         last_ms = start.elapsed().as_secs_f64() * 1e3;
+        if let Some(ms) = presenter.read_gpu_ms(ctx)? {
+            present_times.push(ms);
+        }
         if let Some(path) = runner.take_capture() {
             let pixels = target.read(ctx)?;
             irradiant::frame::write_png(&path, &pixels, size.0, size.1)?;
@@ -270,6 +388,10 @@ pub fn run_offscreen(options: &ViewOptions) -> Result<RunReport, ViewError> {
         frame_times.sort_by(f64::total_cmp);
         report.frame_ms = frame_times[frame_times.len() / 2];
         report.ui_cpu_ms = ui_total / report.frames as f64;
+    }
+    if !present_times.is_empty() {
+        present_times.sort_by(f64::total_cmp);
+        report.present_gpu_ms = Some(present_times[present_times.len() / 2]);
     }
     Ok(report)
 }

@@ -23,6 +23,25 @@ pub enum Decode {
     Colour = 5,
     /// Screen-space motion in pixels: x red, y green, around grey.
     Motion = 6,
+    /// The path tracer's running sums over the count in alpha, tonemapped as the frame's
+    /// output is (exposure, then the filmic curve or a clamp).
+    Accumulation = 7,
+}
+
+/// What the blit shows: an image decoded one way at the frame's tone and, from column
+/// `beside.1` on, another image as it is (the truth's wipe).
+#[derive(Clone, Copy)]
+pub struct Shown<'a> {
+    /// The image.
+    pub image: &'a wgpu::TextureView,
+    /// How its texels become pixels.
+    pub decode: Decode,
+    /// The frame's exposure.
+    pub exposure: f32,
+    /// The frame's filmic curve (off: a clamp), for [`Decode::Accumulation`].
+    pub filmic: bool,
+    /// Another sRGB image of the same size, shown from a column on.
+    pub beside: Option<(&'a wgpu::TextureView, u32)>,
 }
 
 /// The blit's uniforms (WGSL `Show`).
@@ -31,7 +50,9 @@ pub enum Decode {
 struct GpuShow {
     decode: u32,
     exposure: f32,
-    _pad: [u32; 2],
+    filmic: u32,
+    /// The first column the image beside is shown in (u32::MAX: none).
+    split: u32,
 }
 const _: () = assert!(std::mem::size_of::<GpuShow>() == 16);
 
@@ -42,12 +63,13 @@ const BLIT_WGSL: &str = r#"
 struct Show {
     decode: u32,
     exposure: f32,
-    pad0: u32,
-    pad1: u32,
+    filmic: u32,
+    split: u32,
 }
 
 @group(0) @binding(0) var image: texture_2d<f32>;
 @group(0) @binding(1) var<uniform> show: Show;
+@group(0) @binding(2) var beside: texture_2d<f32>;
 
 @vertex
 fn vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
@@ -65,10 +87,25 @@ fn radiance(c: vec3f) -> vec4f {
     return vec4f(encode_srgb(x / (1.0 + x)), 1.0);
 }
 
+// The frame's tonemap (frame::Image::to_srgb8): exposure, then ACES's fitted curve or a clamp.
+fn tonemapped(c: vec3f) -> vec4f {
+    let x = max(c, vec3f(0.0)) * show.exposure;
+    let aces = clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3f(0.0), vec3f(1.0));
+    return vec4f(encode_srgb(select(min(x, vec3f(1.0)), aces, show.filmic != 0u)), 1.0);
+}
+
 @fragment
 fn fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
+    let at = vec2i(pixel.xy);
+    if show.split != 0xffffffffu && u32(at.x) >= show.split {
+        // The wipe: a one-pixel white line, then the image beside.
+        if u32(at.x) == show.split {
+            return vec4f(1.0);
+        }
+        return textureLoad(beside, min(at, vec2i(textureDimensions(beside)) - 1), 0);
+    }
     let last = vec2i(textureDimensions(image)) - 1;
-    let t = textureLoad(image, min(vec2i(pixel.xy), last), 0);
+    let t = textureLoad(image, min(at, last), 0);
     switch show.decode {
         case 1u: { return radiance(t.rgb); }
         case 2u: { return radiance(t.rgb / max(t.a, 1e-6)); }
@@ -79,13 +116,23 @@ fn fragment(@builtin(position) pixel: vec4f) -> @location(0) vec4f {
         }
         case 5u: { return vec4f(encode_srgb(t.rgb), 1.0); }
         case 6u: { return vec4f(clamp(0.5 + 0.05 * t.xy, vec2f(0.0), vec2f(1.0)), 0.5, 1.0); }
+        case 7u: { return tonemapped(t.rgb / max(t.a, 1.0)); }
         default: { return t; }
     }
 }
 "#;
 
+/// Timestamps around the viewer's own pass (the blit and the panel), where the adapter has
+/// timestamp queries.
+struct PresentTimer {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    period_ns: f64,
+}
+
 /// What draws the frame and the UI into a target of one format.
 pub struct Presenter {
+    timer: Option<PresentTimer>,
     blit: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     show: wgpu::Buffer,
@@ -111,19 +158,20 @@ impl Presenter {
                 .into(),
             ),
         });
+        let image_entry = wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("view/blit"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                image_entry,
                 wgpu::BindGroupLayoutEntry {
                     binding: 1,
                     visibility: wgpu::ShaderStages::FRAGMENT,
@@ -133,6 +181,10 @@ impl Presenter {
                         min_binding_size: None,
                     },
                     count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    ..image_entry
                 },
             ],
         });
@@ -170,6 +222,7 @@ impl Presenter {
         });
         let egui = egui_wgpu::Renderer::new(device, format, egui_wgpu::RendererOptions::default());
         Self {
+            timer: None,
             blit,
             layout,
             show,
@@ -178,8 +231,39 @@ impl Presenter {
         }
     }
 
-    /// Records the image's blit (decoded as `decode` says, radiance at `exposure`) and the UI's
-    /// shapes into `target` (`size` pixels).
+    /// Times the viewer's pass with timestamp queries (nothing where the adapter has none);
+    /// [`Presenter::read_gpu_ms`] reads the last one.
+    pub fn timed(mut self, ctx: &GpuContext) -> Self {
+        self.timer = ctx.info.timestamps.then(|| PresentTimer {
+            queries: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("view/present_timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolve: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("view/present_timestamps"),
+                size: 16,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            period_ns: ctx.queue.get_timestamp_period() as f64,
+        });
+        self
+    }
+
+    /// GPU milliseconds of the last recorded pass (it waits for the GPU); None untimed.
+    pub fn read_gpu_ms(&self, ctx: &GpuContext) -> Result<Option<f64>, irradiant_gpu::GpuError> {
+        let Some(timer) = &self.timer else {
+            return Ok(None);
+        };
+        let ticks: Vec<u64> = irradiant_gpu::read_buffer_as(ctx, &timer.resolve)?;
+        Ok(Some(
+            ticks[1].saturating_sub(ticks[0]) as f64 * timer.period_ns * 1e-6,
+        ))
+    }
+
+    /// Records the image's blit (as `shown` says) and the UI's shapes into `target` (`size`
+    /// pixels).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -187,7 +271,7 @@ impl Presenter {
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
         size: (u32, u32),
-        (image, decode, exposure): (&wgpu::TextureView, Decode, f32),
+        shown: Shown,
         mut ui: egui::FullOutput,
         egui_ctx: &egui::Context,
     ) {
@@ -210,10 +294,12 @@ impl Presenter {
             "egui paint callbacks are not used by the viewer"
         );
         let show = GpuShow {
-            decode: decode as u32,
-            exposure,
-            _pad: [0; 2],
+            decode: shown.decode as u32,
+            exposure: shown.exposure,
+            filmic: shown.filmic as u32,
+            split: shown.beside.map_or(u32::MAX, |b| b.1),
         };
+        let beside = shown.beside.map_or(shown.image, |b| b.0);
         ctx.queue
             .write_buffer(&self.show, 0, bytemuck::bytes_of(&show));
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -222,11 +308,15 @@ impl Presenter {
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
-                    resource: wgpu::BindingResource::TextureView(image),
+                    resource: wgpu::BindingResource::TextureView(shown.image),
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
                     resource: self.show.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(beside),
                 },
             ],
         });
@@ -243,7 +333,14 @@ impl Presenter {
                     },
                 })],
                 depth_stencil_attachment: None,
-                timestamp_writes: None,
+                timestamp_writes: self
+                    .timer
+                    .as_ref()
+                    .map(|t| wgpu::RenderPassTimestampWrites {
+                        query_set: &t.queries,
+                        beginning_of_pass_write_index: Some(0),
+                        end_of_pass_write_index: Some(1),
+                    }),
                 occlusion_query_set: None,
                 multiview_mask: None,
             })
@@ -253,6 +350,9 @@ impl Presenter {
         pass.draw(0..3, 0..1);
         self.egui.render(&mut pass, &shapes, &screen);
         drop(pass);
+        if let Some(t) = &self.timer {
+            encoder.resolve_query_set(&t.queries, 0..2, &t.resolve, 0);
+        }
         for id in &ui.textures_delta.free {
             self.egui.free_texture(id);
         }

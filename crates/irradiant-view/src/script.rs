@@ -9,9 +9,19 @@
 //! [[step]]
 //! move = { forward = 1.0, seconds = 0.5 }   # fly, as WASD/QE would
 //! [[step]]
-//! key = "Space"                             # press a key: Space, F, P, B, F1, F12, 1…9
+//! key = "Space"                             # press a key: Space, T, I, F, P, B, R, F1, F12, 1…9
 //! [[step]]
 //! show = "normal"                            # a debug view: final, direct, indirect, normal, …
+//! [[step]]
+//! light = { index = 0, on = false }          # switch one of the scene's lights
+//! [[step]]
+//! truth = "flip"                             # how the truth (T) is shown: wipe, difference, flip
+//! [[step]]
+//! wait = "truth"                             # render until the truth is compared
+//! [[step]]
+//! click = [320, 180]                         # click a pixel: picks a probe in the inspector (I)
+//! [[step]]
+//! lose_device = true                         # destroy the device, as a driver reset would
 //! [[step]]
 //! frames = 30                                # render this many frames
 //! [[step]]
@@ -53,6 +63,16 @@ pub enum Step {
     Screenshot(PathBuf),
     /// Save the next frame with the panel over it (offscreen only).
     Capture(PathBuf),
+    /// Switch the scene's light `index` on or off.
+    Light(usize, bool),
+    /// Show the truth this way.
+    Truth(crate::truth::TruthShow),
+    /// Render frames until the truth is compared.
+    WaitTruth,
+    /// Click the frame at a pixel (picks a probe in the inspector).
+    Click(f32, f32),
+    /// Destroy the device (tests the lost-device restart).
+    LoseDevice,
     /// Close the viewer.
     Quit,
 }
@@ -76,7 +96,22 @@ struct StepDesc {
     screenshot: Option<PathBuf>,
     capture: Option<PathBuf>,
     quit: Option<bool>,
+    light: Option<LightDesc>,
+    truth: Option<String>,
+    wait: Option<String>,
+    click: Option<[f32; 2]>,
+    lose_device: Option<bool>,
 }
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightDesc {
+    index: usize,
+    on: bool,
+}
+
+/// What a step can be, for the messages.
+const STEP_KINDS: &str = "technique, camera, move, key, show, frames, screenshot, capture, light, truth, wait, click, lose_device or quit";
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -94,7 +129,7 @@ struct MoveDesc {
 
 /// The keys a script may press.
 pub const SCRIPT_KEYS: &[&str] = &[
-    "Space", "F", "P", "B", "F1", "F12", "1", "2", "3", "4", "5", "6", "7", "8", "9",
+    "Space", "T", "I", "F", "P", "B", "R", "F1", "F12", "1", "2", "3", "4", "5", "6", "7", "8", "9",
 ];
 
 /// Reads and checks a script; relative screenshot paths are relative to the script's folder.
@@ -114,7 +149,7 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
     };
     let file: File = toml::from_str(text).map_err(|e| {
         error(format!(
-            "{}; write [[step]] tables, each with one of technique, camera, move, key, show, frames, screenshot, capture or quit",
+            "{}; write [[step]] tables, each with one of {STEP_KINDS}",
             e.message()
         ))
     })?;
@@ -132,13 +167,18 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
             s.screenshot.is_some(),
             s.capture.is_some(),
             s.quit.is_some(),
+            s.light.is_some(),
+            s.truth.is_some(),
+            s.wait.is_some(),
+            s.click.is_some(),
+            s.lose_device.is_some(),
         ]
         .iter()
         .filter(|g| **g)
         .count();
         if given != 1 {
             return Err(error(format!(
-                "step {n} does {given} things: give each [[step]] exactly one of technique, camera, move, key, show, frames, screenshot, capture or quit"
+                "step {n} does {given} things: give each [[step]] exactly one of {STEP_KINDS}"
             )));
         }
         let step = if let Some(t) = s.technique {
@@ -215,6 +255,34 @@ pub fn parse_script(text: &str, path: &Path) -> Result<Vec<Step>, ViewError> {
                 )));
             }
             Step::Capture(folder.join(p))
+        } else if let Some(l) = s.light {
+            Step::Light(l.index, l.on)
+        } else if let Some(t) = s.truth {
+            let show = crate::truth::TruthShow::ALL
+                .iter()
+                .find(|(_, name)| name.eq_ignore_ascii_case(&t))
+                .ok_or_else(|| {
+                    error(format!(
+                        "step {n}: truth = \"{t}\" is not a way to show it: use wipe, difference or flip"
+                    ))
+                })?;
+            Step::Truth(show.0)
+        } else if let Some(w) = s.wait {
+            if w != "truth" {
+                return Err(error(format!(
+                    "step {n}: wait = \"{w}\": a script can wait for \"truth\" only"
+                )));
+            }
+            Step::WaitTruth
+        } else if let Some([x, y]) = s.click {
+            if !(x.is_finite() && y.is_finite() && x >= 0.0 && y >= 0.0) {
+                return Err(error(format!(
+                    "step {n}: click = [{x}, {y}] is not a pixel: give two coordinates of 0 or more"
+                )));
+            }
+            Step::Click(x, y)
+        } else if s.lose_device.is_some() {
+            Step::LoseDevice
         } else {
             Step::Quit
         };
@@ -267,6 +335,12 @@ quit = true
             ("[[step]]\nscreenshot = \"a.jpg\"\n", "must end in .png"),
             ("[[step]]\nmove = { seconds = -1 }\n", "move.seconds"),
             ("[[step]]\nteleport = 1\n", "write [[step]] tables"),
+            (
+                "[[step]]\ntruth = \"sideways\"\n",
+                "use wipe, difference or flip",
+            ),
+            ("[[step]]\nwait = \"godot\"\n", "\"truth\" only"),
+            ("[[step]]\nclick = [-1, 2]\n", "not a pixel"),
             (
                 "[[step]]\ncamera = { position = [0, 0, 0], target = [0, 0, 0] }\n",
                 "step 1",

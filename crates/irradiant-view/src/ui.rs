@@ -22,12 +22,24 @@ pub const KEYS: &[(&str, &str)] = &[
         "Space",
         "the path-traced reference on and off (accumulates while the camera rests)",
     ),
+    (
+        "T",
+        "the truth beside the frame: the path-traced reference as a wipe, difference or FLIP map",
+    ),
     ("F", "frame the whole scene"),
-    ("P", "draw the probes"),
-    ("F12", "screenshot (PNG, as shown)"),
+    ("P", "draw the probes: lit, by state, off"),
+    (
+        "I",
+        "inspect the technique's state (atlases, levels); click a probe for its tiles",
+    ),
+    ("F12", "screenshot (PNG as shown, and linear EXR)"),
     (
         "B",
         "bookmark the view (a camera file for render --camera-from)",
+    ),
+    (
+        "R",
+        "restart on a new device, after the GPU device was lost",
     ),
     ("F1", "this help"),
     ("Esc", "quit"),
@@ -38,6 +50,8 @@ pub const KEYS: &[(&str, &str)] = &[
 pub struct PanelState {
     /// The path "save settings as…" writes to.
     pub settings_path: String,
+    /// The chart's history and the inspector's pictures.
+    pub tools: crate::inspector::ToolsState,
 }
 
 /// Draws the panel and the help overlay, and applies what the person changed.
@@ -51,6 +65,7 @@ pub fn draw(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState, fram
         .show(ui, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| panel(ui, viewer, state, frame_ms));
         });
+    crate::inspector::inspector(ui, viewer, &mut state.tools);
     if viewer.show_help {
         egui::Window::new("Keys")
             .collapsible(false)
@@ -115,7 +130,7 @@ fn panel(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState, frame_m
         for (label, key) in [
             ("path tracer", "Space"),
             ("frame scene", "F"),
-            ("probes", "P"),
+            ("inspect", "I"),
             ("screenshot", "F12"),
             ("bookmark", "B"),
         ] {
@@ -129,8 +144,13 @@ fn panel(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState, frame_m
             }
         }
     });
+    if !viewer.path_tracing() {
+        crate::inspector::truth(ui, viewer);
+        crate::inspector::probes(ui, viewer);
+    }
+    crate::inspector::lights(ui, viewer);
     animation(ui, viewer);
-    timings(ui, viewer);
+    crate::inspector::timings(ui, viewer, &mut state.tools, frame_ms);
     if !viewer.status.is_empty() {
         ui.separator();
         ui.label(&viewer.status);
@@ -163,10 +183,15 @@ fn settings(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState) {
         }
     };
     let mut edit: Option<(Vec<String>, toml::Value)> = None;
+    let kind = spec.kind().ok();
+    let doc = |path: &[String]| -> Option<&'static str> {
+        let parts: Vec<&str> = path.iter().map(String::as_str).collect();
+        kind?.setting_doc(&spec, &parts)
+    };
     egui::CollapsingHeader::new("settings")
         .default_open(true)
         .show(ui, |ui| {
-            setting_rows(ui, &table, &mut Vec::new(), &mut edit)
+            setting_rows(ui, &table, &mut Vec::new(), &doc, &mut edit)
         });
     if let Some((key, value)) = edit {
         let mut changed = spec.clone();
@@ -192,36 +217,42 @@ fn settings(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut PanelState) {
     });
 }
 
-/// One row a setting; a group's settings under its name. A change is applied when a drag
-/// ends or a field is left, so that a setting that rebuilds the technique rebuilds once.
+/// One row a setting, its doc comment (what it does, what it trades) as its tooltip; a
+/// group's settings under its name. A change is applied when a drag ends or a field is left,
+/// so that a setting that rebuilds the technique rebuilds once.
 fn setting_rows(
     ui: &mut egui::Ui,
     table: &toml::Table,
     path: &mut Vec<String>,
+    doc: &dyn Fn(&[String]) -> Option<&'static str>,
     edit: &mut Option<(Vec<String>, toml::Value)>,
 ) {
     for (key, value) in table {
         path.push(key.clone());
         let id = path.join(".");
+        let tooltip = doc(path).unwrap_or("");
         match value {
             toml::Value::Table(group) => {
                 egui::CollapsingHeader::new(key)
                     .id_salt(&id)
-                    .show(ui, |ui| setting_rows(ui, group, path, edit));
+                    .show(ui, |ui| setting_rows(ui, group, path, doc, edit))
+                    .header_response
+                    .on_hover_text(tooltip);
             }
             toml::Value::Boolean(b) => {
                 let mut v = *b;
-                if ui.checkbox(&mut v, key).changed() {
+                if ui.checkbox(&mut v, key).on_hover_text(tooltip).changed() {
                     *edit = Some((path.clone(), v.into()));
                 }
             }
             toml::Value::Integer(i) => {
-                if let Some(v) = number(ui, key, &id, *i as f64, 1.0) {
+                if let Some(v) = number(ui, key, &id, *i as f64, 1.0, tooltip) {
                     *edit = Some((path.clone(), (v.round() as i64).into()));
                 }
             }
             toml::Value::Float(f) => {
-                if let Some(v) = number(ui, key, &id, *f, (f.abs() * 0.01).max(1e-3)) {
+                let speed = (f.abs() * 0.01).max(1e-3);
+                if let Some(v) = number(ui, key, &id, *f, speed, tooltip) {
                     *edit = Some((path.clone(), v.into()));
                 }
             }
@@ -232,8 +263,10 @@ fn setting_rows(
                     .unwrap_or_else(|| other.to_string());
                 let r = ui
                     .horizontal(|ui| {
-                        let label = ui.label(key);
-                        ui.text_edit_singleline(&mut text).labelled_by(label.id)
+                        let label = ui.label(key).on_hover_text(tooltip);
+                        ui.text_edit_singleline(&mut text)
+                            .labelled_by(label.id)
+                            .on_hover_text(tooltip)
                     })
                     .inner;
                 if r.lost_focus() {
@@ -255,14 +288,23 @@ fn setting_rows(
 
 /// A number's drag field. While it is dragged the value lives in egui's memory; the new value
 /// is returned once, when the drag ends or a typed value is entered.
-fn number(ui: &mut egui::Ui, key: &str, id: &str, value: f64, speed: f64) -> Option<f64> {
+fn number(
+    ui: &mut egui::Ui,
+    key: &str,
+    id: &str,
+    value: f64,
+    speed: f64,
+    tooltip: &str,
+) -> Option<f64> {
     let id = ui.make_persistent_id(("setting", id));
     let mut v = ui.data(|d| d.get_temp::<f64>(id)).unwrap_or(value);
-    let r = ui.add(
-        egui::DragValue::new(&mut v)
-            .speed(speed)
-            .prefix(format!("{key}: ")),
-    );
+    let r = ui
+        .add(
+            egui::DragValue::new(&mut v)
+                .speed(speed)
+                .prefix(format!("{key}: ")),
+        )
+        .on_hover_text(tooltip);
     if r.dragged() {
         ui.data_mut(|d| d.insert_temp(id, v));
         return None;
@@ -290,27 +332,8 @@ fn animation(ui: &mut egui::Ui, viewer: &mut Viewer) {
     }
 }
 
-fn timings(ui: &mut egui::Ui, viewer: &Viewer) {
-    if viewer.timings.is_empty() {
-        return;
-    }
-    ui.separator();
-    let total: f64 = viewer.timings.iter().map(|t| t.1).sum();
-    egui::CollapsingHeader::new(format!("GPU passes: {total:.3} ms"))
-        .default_open(true)
-        .show(ui, |ui| {
-            egui::Grid::new("passes").striped(true).show(ui, |ui| {
-                for (label, ms) in &viewer.timings {
-                    ui.label(label);
-                    ui.label(format!("{ms:.3} ms"));
-                    ui.end_row();
-                }
-            });
-        });
-}
-
 /// An action's error into the status line, in words: the panel never panics on bad input.
-fn report(viewer: &mut Viewer, result: Result<(), crate::ViewError>) {
+pub fn report(viewer: &mut Viewer, result: Result<(), crate::ViewError>) {
     if let Err(e) = result {
         viewer.status = format!("error: {e}");
     }

@@ -3,26 +3,34 @@
 //! reference, and what a key or a script step does. The window (window.rs) and the offscreen
 //! runner (lib.rs) feed it input and draw what it shows.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, VecDeque};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use irradiant::frame::{Image, write_png};
+use irradiant::inspect::Inspection;
+use irradiant::pathtrace::reference_cache::ReferenceEntry;
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+use irradiant::technique::ProbeView;
 use irradiant::{GpuContext, Session, TechniqueSpec};
-use irradiant_gpu::wgpu;
 
 use crate::ViewError;
 use crate::camera::{FlyCamera, Movement};
-use crate::present::Decode;
+use crate::present::{Decode, Shown};
+use crate::truth::Truth;
 
 /// The reference path tracer's name in the technique list, beside the registered techniques.
 pub const PATH: &str = "path";
-/// Path-traced samples a pixel between two updates of the shown image: each update reads the
-/// image back, which waits for the GPU.
-const PATH_SAMPLES_PER_UPDATE: u32 = 4;
-/// Frames between two timed frames: a timed frame waits for its timestamps.
+/// Path-traced samples a pixel a frame, at most (the path view and the truth): enough to
+/// converge in seconds, few enough that the window keeps its frame rate.
+const PATH_SAMPLES_PER_FRAME: u32 = 4;
+/// Frames between two timed frames: a timed frame waits for its timestamps and counters.
 pub const PROFILE_EVERY: u64 = 30;
+/// Timed frames the panel's chart keeps.
+pub const HISTORY: usize = 120;
+/// The truth's samples a pixel unless `--truth-spp` says otherwise: `irradiant compare`'s
+/// default reference, so that the two share cache entries.
+pub const TRUTH_SPP: u32 = 2048;
 
 /// What the viewer can show instead of the final frame: a frame texture and how to read it.
 /// Name, frame texture, decoding.
@@ -38,13 +46,11 @@ pub const DEBUG_VIEWS: &[(&str, &str, Decode)] = &[
     ("motion", "gbuffer_motion", Decode::Motion),
 ];
 
-/// The path tracer accumulating while the camera rests.
+/// The path tracer accumulating while the camera rests (shown through the blit's
+/// [`Decode::Accumulation`]: nothing is read back).
 struct PathView {
     tracer: PathTracer,
     settings: PathTraceSettings,
-    /// What is shown: the accumulation tonemapped, as the frame's output is.
-    display: wgpu::Texture,
-    display_view: wgpu::TextureView,
 }
 
 /// Everything the viewer shows and changes.
@@ -62,8 +68,20 @@ pub struct Viewer {
     /// The camera the keys and the mouse move.
     pub fly: FlyCamera,
     path: Option<PathView>,
-    /// Probes drawn in the world (`P`).
-    pub show_probes: bool,
+    /// The path-traced truth of the view and its comparison (`T`).
+    pub truth: Option<Truth>,
+    /// The truth's samples a pixel.
+    pub truth_spp: u32,
+    /// Where references are cached (shared with `irradiant compare`).
+    pub cache_dir: PathBuf,
+    /// The program's version and commit, part of a reference's cache key.
+    pub build: String,
+    /// Probes drawn in the world, and how (`P` cycles: off, light, states).
+    pub probe_view: Option<ProbeView>,
+    /// The technique's state as pictures (`I`), and the probe picked in it by a click.
+    pub inspection: Option<Inspection>,
+    /// Index into the inspection's probes of the one clicked.
+    pub picked: Option<usize>,
     /// The key list (`F1`).
     pub show_help: bool,
     /// Index into [`DEBUG_VIEWS`] of what is shown of the frame (0: the final image).
@@ -76,10 +94,20 @@ pub struct Viewer {
     pub status: String,
     /// The last timed frame's passes, milliseconds each.
     pub timings: Vec<(String, f64)>,
+    /// The last timed frames' GPU totals, oldest first (the panel's chart).
+    pub timing_history: VecDeque<f64>,
+    /// The technique's counters at the last timed frame (probes by state, rays).
+    pub counters: Vec<(String, f64)>,
+    /// GPU memory the frame, the technique and the path tracer hold, as planned (bytes).
+    pub memory_bytes: u64,
+    /// Counts inspections, so that the panel knows when its pictures are stale.
+    pub inspections: u64,
     /// Frames rendered.
     pub frames: u64,
     /// Where screenshots and bookmarks go.
     pub out_dir: PathBuf,
+    /// `R` after the device was lost: the run loop starts a new session on a new device.
+    pub restart_requested: bool,
     bookmarks: u32,
     screenshots: u32,
 }
@@ -112,15 +140,26 @@ impl Viewer {
             realtime: name,
             fly,
             path: None,
-            show_probes: false,
+            truth: None,
+            truth_spp: TRUTH_SPP,
+            cache_dir: irradiant::pathtrace::reference_cache::cache_dir(None),
+            build: concat!("irradiant-view ", env!("CARGO_PKG_VERSION")).into(),
+            probe_view: None,
+            inspection: None,
+            picked: None,
             show_help: false,
             debug_view: 0,
             playing: true,
             speed: 1.0,
             status: String::new(),
             timings: Vec::new(),
+            timing_history: VecDeque::new(),
+            counters: Vec::new(),
+            memory_bytes: 0,
+            inspections: 0,
             frames: 0,
             out_dir,
+            restart_requested: false,
             bookmarks: 0,
             screenshots: 0,
         }
@@ -165,6 +204,7 @@ impl Viewer {
             self.apply(spec)?;
         }
         self.current = index;
+        self.inspection = None;
         Ok(())
     }
 
@@ -194,23 +234,9 @@ impl Viewer {
         let ctx = self.session.ctx();
         let (w, h) = self.session.frame().size();
         let tracer = PathTracer::new(ctx, self.session.gpu_scene(), w, h)?;
-        let display = irradiant_gpu::texture_2d(
-            &ctx.device,
-            "view/path_display",
-            (w, h),
-            wgpu::TextureFormat::Rgba8Unorm,
-            1,
-            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        );
-        let display_view = display.create_view(&Default::default());
         let mut settings = PathTraceSettings::balanced();
         settings.samples_per_pixel = u32::MAX;
-        self.path = Some(PathView {
-            tracer,
-            settings,
-            display,
-            display_view,
-        });
+        self.path = Some(PathView { tracer, settings });
         self.restart_path()
     }
 
@@ -234,8 +260,9 @@ impl Viewer {
         self.path.as_ref().map_or(0, |p| p.tracer.samples_done)
     }
 
-    /// Does what a key does: `Space` the path tracer on and off, `F` frames the scene, `P` the
-    /// probes, `1`…`9` a technique, `F1` help, `F12` a screenshot, `B` a bookmark.
+    /// Does what a key does: `Space` the path tracer on and off, `T` the truth beside the
+    /// frame, `F` frames the scene, `P` the probes (off, light, states), `I` the inspector,
+    /// `1`…`9` a technique, `F1` help, `F12` a screenshot (PNG and EXR), `B` a bookmark.
     pub fn press(&mut self, key: &str) -> Result<(), ViewError> {
         match key {
             "Space" => {
@@ -252,16 +279,26 @@ impl Viewer {
                 self.camera_moved()?;
             }
             "P" => {
-                self.show_probes = !self.show_probes;
-                self.session.set_show_probes(self.show_probes);
+                let next = match self.probe_view {
+                    None => Some(ProbeView::Light),
+                    Some(ProbeView::Light) => Some(ProbeView::States),
+                    Some(ProbeView::States) => None,
+                };
+                self.set_probe_view(next);
             }
+            "T" => self.toggle_truth()?,
+            "R" => self.restart_requested = self.ctx().lost().is_some(),
+            "I" => self.toggle_inspector()?,
             "F1" => self.show_help = !self.show_help,
             "F12" => {
                 self.screenshots += 1;
-                let path = self
-                    .out_dir
-                    .join(format!("irradiant-view-{:03}.png", self.screenshots));
-                self.screenshot(&path)?;
+                let stem = format!("irradiant-view-{:03}", self.screenshots);
+                self.screenshot(&self.out_dir.join(format!("{stem}.exr")))?;
+                self.screenshot(&self.out_dir.join(format!("{stem}.png")))?;
+                self.status = format!(
+                    "wrote {stem}.png (as shown) and {stem}.exr (linear) in {}",
+                    self.out_dir.display()
+                );
             }
             "B" => {
                 self.bookmarks += 1;
@@ -295,22 +332,134 @@ impl Viewer {
         self.camera_moved()
     }
 
-    /// Tells the session and the path tracer that the view changed.
+    /// Tells the session and the path tracer that the view changed; the truth of another view
+    /// is dropped.
     pub fn camera_moved(&mut self) -> Result<(), ViewError> {
         self.session.set_camera(self.fly.camera());
+        if self
+            .truth
+            .as_ref()
+            .is_some_and(|t| t.camera != self.fly.camera())
+        {
+            self.truth = None;
+            self.status = "the truth was of another view: T renders this one's".into();
+        }
         self.restart_path()
     }
 
-    /// Renders one frame of what is shown, `dt` seconds after the last.
+    /// Draws the probes as `view` says, or none.
+    pub fn set_probe_view(&mut self, view: Option<ProbeView>) {
+        self.probe_view = view;
+        self.session.set_probe_view(view);
+    }
+
+    /// Switches the scene's light `index` on or off: the path tracer restarts, and the truth,
+    /// of another scene now, is dropped.
+    pub fn set_light(&mut self, index: usize, on: bool) -> Result<(), ViewError> {
+        self.session.set_light_enabled(index, on);
+        self.truth = None;
+        self.restart_path()
+    }
+
+    /// `T`: the truth of this view, or off again. A second press on an unmoved view compares
+    /// the technique's frame as it is now.
+    pub fn toggle_truth(&mut self) -> Result<(), ViewError> {
+        if self.truth.take().is_some() {
+            return Ok(());
+        }
+        let size = self.session.frame().size();
+        let settings = PathTraceSettings {
+            samples_per_pixel: self.truth_spp.max(1),
+            ..PathTraceSettings::balanced()
+        };
+        let mut pose = self.session.pose().clone();
+        pose.camera = self.fly.camera();
+        let entry = ReferenceEntry::new(
+            &self.cache_dir,
+            self.session.scene(),
+            &pose,
+            size,
+            &settings,
+            &self.build,
+        );
+        let truth = Truth::new(
+            self.ctx(),
+            self.session.gpu_scene(),
+            pose.camera,
+            size,
+            settings,
+            entry,
+        )?;
+        self.status = if truth.cached {
+            "the truth of this view was in the cache".into()
+        } else {
+            format!(
+                "rendering the truth of this view ({} samples a pixel)",
+                truth.settings.samples_per_pixel
+            )
+        };
+        self.truth = Some(truth);
+        Ok(())
+    }
+
+    /// `I`: reads the technique's state back as pictures (it waits for the GPU once), or
+    /// closes the inspector.
+    pub fn toggle_inspector(&mut self) -> Result<(), ViewError> {
+        self.picked = None;
+        if self.inspection.take().is_some() || self.path_tracing() {
+            return Ok(());
+        }
+        let inspection = self.session.technique().inspect(self.session.ctx())?;
+        if inspection.images.is_empty() {
+            self.status = format!("{} has no state to inspect", self.technique());
+            return Ok(());
+        }
+        self.inspection = Some(inspection);
+        self.inspections += 1;
+        Ok(())
+    }
+
+    /// Picks the probe of the inspection drawn under pixel `(x, y)`: the nearest whose sphere
+    /// the pixel's ray meets.
+    pub fn pick_probe(&mut self, (x, y): (f32, f32)) -> Option<usize> {
+        let inspection = self.inspection.as_ref()?;
+        let (w, h) = self.session.frame().size();
+        let camera = self.fly.camera();
+        let dir = irradiant::scene::types::GpuCamera::new(&camera, w, h).ray_dir(
+            glam::Vec2::new(x, y),
+            w,
+            h,
+        );
+        let hit = |centre: glam::Vec3, radius: f32| {
+            let oc = camera.position - centre;
+            let b = oc.dot(dir);
+            let disc = b * b - (oc.length_squared() - radius * radius);
+            (disc >= 0.0 && -b - disc.sqrt() > 0.0).then(|| -b - disc.sqrt())
+        };
+        let picked = inspection
+            .probes
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| hit(p.position, p.radius).map(|t| (i, t)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(i, _)| i);
+        if picked.is_some() {
+            self.picked = picked;
+        }
+        picked
+    }
+
+    /// Renders one frame of what is shown, `dt` seconds after the last, and moves the truth on.
     pub fn render(&mut self, dt: f32) -> Result<(), ViewError> {
+        // A lost device fails here, named, before any command is recorded on it.
+        self.ctx().check("the viewer's frame")?;
         self.frames += 1;
+        let samples = PathTraceSettings::balanced()
+            .samples_per_dispatch_on(&self.ctx().info)
+            .min(PATH_SAMPLES_PER_FRAME);
         if let Some(path) = &mut self.path {
             let ctx = self.session.ctx();
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            let samples = path
-                .settings
-                .samples_per_dispatch_on(&ctx.info)
-                .min(PATH_SAMPLES_PER_UPDATE);
             path.tracer.record(
                 ctx,
                 &mut encoder,
@@ -321,22 +470,9 @@ impl Viewer {
                 None,
             )?;
             ctx.queue.submit([encoder.finish()]);
-            let image = path.tracer.image(ctx)?;
-            let tone = &self.session.frame().settings().tone;
-            let rgba = rgba(&image.to_srgb8(tone.exposure, tone.filmic));
-            ctx.queue.write_texture(
-                path.display.as_image_copy(),
-                &rgba,
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(4 * image.width),
-                    rows_per_image: None,
-                },
-                path.display.size(),
-            );
             return Ok(());
         }
-        if self.playing && dt > 0.0 {
+        if self.playing && dt > 0.0 && self.truth.is_none() {
             self.session.advance(dt * self.speed);
         }
         if self.frames.is_multiple_of(PROFILE_EVERY) {
@@ -345,27 +481,81 @@ impl Viewer {
                 .into_iter()
                 .map(|t| (t.label, t.milliseconds))
                 .collect();
+            self.timing_history
+                .push_back(self.timings.iter().map(|t| t.1).sum());
+            while self.timing_history.len() > HISTORY {
+                self.timing_history.pop_front();
+            }
+            // The timed frame waited for the GPU already: its counters cost no further stall.
+            self.counters = self
+                .session
+                .technique()
+                .counters(self.session.ctx())?
+                .into_iter()
+                .map(|c| (c.name.to_owned(), c.value))
+                .collect();
+            let truth = (self.truth.as_ref())
+                .filter(|t| t.rendering())
+                .map_or(Vec::new(), |t| PathTracer::plan(t.size.0, t.size.1));
+            self.memory_bytes = (self.session.allocations()?.iter())
+                .chain(&truth)
+                .map(|a| a.bytes)
+                .sum();
         } else {
             self.session.render()?;
+        }
+        self.step_truth(samples)
+    }
+
+    fn step_truth(&mut self, samples: u32) -> Result<(), ViewError> {
+        let Some(truth) = &mut self.truth else {
+            return Ok(());
+        };
+        if truth.step(self.session.ctx(), self.session.gpu_scene(), samples)? {
+            let frame = self.session.image()?;
+            let tone = &self.session.frame().settings().tone;
+            let spec = self.session.spec();
+            let technique = format!("{} ({})", spec.name, spec.preset.name());
+            truth.compare(
+                self.session.ctx(),
+                frame,
+                technique,
+                (tone.exposure, tone.filmic),
+            );
         }
         Ok(())
     }
 
-    /// The image shown and how to decode it: the frame's tonemapped output or one of its
-    /// textures ([`DEBUG_VIEWS`]), or the path tracer's image; with the exposure.
-    pub fn image_view(&self) -> (&wgpu::TextureView, Decode, f32) {
-        let exposure = self.session.frame().settings().tone.exposure;
-        match &self.path {
-            Some(path) => (&path.display_view, Decode::Shown, exposure),
+    /// What the blit shows: the frame's tonemapped output or one of its textures
+    /// ([`DEBUG_VIEWS`]), the path tracer's running mean, or the truth beside the frame.
+    pub fn image_view(&self) -> Shown<'_> {
+        let tone = &self.session.frame().settings().tone;
+        let (image, decode) = match &self.path {
+            Some(path) => (path.tracer.accumulation_view(), Decode::Accumulation),
             None => {
                 let (_, texture, decode) = DEBUG_VIEWS[self.debug_view];
-                (
-                    self.session.frame().resources.view(texture),
-                    decode,
-                    exposure,
-                )
+                (self.session.frame().resources.view(texture), decode)
+            }
+        };
+        let mut shown = Shown {
+            image,
+            decode,
+            exposure: tone.exposure,
+            filmic: tone.filmic,
+            beside: None,
+        };
+        if self.path.is_none()
+            && let Some((image, column)) = self.truth.as_ref().and_then(|t| t.shown())
+        {
+            match column {
+                Some(column) => shown.beside = Some((image, column)),
+                None => {
+                    shown.image = image;
+                    shown.decode = Decode::Shown;
+                }
             }
         }
+        shown
     }
 
     /// Shows the debug view named `name` (one of [`DEBUG_VIEWS`]).
@@ -415,7 +605,7 @@ impl Viewer {
             image.write_exr(path)?;
         } else {
             let tone = &self.session.frame().settings().tone;
-            let pixels = rgba(&image.to_srgb8(tone.exposure, tone.filmic));
+            let pixels = crate::truth::rgba(&image.to_srgb8(tone.exposure, tone.filmic));
             write_png(path, &pixels, image.width, image.height)?;
         }
         self.status = format!("wrote {}", path.display());
@@ -456,13 +646,6 @@ impl Viewer {
             None => self.session.image()?,
         })
     }
-}
-
-/// RGB8 to RGBA8, opaque.
-fn rgba(rgb: &[u8]) -> Vec<u8> {
-    rgb.chunks_exact(3)
-        .flat_map(|p| [p[0], p[1], p[2], 255])
-        .collect()
 }
 
 /// A shared context, for the window and the offscreen runner.

@@ -12,7 +12,10 @@ use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
 use crate::camera::Movement;
-use crate::{RunReport, SCRIPT_FPS, ScriptRunner, ViewError, ViewOptions, Viewer, present, ui};
+use crate::{
+    RunReport, SCRIPT_FPS, ScriptRunner, ViewError, ViewOptions, Viewer, is_device_lost, present,
+    ui,
+};
 
 /// Keys held down, for flying.
 #[derive(Default)]
@@ -48,6 +51,10 @@ struct Open {
     panel: ui::PanelState,
     last: Instant,
     frame_ms: f64,
+    /// Why the device was lost, while the window waits for `R`.
+    lost: Option<String>,
+    /// Where the cursor is, for a click's pick.
+    cursor: (f32, f32),
 }
 
 struct App {
@@ -100,63 +107,35 @@ impl App {
                 .map_err(|e| ViewError::Window(format!("cannot open a window: {e}")))?,
         );
         let viewer = crate::start(&self.options)?;
-        let ctx = viewer.ctx();
-        let surface = ctx
-            .instance
-            .create_surface(window.clone())
-            .map_err(|e| ViewError::Window(format!("cannot draw into the window: {e}")))?;
-        if !ctx.adapter.is_surface_supported(&surface) {
-            return Err(ViewError::Window(format!(
-                "{} cannot present to this window; pick another adapter with --adapter, or use --offscreen",
-                ctx.info.name
-            )));
-        }
-        let caps = surface.get_capabilities(&ctx.adapter);
-        let format = caps.formats[0];
-        let size = window.inner_size();
-        let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            format,
-            width: size.width.max(1),
-            height: size.height.max(1),
-            present_mode: wgpu::PresentMode::AutoNoVsync,
-            desired_maximum_frame_latency: 1,
-            alpha_mode: caps.alpha_modes[0],
-            color_space: wgpu::SurfaceColorSpace::Auto,
-            view_formats: vec![format.remove_srgb_suffix()],
-        };
-        surface.configure(&ctx.device, &config);
-        let presenter = present::Presenter::new(ctx, format);
-        let egui_ctx = egui::Context::default();
-        let egui_state = egui_winit::State::new(
-            egui_ctx.clone(),
-            egui::ViewportId::ROOT,
-            &window,
-            Some(window.scale_factor() as f32),
-            None,
-            Some(ctx.device.limits().max_texture_dimension_2d as usize),
-        );
-        let mut viewer = viewer;
-        viewer.resize((config.width, config.height))?;
-        Ok(Open {
-            window,
-            surface,
-            config,
-            viewer,
-            presenter,
-            egui_ctx,
-            egui_state,
-            panel: ui::PanelState::default(),
-            last: Instant::now(),
-            frame_ms: 0.0,
-        })
+        attach(window, viewer)
     }
 
-    /// One frame: the script's steps or the held keys, the frame, the panel, presented.
+    /// One frame: the script's steps or the held keys, the frame, the panel, presented. After
+    /// the device was lost, nothing is drawn until `R` restarts the session on a new one.
     fn frame(&mut self) -> Result<bool, ViewError> {
+        if self
+            .open
+            .as_ref()
+            .is_some_and(|open| open.viewer.restart_requested)
+        {
+            let old = self.open.take().expect("checked above");
+            let viewer = crate::restart(&self.options, &old.viewer)?;
+            let window = old.window.clone();
+            drop(old);
+            window.set_title(&format!("Irradiant — {}", self.options.scene));
+            self.open = Some(attach(window, viewer)?);
+            self.report.restarts += 1;
+        }
         let Some(open) = &mut self.open else {
             return Ok(true);
         };
+        if open.lost.is_some() {
+            // Only the script (or R, through key()) can go on.
+            if let Some(script) = &mut self.script {
+                return script.before_frame(&mut open.viewer);
+            }
+            return Ok(true);
+        }
         let now = Instant::now();
         let mut dt = (now - open.last).as_secs_f32().min(0.25);
         open.frame_ms = (now - open.last).as_secs_f64() * 1e3;
@@ -175,7 +154,19 @@ impl App {
         } else {
             open.viewer.fly(self.held.movement(), dt)?;
         }
-        open.viewer.render(dt)?;
+        match open.viewer.render(dt) {
+            Err(e) if is_device_lost(&e) => {
+                eprintln!(
+                    "{e}\npress R in the window to restart the session on a new device, Esc to quit"
+                );
+                open.window.set_title(
+                    "Irradiant — the GPU device was lost: press R to restart, Esc to quit",
+                );
+                open.lost = Some(e.to_string());
+                return Ok(true);
+            }
+            other => other?,
+        }
         let frame = match open.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame)
             | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
@@ -250,7 +241,7 @@ impl App {
             return Ok(());
         };
         let action = match name.as_str() {
-            "f" | "p" | "b" => name.to_uppercase(),
+            "f" | "p" | "b" | "t" | "i" | "r" => name.to_uppercase(),
             _ => name,
         };
         open.viewer.press(&action)
@@ -305,6 +296,14 @@ impl ApplicationHandler for App {
                 event.state == ElementState::Pressed,
             ),
             WindowEvent::MouseInput {
+                state: ElementState::Pressed,
+                button: MouseButton::Left,
+                ..
+            } if !consumed && open.viewer.inspection.is_some() => {
+                open.viewer.pick_probe(open.cursor);
+                Ok(())
+            }
+            WindowEvent::MouseInput {
                 state,
                 button: MouseButton::Right,
                 ..
@@ -314,6 +313,7 @@ impl ApplicationHandler for App {
                 Ok(())
             }
             WindowEvent::CursorMoved { position, .. } => {
+                open.cursor = (position.x as f32, position.y as f32);
                 if self.held.looking {
                     if let Some((x, y)) = self.held.cursor {
                         open.viewer
@@ -357,4 +357,61 @@ impl ApplicationHandler for App {
             open.window.request_redraw();
         }
     }
+}
+
+/// The surface, the presenter and egui on `window` for `viewer`'s device (at opening, and again
+/// after a restart on a new device).
+fn attach(window: Arc<Window>, viewer: Viewer) -> Result<Open, ViewError> {
+    let ctx = viewer.ctx();
+    let surface = ctx
+        .instance
+        .create_surface(window.clone())
+        .map_err(|e| ViewError::Window(format!("cannot draw into the window: {e}")))?;
+    if !ctx.adapter.is_surface_supported(&surface) {
+        return Err(ViewError::Window(format!(
+            "{} cannot present to this window; pick another adapter with --adapter, or use --offscreen",
+            ctx.info.name
+        )));
+    }
+    let caps = surface.get_capabilities(&ctx.adapter);
+    let format = caps.formats[0];
+    let size = window.inner_size();
+    let config = wgpu::SurfaceConfiguration {
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        format,
+        width: size.width.max(1),
+        height: size.height.max(1),
+        present_mode: wgpu::PresentMode::AutoNoVsync,
+        desired_maximum_frame_latency: 1,
+        alpha_mode: caps.alpha_modes[0],
+        color_space: wgpu::SurfaceColorSpace::Auto,
+        view_formats: vec![format.remove_srgb_suffix()],
+    };
+    surface.configure(&ctx.device, &config);
+    let presenter = present::Presenter::new(ctx, format);
+    let egui_ctx = egui::Context::default();
+    let egui_state = egui_winit::State::new(
+        egui_ctx.clone(),
+        egui::ViewportId::ROOT,
+        &window,
+        Some(window.scale_factor() as f32),
+        None,
+        Some(ctx.device.limits().max_texture_dimension_2d as usize),
+    );
+    let mut viewer = viewer;
+    viewer.resize((config.width, config.height))?;
+    Ok(Open {
+        window,
+        surface,
+        config,
+        viewer,
+        presenter,
+        egui_ctx,
+        egui_state,
+        panel: ui::PanelState::default(),
+        last: Instant::now(),
+        frame_ms: 0.0,
+        lost: None,
+        cursor: (0.0, 0.0),
+    })
 }

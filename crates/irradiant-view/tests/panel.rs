@@ -4,33 +4,14 @@
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use irradiant_view::Viewer;
 use irradiant_view::ui::{PanelState, draw};
-use irradiant_view::{ViewOptions, Viewer};
+
+mod common;
 
 /// A small viewer on the Cornell box, or None (skipped) without an adapter outside CI.
 fn viewer() -> Option<Viewer> {
-    let options = ViewOptions {
-        scene: "cornell".into(),
-        size: (32, 24),
-        technique: "ddgi".into(),
-        adapter: irradiant::AdapterChoice::from_env(),
-        script: None,
-        offscreen: true,
-        panel: true,
-        out_dir: std::env::temp_dir(),
-        cache_dir: None,
-    };
-    match irradiant_view::start(&options) {
-        Ok(viewer) => Some(viewer),
-        Err(e)
-            if e.to_string().contains("no GPU adapter")
-                && std::env::var("CI").as_deref() != Ok("true") =>
-        {
-            eprintln!("SKIPPED: {e}");
-            None
-        }
-        Err(e) => panic!("{e}"),
-    }
+    common::viewer(&common::options("cornell", (32, 24)))
 }
 
 fn harness(viewer: Viewer) -> Harness<'static, (Viewer, PanelState)> {
