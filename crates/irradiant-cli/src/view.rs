@@ -64,6 +64,7 @@ pub fn run(args: &ViewArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         cache_dir: Some(crate::cache::dir(args.cache.as_deref())),
         truth_spp: args.truth_spp,
         build: crate::reference::BUILD.into(),
+        progress: Some(crate::cache::bake_progress()),
     };
     let report = irradiant_view::run(&options).map_err(|e| CliError::Usage(e.to_string()))?;
     if args.offscreen {

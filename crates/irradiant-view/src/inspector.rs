@@ -262,8 +262,11 @@ pub fn inspector(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut ToolsState)
         return;
     };
     let mut open = true;
+    // At the right, clear of the panel on the left.
+    let right = ui.ctx().content_rect().right();
     egui::Window::new("inspector")
         .open(&mut open)
+        .default_pos(egui::pos2(right - 380.0, 10.0))
         .default_width(360.0)
         .show(ui.ctx(), |ui| {
             let names: Vec<&str> = inspection.images.iter().map(|i| i.name.as_str()).collect();

@@ -88,6 +88,9 @@ pub struct ViewOptions {
     /// The program's version and commit: part of a cached reference's key, so that `compare`
     /// and the viewer share references rendered by the same build.
     pub build: String,
+    /// Told how a bake goes (the light field's): the command line's bar on the terminal; the
+    /// window adds its title.
+    pub progress: Option<irradiant::technique::Progress>,
 }
 
 /// Frames a second a script's frames stand for: every scripted frame advances the scene by its
@@ -132,6 +135,7 @@ pub fn start(options: &ViewOptions) -> Result<Viewer, ViewError> {
             size: options.size,
             technique: spec,
             cache_dir: options.cache_dir.clone(),
+            progress: options.progress.clone(),
             ..Default::default()
         },
     )?;

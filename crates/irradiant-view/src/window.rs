@@ -106,6 +106,24 @@ impl App {
                 .create_window(attributes)
                 .map_err(|e| ViewError::Window(format!("cannot open a window: {e}")))?,
         );
+        // A bake blocks the frame it is asked in: its progress shows in the title meanwhile.
+        let terminal = self.options.progress.clone();
+        let titled = window.clone();
+        let scene = self.options.scene.clone();
+        let mut options = self.options.clone();
+        options.progress = Some(irradiant::technique::Progress(Arc::new(
+            move |what: &str, done: u32, all: u32| {
+                if let Some(t) = &terminal {
+                    t.report(what, done, all);
+                }
+                titled.set_title(&if done < all {
+                    format!("Irradiant — {scene} — {what}: {done} of {all}")
+                } else {
+                    format!("Irradiant — {scene}")
+                });
+            },
+        )));
+        self.options = options;
         let viewer = crate::start(&self.options)?;
         attach(window, viewer)
     }

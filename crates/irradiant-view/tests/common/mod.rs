@@ -27,6 +27,7 @@ pub fn options(scene: &str, size: (u32, u32)) -> ViewOptions {
         cache_dir: Some(cache),
         truth_spp: 8,
         build: "test".into(),
+        progress: None,
     }
 }
 
