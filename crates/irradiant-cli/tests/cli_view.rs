@@ -23,7 +23,11 @@ fn script(dir: &Path, offscreen: bool) -> std::path::PathBuf {
          [[step]]\nshow = \"normal\"\n[[step]]\ncapture = \"normal.png\"\n\
          [[step]]\nshow = \"final\"\n"
     } else {
-        ""
+        // A light field baked in the window: its progress is drawn into the surface while
+        // the bake blocks the loop.
+        "[[step]]\ntechnique = 'lightfield{bake = { probe_counts = [2, 2, 2], resolution = 32, \
+         prefilter_resolution = 16, bounces = 1, emitter_samples = 2 }}'\n\
+         [[step]]\nframes = 2\n[[step]]\nscreenshot = \"lightfield.png\"\n"
     };
     let text = format!(
         "[[step]]\nframes = {FRAMES}\n[[step]]\nscreenshot = \"ddgi.png\"\n{captures}\
@@ -161,6 +165,8 @@ fn the_viewer_runs_a_script_in_a_window_under_xvfb() {
         .arg(&script)
         .arg("--out-dir")
         .arg(&dir)
+        .arg("--cache")
+        .arg(&dir)
         .env("VK_ICD_FILENAMES", &icd)
         .env("XDG_RUNTIME_DIR", "/tmp")
         .output()
@@ -171,6 +177,8 @@ fn the_viewer_runs_a_script_in_a_window_under_xvfb() {
         "{stderr}"
     );
     check_screenshots(&dir);
+    let (lightfield, ..) = rgb(&dir.join("lightfield.png"));
+    assert!(mean(&lightfield) > 10.0, "the light field's screenshot is black");
 }
 
 /// Bad input gets a message, not a panic: a script that does not parse, a missing scene.

@@ -278,11 +278,10 @@ pub fn inspector(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut ToolsState)
                     }
                 });
             if let Some(picture) = pictures.get(state.chosen) {
-                let width = ui.available_width().min(512.0);
-                ui.add(egui::Image::new(picture).fit_to_exact_size(egui::vec2(
-                    width,
-                    width * picture.size()[1] as f32 / picture.size()[0] as f32,
-                )));
+                // Within 360×200 points, at the picture's aspect.
+                let [w, h] = picture.size().map(|v| v.max(1) as f32);
+                let scale = (360.0 / w).min(200.0 / h);
+                ui.add(egui::Image::new(picture).fit_to_exact_size(egui::vec2(w, h) * scale));
             }
             match (picked, &state.tiles) {
                 (Some((index, probe)), Some((_, tiles))) => {
@@ -293,7 +292,7 @@ pub fn inspector(ui: &mut egui::Ui, viewer: &mut Viewer, state: &mut ToolsState)
                     ui.horizontal_wrapped(|ui| {
                         for (name, tile) in tiles {
                             ui.add(
-                                egui::Image::new(tile).fit_to_exact_size(egui::vec2(128.0, 128.0)),
+                                egui::Image::new(tile).fit_to_exact_size(egui::vec2(96.0, 96.0)),
                             )
                             .on_hover_text(name);
                         }

@@ -356,6 +356,9 @@ pub fn run_offscreen(options: &ViewOptions) -> Result<RunReport, ViewError> {
                 egui::Pos2::ZERO,
                 egui::vec2(size.0 as f32, size.1 as f32),
             )),
+            // The script's clock, so that a window's fade-in ends as it would on screen.
+            time: Some(report.frames as f64 / SCRIPT_FPS as f64),
+            predicted_dt: 1.0 / SCRIPT_FPS,
             ..Default::default()
         };
         let output = egui_ctx.run_ui(input, |ui| {

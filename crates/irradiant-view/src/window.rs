@@ -42,7 +42,8 @@ impl Held {
 /// What lives while the window is open.
 struct Open {
     window: Arc<Window>,
-    surface: wgpu::Surface<'static>,
+    /// Shared with the bake painter, which draws into it while a bake blocks the loop.
+    surface: Arc<wgpu::Surface<'static>>,
     config: wgpu::SurfaceConfiguration,
     viewer: Viewer,
     presenter: present::Presenter,
@@ -57,7 +58,76 @@ struct Open {
     cursor: (f32, f32),
 }
 
+/// Draws a progress bar into the window from inside a bake, which blocks the event loop: its
+/// own egui and presenter (egui's font atlas is per context), the window's surface.
+struct BakePainter {
+    ctx: Arc<irradiant::GpuContext>,
+    surface: Arc<wgpu::Surface<'static>>,
+    presenter: present::Presenter,
+    egui: egui::Context,
+    blank: wgpu::TextureView,
+}
+
+impl BakePainter {
+    fn paint(&mut self, window: &Window, what: &str, done: u32, all: u32) {
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(frame)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
+            _ => return,
+        };
+        let size = window.inner_size();
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(size.width as f32, size.height as f32),
+            )),
+            ..Default::default()
+        };
+        let output = self.egui.run_ui(input, |ui| {
+            egui::Area::new(egui::Id::unique("bake"))
+                .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+                .show(ui.ctx(), |ui| {
+                    ui.label(format!("{what}…"));
+                    ui.add(
+                        egui::ProgressBar::new(done as f32 / all.max(1) as f32)
+                            .desired_width(320.0)
+                            .text(format!("{done} of {all}")),
+                    );
+                });
+        });
+        let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(self.presenter.format),
+            ..Default::default()
+        });
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        let shown = present::Shown {
+            image: &self.blank,
+            decode: present::Decode::Shown,
+            exposure: 1.0,
+            filmic: false,
+            beside: None,
+        };
+        let target = (frame.texture.width(), frame.texture.height());
+        self.presenter.record(
+            &self.ctx,
+            &mut encoder,
+            &view,
+            target,
+            shown,
+            output,
+            &self.egui,
+        );
+        self.ctx.queue.submit([encoder.finish()]);
+        window.pre_present_notify();
+        self.ctx.queue.present(frame);
+    }
+}
+
+/// Where the bake progress callback finds the painter (none until the window is attached).
+type PainterSlot = Arc<std::sync::Mutex<Option<BakePainter>>>;
+
 struct App {
+    painter: PainterSlot,
     options: ViewOptions,
     open: Option<Open>,
     script: Option<ScriptRunner>,
@@ -79,6 +149,7 @@ pub fn run(options: &ViewOptions) -> Result<RunReport, ViewError> {
     })?;
     event_loop.set_control_flow(ControlFlow::Poll);
     let mut app = App {
+        painter: Default::default(),
         options: options.clone(),
         open: None,
         script,
@@ -106,10 +177,12 @@ impl App {
                 .create_window(attributes)
                 .map_err(|e| ViewError::Window(format!("cannot open a window: {e}")))?,
         );
-        // A bake blocks the frame it is asked in: its progress shows in the title meanwhile.
+        // A bake blocks the frame it is asked in: meanwhile its progress is drawn into the
+        // window (once the window has a surface) and shown in the title.
         let terminal = self.options.progress.clone();
         let titled = window.clone();
         let scene = self.options.scene.clone();
+        let painter = self.painter.clone();
         let mut options = self.options.clone();
         options.progress = Some(irradiant::technique::Progress(Arc::new(
             move |what: &str, done: u32, all: u32| {
@@ -121,11 +194,14 @@ impl App {
                 } else {
                     format!("Irradiant — {scene}")
                 });
+                if let Some(painter) = painter.lock().unwrap_or_else(|e| e.into_inner()).as_mut() {
+                    painter.paint(&titled, what, done, all);
+                }
             },
         )));
         self.options = options;
         let viewer = crate::start(&self.options)?;
-        attach(window, viewer)
+        attach(window, viewer, &self.painter)
     }
 
     /// One frame: the script's steps or the held keys, the frame, the panel, presented. After
@@ -141,7 +217,7 @@ impl App {
             let window = old.window.clone();
             drop(old);
             window.set_title(&format!("Irradiant — {}", self.options.scene));
-            self.open = Some(attach(window, viewer)?);
+            self.open = Some(attach(window, viewer, &self.painter)?);
             self.report.restarts += 1;
         }
         let Some(open) = &mut self.open else {
@@ -185,6 +261,15 @@ impl App {
             }
             other => other?,
         }
+        // The panel first: a technique it switches to may bake, and the bake's progress is
+        // drawn into the surface, which must not be held then.
+        let input = open.egui_state.take_egui_input(&open.window);
+        let output = open.egui_ctx.run_ui(input, |ui| {
+            ui::draw(ui, &mut open.viewer, &mut open.panel, open.frame_ms)
+        });
+        let mut output = output;
+        open.egui_state
+            .handle_platform_output(&open.window, std::mem::take(&mut output.platform_output));
         let frame = match open.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(frame)
             | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
@@ -202,13 +287,6 @@ impl App {
                 ));
             }
         };
-        let input = open.egui_state.take_egui_input(&open.window);
-        let output = open.egui_ctx.run_ui(input, |ui| {
-            ui::draw(ui, &mut open.viewer, &mut open.panel, open.frame_ms)
-        });
-        let mut output = output;
-        open.egui_state
-            .handle_platform_output(&open.window, std::mem::take(&mut output.platform_output));
         let view = frame.texture.create_view(&wgpu::TextureViewDescriptor {
             format: Some(open.presenter.format),
             ..Default::default()
@@ -379,12 +457,13 @@ impl ApplicationHandler for App {
 
 /// The surface, the presenter and egui on `window` for `viewer`'s device (at opening, and again
 /// after a restart on a new device).
-fn attach(window: Arc<Window>, viewer: Viewer) -> Result<Open, ViewError> {
+fn attach(window: Arc<Window>, viewer: Viewer, painter: &PainterSlot) -> Result<Open, ViewError> {
     let ctx = viewer.ctx();
-    let surface = ctx
-        .instance
-        .create_surface(window.clone())
-        .map_err(|e| ViewError::Window(format!("cannot draw into the window: {e}")))?;
+    let surface = Arc::new(
+        ctx.instance
+            .create_surface(window.clone())
+            .map_err(|e| ViewError::Window(format!("cannot draw into the window: {e}")))?,
+    );
     if !ctx.adapter.is_surface_supported(&surface) {
         return Err(ViewError::Window(format!(
             "{} cannot present to this window; pick another adapter with --adapter, or use --offscreen",
@@ -407,6 +486,14 @@ fn attach(window: Arc<Window>, viewer: Viewer) -> Result<Open, ViewError> {
     };
     surface.configure(&ctx.device, &config);
     let presenter = present::Presenter::new(ctx, format);
+    *painter.lock().unwrap_or_else(|e| e.into_inner()) = Some(BakePainter {
+        ctx: viewer.session.shared_ctx(),
+        surface: surface.clone(),
+        presenter: present::Presenter::new(ctx, format),
+        egui: egui::Context::default(),
+        blank: crate::truth::upload_rgba8(ctx, "view/bake_blank", (1, 1), &[0, 0, 0, 255])
+            .create_view(&Default::default()),
+    });
     let egui_ctx = egui::Context::default();
     let egui_state = egui_winit::State::new(
         egui_ctx.clone(),

@@ -159,6 +159,11 @@ impl Session {
         &self.ctx
     }
 
+    /// The GPU context, shared (for work that outlives a borrow of the session).
+    pub fn shared_ctx(&self) -> Arc<GpuContext> {
+        self.ctx.clone()
+    }
+
     /// The scene, as loaded (on the CPU).
     pub fn scene(&self) -> &Scene {
         &self.scene
