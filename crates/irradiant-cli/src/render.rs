@@ -72,6 +72,15 @@ pub struct RenderArgs {
     /// Write the DDGI irradiance and distance atlases into this folder after the last frame.
     #[arg(long)]
     pub dump_atlas: Option<PathBuf>,
+    /// Start DDGI's probes (ddgi, ssil+ddgi) from this file, which --save-probes wrote for the
+    /// same scene and settings: the first frame is as converged as the saved one. A file saved
+    /// for anything else is refused with the reason.
+    #[arg(long)]
+    pub load_probes: Option<PathBuf>,
+    /// Write DDGI's probes to this file after the last frame, for --load-probes (and a game's
+    /// start: docs/ddgi.md).
+    #[arg(long)]
+    pub save_probes: Option<PathBuf>,
     #[command(flatten)]
     pub view: CameraArgs,
     /// Also write the camera this render used to a camera file, for `--camera-from`.
@@ -243,6 +252,9 @@ fn render_frames(
         },
     )?;
     session.set_show_probes(args.show_probes);
+    if let Some(file) = &args.load_probes {
+        session.load_probes(file)?;
+    }
     let bar = progress(args.frames, "frame {pos}/{len}");
     for i in 0..args.frames {
         session.seek(frame_time(i));
@@ -253,6 +265,9 @@ fn render_frames(
         bar.set_position(i as u64 + 1);
     }
     bar.finish_and_clear();
+    if let Some(file) = &args.save_probes {
+        session.save_probes(file)?;
+    }
     if let Some(dir) = &args.dump_atlas {
         match session.technique_as::<irradiant::ddgi::Ddgi>() {
             Some(ddgi) => crate::atlas::dump(&ctx, ddgi.volume(), dir)?,

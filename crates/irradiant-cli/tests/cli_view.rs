@@ -178,7 +178,10 @@ fn the_viewer_runs_a_script_in_a_window_under_xvfb() {
     );
     check_screenshots(&dir);
     let (lightfield, ..) = rgb(&dir.join("lightfield.png"));
-    assert!(mean(&lightfield) > 10.0, "the light field's screenshot is black");
+    assert!(
+        mean(&lightfield) > 10.0,
+        "the light field's screenshot is black"
+    );
 }
 
 /// Bad input gets a message, not a panic: a script that does not parse, a missing scene.

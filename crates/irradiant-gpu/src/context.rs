@@ -259,7 +259,9 @@ impl GpuContext {
         Self::from_adapter(instance, adapter)
     }
 
-    fn from_adapter(instance: wgpu::Instance, adapter: Adapter) -> Result<Self, GpuError> {
+    /// The features and limits Irradiant needs of `adapter`'s device (a host that creates its
+    /// own device asks for at least these): the reason in words where the adapter cannot.
+    pub fn requirements(adapter: &Adapter) -> Result<(Features, Limits), GpuError> {
         let adapter_info = adapter.get_info();
         let available = adapter.limits();
         let unsuitable = |reason: String| GpuError::Unsuitable {
@@ -312,14 +314,21 @@ impl GpuContext {
                 .max(Limits::default().max_storage_textures_per_shader_stage),
             ..Limits::default()
         };
+        Ok((features, limits))
+    }
+
+    fn from_adapter(instance: wgpu::Instance, adapter: Adapter) -> Result<Self, GpuError> {
+        let (features, limits) = Self::requirements(&adapter)?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("irradiant"),
             required_features: features,
-            required_limits: limits.clone(),
+            required_limits: limits,
             ..Default::default()
         }))
-        .map_err(|e| unsuitable(e.to_string()))?;
-
+        .map_err(|e| GpuError::Unsuitable {
+            adapter: adapter.get_info().name,
+            reason: e.to_string(),
+        })?;
         let errors = Arc::new(Mutex::new(Vec::new()));
         let out_of_memory = Arc::new(Mutex::new(None));
         let (sink, memory_sink) = (errors.clone(), out_of_memory.clone());
@@ -335,39 +344,68 @@ impl GpuContext {
         device.set_device_lost_callback(move |reason, message| {
             *lost_sink.lock().unwrap() = Some(format!("{reason:?}: {message}"));
         });
-        let info = GpuInfo {
-            name: adapter_info.name.clone(),
-            backend: format!("{:?}", adapter_info.backend),
-            device_type: format!("{:?}", adapter_info.device_type),
-            driver: adapter_info.driver.clone(),
-            driver_info: adapter_info.driver_info.clone(),
-            timestamps: features.contains(Features::TIMESTAMP_QUERY),
-            loop_iteration_limit: adapter_info
-                .name
-                .contains("llvmpipe")
-                .then_some(LLVMPIPE_LOOP_ITERATIONS),
-            max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
-            max_buffer_size: limits.max_buffer_size,
-            max_compute_workgroup_size_x: limits.max_compute_workgroup_size_x,
-            max_storage_buffers_per_shader_stage: limits.max_storage_buffers_per_shader_stage,
-            max_compute_workgroups_per_dimension: limits.max_compute_workgroups_per_dimension,
-            memory: if adapter_info.device_type == wgpu::DeviceType::Cpu {
-                // A software adapter's memory is the machine's; the heap it reports is nominal
-                // (lavapipe reports 2 GiB and allocates far more).
-                system_memory()
-            } else {
-                device_local_memory(&adapter)
-            },
-        };
         Ok(Self {
+            info: GpuInfo::of(&adapter, &device),
             instance,
             adapter,
             device,
             queue,
-            info,
             errors,
             out_of_memory,
             lost,
+        })
+    }
+
+    /// A context on a host's own device and queue (an engine that embeds Irradiant): the
+    /// device must have what [`GpuContext::requirements`] lists, or the error names what it
+    /// lacks and the fix. The host's error handler and lost-device callback stay the host's:
+    /// Irradiant checks what it is handed before wgpu sees it, and [`GpuContext::check`] then
+    /// reports only the errors of its own error scopes.
+    pub fn from_host(
+        instance: wgpu::Instance,
+        adapter: Adapter,
+        device: Device,
+        queue: Queue,
+    ) -> Result<Self, GpuError> {
+        let (features, limits) = Self::requirements(&adapter)?;
+        let unsuitable = |reason: String| GpuError::Unsuitable {
+            adapter: adapter.get_info().name,
+            reason,
+        };
+        let missing = features - device.features();
+        if !missing.is_empty() {
+            return Err(unsuitable(format!(
+                "the host's device was created without {missing:?}: request the features GpuContext::requirements lists"
+            )));
+        }
+        let have = device.limits();
+        for (name, needed, got) in [
+            (
+                "max_storage_buffers_per_shader_stage",
+                limits.max_storage_buffers_per_shader_stage,
+                have.max_storage_buffers_per_shader_stage,
+            ),
+            (
+                "max_storage_textures_per_shader_stage",
+                limits.max_storage_textures_per_shader_stage,
+                have.max_storage_textures_per_shader_stage,
+            ),
+        ] {
+            if got < needed {
+                return Err(unsuitable(format!(
+                    "the host's device allows {got} for limit {name} and Irradiant needs {needed}: request the limits GpuContext::requirements lists"
+                )));
+            }
+        }
+        Ok(Self {
+            info: GpuInfo::of(&adapter, &device),
+            instance,
+            adapter,
+            device,
+            queue,
+            errors: Default::default(),
+            out_of_memory: Default::default(),
+            lost: Default::default(),
         })
     }
 
@@ -493,4 +531,38 @@ fn system_memory() -> Option<u64> {
     let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
+}
+
+impl GpuInfo {
+    /// The description and limits of `adapter` and the `device` made on it.
+    fn of(adapter: &Adapter, device: &Device) -> Self {
+        let info = adapter.get_info();
+        let device_limits = device.limits();
+        GpuInfo {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            driver: info.driver.clone(),
+            driver_info: info.driver_info.clone(),
+            timestamps: device.features().contains(Features::TIMESTAMP_QUERY),
+            loop_iteration_limit: info
+                .name
+                .contains("llvmpipe")
+                .then_some(LLVMPIPE_LOOP_ITERATIONS),
+            max_storage_buffer_binding_size: device_limits.max_storage_buffer_binding_size,
+            max_buffer_size: device_limits.max_buffer_size,
+            max_compute_workgroup_size_x: device_limits.max_compute_workgroup_size_x,
+            max_storage_buffers_per_shader_stage: device_limits
+                .max_storage_buffers_per_shader_stage,
+            max_compute_workgroups_per_dimension: device_limits
+                .max_compute_workgroups_per_dimension,
+            memory: if info.device_type == wgpu::DeviceType::Cpu {
+                // A software adapter's memory is the machine's; the heap it reports is nominal
+                // (lavapipe reports 2 GiB and allocates far more).
+                system_memory()
+            } else {
+                device_local_memory(adapter)
+            },
+        }
+    }
 }

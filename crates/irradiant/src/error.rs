@@ -36,4 +36,12 @@ pub enum RenderError {
     /// Settings failed to parse or validate.
     #[error(transparent)]
     Setting(#[from] SettingsError),
+    /// A saved probe file could not be written, read or used: the file, the problem and the fix.
+    #[error("{path}: {problem}")]
+    Probes {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong, and the fix.
+        problem: String,
+    },
 }

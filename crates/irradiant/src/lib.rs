@@ -15,6 +15,7 @@ pub mod ddgi;
 mod error;
 pub mod frame;
 pub mod gpu_types;
+pub mod host;
 pub mod inspect;
 pub mod lightfield;
 pub mod none;

@@ -56,6 +56,15 @@ const PROFILED_PASSES: u32 = 64;
 /// 650 MiB between two checks 1000 frames apart on the H100.
 const MAX_FRAMES_IN_FLIGHT: usize = 3;
 
+/// Where a frame's G-buffer comes from.
+#[derive(Clone, Copy)]
+pub(crate) enum GBufferSource<'a> {
+    /// frame/gbuffer's primary rays (Irradiant's own frames).
+    Traced,
+    /// A host's G-buffer, through host/import bound to its textures.
+    Host(&'a irradiant_gpu::BoundPass),
+}
+
 /// What a frame of `size` and the technique of `spec` allocate on the GPU.
 fn plan_of(
     scene: &Scene,
@@ -398,31 +407,54 @@ impl Session {
         Ok(self.profiler.read(&self.ctx)?)
     }
 
-    fn record_and_submit(&mut self, profiled: bool) -> Result<(), RenderError> {
+    /// Records a frame into `encoder`: the G-buffer from `source`, the direct light and the
+    /// pyramid, the technique, the composed radiance, and for a traced G-buffer TAA and the
+    /// tone curve. The one path by which both Irradiant's own frames and a host's are made
+    /// (host::HostGi), so that neither can drift from the other.
+    pub(crate) fn record(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        source: GBufferSource,
+        profiled: bool,
+    ) {
         self.frame.prepare(&self.ctx, &self.camera);
         self.technique.prepare(&self.ctx, &self.camera);
+        let mut profiler = (profiled && self.profiler.enabled()).then_some(&mut self.profiler);
+        match source {
+            GBufferSource::Traced => self.frame.record_inputs(encoder, profiler.as_deref_mut()),
+            GBufferSource::Host(import) => {
+                import.dispatch(encoder, profiler.as_deref_mut(), self.frame.image_groups());
+                self.frame
+                    .record_lighting_inputs(encoder, profiler.as_deref_mut());
+            }
+        }
+        self.technique.update(encoder, profiler.as_deref_mut());
+        self.technique.resolve(encoder, profiler.as_deref_mut());
+        self.frame.record_compose(encoder, profiler.as_deref_mut());
+        if let Some(view) = self.probes_shown {
+            self.technique.visualize(encoder, view);
+        }
+        if matches!(source, GBufferSource::Traced) {
+            self.frame.record_output(encoder, profiler.as_deref_mut());
+        }
+        if let Some(p) = profiler {
+            p.resolve(encoder);
+        }
+    }
+
+    /// Counts a recorded frame (the frame's running means and TAA's history move on).
+    pub(crate) fn finish_frame(&mut self) {
+        self.frame.finish();
+    }
+
+    fn record_and_submit(&mut self, profiled: bool) -> Result<(), RenderError> {
         let mut encoder = self
             .ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("frame"),
             });
-        let mut profiler = (profiled && self.profiler.enabled()).then_some(&mut self.profiler);
-        self.frame
-            .record_inputs(&mut encoder, profiler.as_deref_mut());
-        self.technique.update(&mut encoder, profiler.as_deref_mut());
-        self.technique
-            .resolve(&mut encoder, profiler.as_deref_mut());
-        self.frame
-            .record_compose(&mut encoder, profiler.as_deref_mut());
-        if let Some(view) = self.probes_shown {
-            self.technique.visualize(&mut encoder, view);
-        }
-        self.frame
-            .record_output(&mut encoder, profiler.as_deref_mut());
-        if let Some(p) = profiler {
-            p.resolve(&mut encoder);
-        }
+        self.record(&mut encoder, GBufferSource::Traced, profiled);
         self.in_flight
             .push_back(self.ctx.queue.submit([encoder.finish()]));
         if self.in_flight.len() > MAX_FRAMES_IN_FLIGHT
@@ -436,6 +468,41 @@ impl Session {
         let _ = self.ctx.device.poll(wgpu::PollType::Poll);
         self.frame.finish();
         Ok(())
+    }
+
+    /// Writes the technique's DDGI probes to `path` (`ddgi`, `ssil+ddgi`; it waits for the GPU):
+    /// [`Session::load_probes`] starts another session of the same scene and settings from them.
+    pub fn save_probes(&self, path: &std::path::Path) -> Result<(), RenderError> {
+        let ddgi = (self.technique_as::<crate::ddgi::Ddgi>())
+            .or_else(|| {
+                self.technique_as::<crate::ssil::SsilDdgi>()
+                    .map(|h| &h.ddgi)
+            })
+            .ok_or_else(|| self.no_probes("save"))?;
+        ddgi.save_probes(&self.ctx, path)
+    }
+
+    /// Starts the technique's DDGI probes from a file [`Session::save_probes`] wrote for this
+    /// scene and these settings; a file for anything else is refused with the reason.
+    pub fn load_probes(&mut self, path: &std::path::Path) -> Result<(), RenderError> {
+        let no_probes = self.no_probes("load");
+        let ctx = self.ctx.clone();
+        let technique = self.technique.as_any_mut();
+        let ddgi = match technique.downcast_mut::<crate::ddgi::Ddgi>() {
+            Some(ddgi) => ddgi,
+            None => match technique.downcast_mut::<crate::ssil::SsilDdgi>() {
+                Some(hybrid) => &mut hybrid.ddgi,
+                None => return Err(no_probes),
+            },
+        };
+        ddgi.load_probes(&ctx, path)
+    }
+
+    fn no_probes(&self, what: &str) -> RenderError {
+        RenderError::Settings(format!(
+            "{} has no DDGI probes to {what}: use --technique ddgi or ssil+ddgi",
+            self.spec.name
+        ))
     }
 
     /// The last frame's final linear radiance.

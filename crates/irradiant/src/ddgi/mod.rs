@@ -18,6 +18,7 @@ mod gather;
 pub mod oracle;
 mod pipelines;
 mod resources;
+pub mod saved;
 mod settings;
 pub mod types;
 mod volume;
@@ -171,6 +172,10 @@ pub struct Ddgi {
     pub volumes: Vec<DdgiVolume>,
     /// The final gather's running mean, with `gather.rays_per_pixel` > 0.
     gather: Option<gather::GatherHistory>,
+    /// The scene as the probes see it (saved.rs), and the volumes placed in it: what a saved
+    /// probe file's key covers besides the settings.
+    scene_key: u64,
+    descs: Vec<ProbeVolumeDesc>,
 }
 
 impl Ddgi {
@@ -223,6 +228,8 @@ impl Ddgi {
             settings: settings.clone(),
             volumes,
             gather,
+            scene_key: saved::scene_key(cx.scene, &cx.scene.pose_at(0.0)),
+            descs,
         })
     }
 

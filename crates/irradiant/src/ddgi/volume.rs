@@ -21,6 +21,7 @@ use crate::probes::{AtlasLayout, ProbeGrid, atlas::copy_atlas_to_texture, rays::
 use crate::technique::{ProbeView, non_finite};
 
 mod readback;
+mod saved;
 pub use readback::{Atlases, ProbeStateCounts};
 
 /// A hysteresis reduction after a scene change (003 §4.3): the factors hold for `hold` frames,

@@ -271,7 +271,8 @@ impl Frame {
         all
     }
 
-    fn image_groups(&self) -> Workgroups {
+    /// The workgroups of a pass over the image.
+    pub fn image_groups(&self) -> Workgroups {
         let (w, h) = self.size();
         Workgroups::for_image(w, h, IMAGE_TILE)
     }
@@ -283,10 +284,20 @@ impl Frame {
         encoder: &mut wgpu::CommandEncoder,
         mut profiler: Option<&mut Profiler>,
     ) {
-        let groups = self.image_groups();
         self.passes
             .gbuffer
-            .dispatch(encoder, profiler.as_deref_mut(), groups);
+            .dispatch(encoder, profiler.as_deref_mut(), self.image_groups());
+        self.record_lighting_inputs(encoder, profiler);
+    }
+
+    /// Records frame/direct and the G-buffer pyramid over a G-buffer already written (by
+    /// frame/gbuffer, or a host's through host/import).
+    pub fn record_lighting_inputs(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+    ) {
+        let groups = self.image_groups();
         self.passes
             .direct
             .dispatch(encoder, profiler.as_deref_mut(), groups);

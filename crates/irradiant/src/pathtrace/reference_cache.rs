@@ -114,8 +114,14 @@ mod tests {
         let mut bent = scene.clone();
         bent.meshes[0].positions[0].y += 1e-3;
         assert_ne!(base, key(&bent, (64, 64), &settings, "a"));
-        let mut dark = scene.pose_at(0.0);
+        // A light switched off (the viewer's lights) is another reference.
+        let lamp = irradiant_scene::builtin("two-rooms").unwrap();
+        let lit = lamp.pose_at(0.0);
+        let mut dark = lit.clone();
         dark.lights[0].enabled = false;
-        assert_ne!(base, reference_key(&scene, &dark, (64, 64), &settings, "a"));
+        assert_ne!(
+            reference_key(&lamp, &lit, (64, 64), &settings, "a"),
+            reference_key(&lamp, &dark, (64, 64), &settings, "a")
+        );
     }
 }

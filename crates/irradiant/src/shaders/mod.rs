@@ -45,6 +45,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("ddgi_active", include_str!("../ddgi/active.wgsl"))
             .with("ssil_common", include_str!("../ssil/common.wgsl"))
             .with("lightfield_constants", crate::lightfield::constants::wgsl())
+            .with("host_constants", crate::host::constants::wgsl())
             .with("lightfield", include_str!("../lightfield/lightfield.wgsl"))
     })
 }

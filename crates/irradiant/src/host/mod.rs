@@ -1,0 +1,199 @@
+//! Irradiant inside a host's renderer (docs/embedding.md): on the host's device
+//! ([`GpuContext::from_host`]), fed the host's G-buffer each frame ([`HostGBuffer`], converted by
+//! host/import into Irradiant's layout), recording its passes into the host's command encoder
+//! and leaving the indirect light in a texture the host composes. Irradiant's own frames go
+//! through the same recording ([`crate::Session`]'s), with its traced G-buffer in place of the
+//! host's.
+//!
+//! ```no_run
+//! # fn demo(
+//! #     ctx: std::sync::Arc<irradiant::GpuContext>,
+//! #     scene: irradiant_scene::Scene,
+//! #     camera: irradiant_scene::Camera,
+//! #     gbuffer: irradiant::host::HostGBuffer,
+//! # ) -> Result<(), irradiant::RenderError> {
+//! use irradiant::host::HostGi;
+//! let mut gi = HostGi::new(ctx.clone(), scene, irradiant::SessionSettings {
+//!     size: (1280, 720),
+//!     technique: irradiant::TechniqueSpec::new("ddgi", irradiant::Preset::Balanced),
+//!     ..Default::default()
+//! })?;
+//! let mut encoder = ctx.device.create_command_encoder(&Default::default());
+//! gi.record(&mut encoder, &camera, &gbuffer)?;   // after the host's G-buffer pass
+//! ctx.queue.submit([encoder.finish()]);
+//! // gi.indirect(): rgba16float, the indirect light to add to the host's lit image.
+//! # Ok(()) }
+//! ```
+
+pub mod constants;
+mod gbuffer;
+
+use std::sync::Arc;
+
+use irradiant_gpu::{BoundPass, ComputePass, GpuContext, PassDesc, ResourceTable, wgpu};
+use irradiant_scene::{Camera, Scene};
+
+pub use gbuffer::{
+    DepthConvention, GpuHostImport, HostGBuffer, MaterialChannels, MotionConvention, NormalEncoding,
+};
+
+use crate::session::GBufferSource;
+use crate::{RenderError, Session, SessionSettings};
+
+/// The host's textures host/import reads: never filterable (a depth or 32-bit float texture
+/// may stand in any of them).
+const HOST_TEXTURES: &[&str] = &[
+    "host_depth",
+    "host_normal",
+    "host_base_colour",
+    "host_material",
+    "host_emission",
+    "host_motion",
+];
+
+/// The indirect light the host composes, and the pass that writes it.
+struct HostOutput {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+    pass: BoundPass,
+}
+
+/// Global illumination for a host's frames: a session whose G-buffer is the host's.
+pub struct HostGi {
+    session: Session,
+    import: Arc<ComputePass>,
+    import_params: wgpu::Buffer,
+    output: HostOutput,
+}
+
+impl HostGi {
+    /// Builds the scene, the frame (without TAA: the host's G-buffer is not jittered) and the
+    /// technique on `ctx` (the host's device, [`GpuContext::from_host`]).
+    pub fn new(
+        ctx: Arc<GpuContext>,
+        scene: Scene,
+        mut settings: SessionSettings,
+    ) -> Result<Self, RenderError> {
+        settings.frame = settings.frame.without_taa();
+        let session = Session::new(ctx, scene, settings)?;
+        let ctx = session.ctx();
+        let import = crate::shaders::pass(
+            ctx,
+            &PassDesc::new("host/import", include_str!("import.wgsl")).unfilterable(HOST_TEXTURES),
+        )?;
+        let import_params = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("host/import_params"),
+            size: std::mem::size_of::<GpuHostImport>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let output = Self::output(&session)?;
+        Ok(Self {
+            session,
+            import,
+            import_params,
+            output,
+        })
+    }
+
+    fn output(session: &Session) -> Result<HostOutput, RenderError> {
+        let ctx = session.ctx();
+        let texture = irradiant_gpu::texture_2d(
+            &ctx.device,
+            "host/indirect",
+            session.frame().size(),
+            wgpu::TextureFormat::Rgba16Float,
+            1,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+        );
+        let view = texture.create_view(&Default::default());
+        let own = ResourceTable::new().texture("host_indirect", &view);
+        let pass = crate::shaders::pass(
+            ctx,
+            &PassDesc::new("host/indirect", include_str!("indirect.wgsl")),
+        )?
+        .bind(ctx, &[&own, &session.frame().resources.table()])?;
+        Ok(HostOutput {
+            texture,
+            view,
+            pass,
+        })
+    }
+
+    /// Records this frame's global illumination into the host's `encoder`, after the host's
+    /// G-buffer pass: the G-buffer imported, the direct light Irradiant's techniques need, the
+    /// technique's update and resolve, and the indirect light into [`HostGi::indirect`].
+    /// `camera` is the view the G-buffer was rendered from (the previous one is remembered).
+    /// Every texture and the camera are checked first; an error names what is wrong.
+    pub fn record(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &Camera,
+        gbuffer: &HostGBuffer,
+    ) -> Result<(), RenderError> {
+        gbuffer.check(self.session.frame().size())?;
+        let eye = camera.position;
+        let valid = [eye, camera.target, camera.up]
+            .iter()
+            .all(|v| v.is_finite())
+            && (camera.target - eye).length() > 0.0
+            && camera.fov_y_degrees.is_finite()
+            && (1.0..179.0).contains(&camera.fov_y_degrees);
+        if !valid {
+            return Err(RenderError::Settings(format!(
+                "the host's camera {camera:?} is not a view: give a finite position, a target apart from it and a vertical field of view of 1 to 179 degrees"
+            )));
+        }
+        self.session.set_camera(camera.clone());
+        let ctx = self.session.ctx();
+        ctx.queue.write_buffer(
+            &self.import_params,
+            0,
+            bytemuck::bytes_of(&gbuffer.params()),
+        );
+        let views = gbuffer.views();
+        let host = gbuffer::import_table(&views, &self.import_params);
+        let import = self
+            .import
+            .bind(ctx, &[&host, &self.session.frame().resources.table()])?;
+        self.session
+            .record(encoder, GBufferSource::Host(&import), false);
+        self.output
+            .pass
+            .dispatch(encoder, None, self.session.frame().image_groups());
+        self.session.finish_frame();
+        Ok(())
+    }
+
+    /// The indirect light of the last recorded frame: rgba16float at the frame's size, outgoing
+    /// radiance (albedo applied) in rgb, 0 where the pixel sees no surface. Add it to the lit
+    /// image.
+    pub fn indirect(&self) -> &wgpu::TextureView {
+        &self.output.view
+    }
+
+    /// The texture behind [`HostGi::indirect`] (to copy or read back).
+    pub fn indirect_texture(&self) -> &wgpu::Texture {
+        &self.output.texture
+    }
+
+    /// Changes the frame's size to the host's: the technique is rebuilt at it.
+    pub fn resize(&mut self, size: (u32, u32)) -> Result<(), RenderError> {
+        self.session.resize(size)?;
+        self.output = Self::output(&self.session)?;
+        Ok(())
+    }
+
+    /// The session underneath: the scene's animation (`seek`), the technique and its settings
+    /// (`set_technique`), saved probes, the frame's images for measuring.
+    pub fn session(&self) -> &Session {
+        &self.session
+    }
+
+    /// The session underneath, to change.
+    pub fn session_mut(&mut self) -> &mut Session {
+        &mut self.session
+    }
+}

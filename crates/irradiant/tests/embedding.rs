@@ -1,0 +1,323 @@
+//! Irradiant on a host's own device (issue 40): a context made from a device the host created
+//! with the features and limits Irradiant states, a session rendering on it; a device created
+//! without them refused by name.
+
+mod common;
+
+use common::*;
+use irradiant::{GpuContext, Session, SessionSettings};
+
+fn host_device(
+    ctx: &GpuContext,
+    features: wgpu::Features,
+    limits: wgpu::Limits,
+) -> (wgpu::Device, wgpu::Queue) {
+    pollster::block_on(ctx.adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("host"),
+        required_features: features,
+        required_limits: limits,
+        ..Default::default()
+    }))
+    .unwrap()
+}
+
+#[test]
+fn a_session_renders_on_the_hosts_device() {
+    let Some(ours) = gpu() else { return };
+    let (features, limits) = GpuContext::requirements(&ours.adapter).unwrap();
+    let (device, queue) = host_device(&ours, features, limits);
+    let host =
+        GpuContext::from_host(ours.instance.clone(), ours.adapter.clone(), device, queue).unwrap();
+    assert_eq!(host.info.name, ours.info.name);
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let mut session = Session::new(
+        std::sync::Arc::new(host),
+        scene,
+        SessionSettings {
+            size: (32, 32),
+            technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    for _ in 0..3 {
+        session.render().unwrap();
+    }
+    let image = session.image().unwrap();
+    let mean: f32 = image.pixels.iter().map(|p| p[0] + p[1] + p[2]).sum::<f32>();
+    assert!(mean > 0.0, "the host's device rendered a black frame");
+}
+
+#[test]
+fn a_host_device_without_what_irradiant_needs_is_refused_by_name() {
+    let Some(ours) = gpu() else { return };
+    let (features, limits) = GpuContext::requirements(&ours.adapter).unwrap();
+    let (device, queue) = host_device(
+        &ours,
+        features - wgpu::Features::CLEAR_TEXTURE,
+        limits.clone(),
+    );
+    let e = GpuContext::from_host(ours.instance.clone(), ours.adapter.clone(), device, queue)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("CLEAR_TEXTURE") && e.contains("requirements"),
+        "{e}"
+    );
+    let (device, queue) = host_device(&ours, features, wgpu::Limits::default());
+    let e = GpuContext::from_host(ours.instance.clone(), ours.adapter.clone(), device, queue)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("max_storage_buffers_per_shader_stage"), "{e}");
+}
+
+/// A texture of `format` at `size` filled with `bytes`, as a host would hand it.
+fn host_texture(
+    ctx: &GpuContext,
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    bytes: &[u8],
+) -> wgpu::Texture {
+    let texture = irradiant_gpu::texture_2d(
+        &ctx.device,
+        "host/test",
+        size,
+        format,
+        1,
+        usage | wgpu::TextureUsages::COPY_DST,
+    );
+    let texel = format.block_copy_size(None).unwrap();
+    ctx.queue.write_texture(
+        texture.as_image_copy(),
+        bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(texel * size.0),
+            rows_per_image: None,
+        },
+        texture.size(),
+    );
+    texture
+}
+
+fn halves(values: impl Iterator<Item = f32>) -> Vec<u8> {
+    values
+        .flat_map(|v| half::f16::from_f32(v).to_le_bytes())
+        .collect()
+}
+
+fn read_rgba16(ctx: &GpuContext, texture: &wgpu::Texture) -> Vec<[f32; 4]> {
+    let bytes = irradiant_gpu::read_texture(ctx, texture, 8).unwrap();
+    bytes
+        .chunks_exact(8)
+        .map(|c| {
+            std::array::from_fn(|i| half::f16::from_le_bytes([c[2 * i], c[2 * i + 1]]).to_f32())
+        })
+        .collect()
+}
+
+/// A host's G-buffer in other conventions than Irradiant's — reversed hardware depth, view-space
+/// normals, the material in chosen channels, motion in UV — made from the traced G-buffer of the
+/// same view: the host's frames' indirect light is the session's own, to f16 rounding.
+#[test]
+fn a_hosts_gbuffer_in_its_conventions_gives_the_sessions_own_light() {
+    use irradiant::host::{
+        DepthConvention, HostGBuffer, HostGi, MaterialChannels, MotionConvention, NormalEncoding,
+    };
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (32, 32);
+    let (w, h) = size;
+    let technique = spec(Some(&irradiant::ddgi::DdgiSettings::fast()));
+    let mut own = session(&ctx, &scene, size, technique.clone());
+    for _ in 0..4 {
+        own.render().unwrap();
+    }
+    // The traced G-buffer, read back, and the camera's frame.
+    let frame = own.frame();
+    let depth: Vec<f32> = bytemuck::pod_collect_to_vec(
+        &irradiant_gpu::read_texture(&ctx, frame.resources.texture("gbuffer_depth"), 4).unwrap(),
+    );
+    let normal = read_rgba16(&ctx, frame.resources.texture("gbuffer_normal"));
+    let albedo = read_rgba16(&ctx, frame.resources.texture("gbuffer_albedo"));
+    let emission = read_rgba16(&ctx, frame.resources.texture("gbuffer_emission"));
+    let motion: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(
+        &irradiant_gpu::read_texture(&ctx, frame.resources.texture("gbuffer_motion"), 16).unwrap(),
+    );
+    let camera = irradiant::scene::types::GpuCamera::new(&scene.camera, w, h);
+    let (forward, right, up) = (
+        glam::Vec3::from(camera.forward),
+        glam::Vec3::from(camera.right),
+        glam::Vec3::from(camera.up),
+    );
+    let (near, far) = (0.05f32, 50.0f32);
+    let reversed: Vec<u8> = (0..(w * h) as usize)
+        .flat_map(|i| {
+            let pixel = glam::Vec2::new((i as u32 % w) as f32 + 0.5, (i as u32 / w) as f32 + 0.5);
+            let d = if depth[i] < 0.0 {
+                0.0
+            } else {
+                let view_z = depth[i] * camera.ray_dir(pixel, w, h).dot(forward);
+                (near * far / view_z - near) / (far - near)
+            };
+            d.to_le_bytes()
+        })
+        .collect();
+    let view_normals = halves(normal.iter().flat_map(|n| {
+        let n = irradiant::probes::octahedral::oct_decode(glam::Vec2::new(n[0], n[1]));
+        [n.dot(right), n.dot(up), -n.dot(forward), 0.0]
+    }));
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+    let f16 = wgpu::TextureFormat::Rgba16Float;
+    let depth_texture = host_texture(&ctx, size, wgpu::TextureFormat::R32Float, usage, &reversed);
+    let normal_texture = host_texture(&ctx, size, f16, usage, &view_normals);
+    let base = host_texture(
+        &ctx,
+        size,
+        f16,
+        usage,
+        &halves(albedo.iter().flat_map(|a| [a[0], a[1], a[2], 1.0])),
+    );
+    // specular in r, roughness in g, metallic in b (the frame keeps metallic in emission.a
+    // and the specular scale in motion.z).
+    let material = host_texture(
+        &ctx,
+        size,
+        f16,
+        usage,
+        &halves(
+            (0..(w * h) as usize).flat_map(|i| [motion[i][2], albedo[i][3], emission[i][3], 0.0]),
+        ),
+    );
+    let emitted = host_texture(
+        &ctx,
+        size,
+        f16,
+        usage,
+        &halves(emission.iter().flat_map(|e| [e[0], e[1], e[2], 1.0])),
+    );
+    let uv_motion: Vec<u8> = bytemuck::cast_slice::<f32, u8>(
+        &motion
+            .iter()
+            .flat_map(|m| [m[0] / w as f32, m[1] / h as f32, 0.0, 0.0])
+            .collect::<Vec<f32>>(),
+    )
+    .to_vec();
+    let motion_texture = host_texture(
+        &ctx,
+        size,
+        wgpu::TextureFormat::Rgba32Float,
+        usage,
+        &uv_motion,
+    );
+    let gbuffer = HostGBuffer {
+        depth: &depth_texture,
+        depth_convention: DepthConvention::HardwareReversed { near, far },
+        normal: &normal_texture,
+        normal_encoding: NormalEncoding::ViewSigned,
+        base_colour: &base,
+        material: Some(&material),
+        material_channels: MaterialChannels {
+            roughness: Some(1),
+            metallic: Some(2),
+            specular: Some(0),
+        },
+        emission: Some(&emitted),
+        motion: Some((&motion_texture, MotionConvention::UvToPrevious)),
+    };
+    let mut gi = HostGi::new(
+        ctx.clone(),
+        scene.clone(),
+        irradiant::SessionSettings {
+            size,
+            technique,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    for _ in 0..4 {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        gi.record(&mut encoder, &scene.camera, &gbuffer).unwrap();
+        ctx.queue.submit([encoder.finish()]);
+    }
+    let hosted = read_rgba16(&ctx, gi.indirect_texture());
+    let reference = own.indirect().unwrap();
+    let (mut difference, mut total) = (0.0f64, 0.0f64);
+    for (a, b) in hosted.iter().zip(&reference.pixels) {
+        for c in 0..3 {
+            difference += (a[c] - b[c]).abs() as f64;
+            total += b[c].abs() as f64;
+        }
+    }
+    let relative = difference / total;
+    eprintln!("host G-buffer against the traced one: indirect differs by {relative:.5} (relative)");
+    assert!(total > 0.0, "no indirect light");
+    assert!(relative < 0.01, "{relative}");
+
+    // Bad input: each refused with the channel and the fix.
+    let small = host_texture(&ctx, (16, 16), f16, usage, &vec![0; 16 * 16 * 8]);
+    let unbound = host_texture(
+        &ctx,
+        size,
+        f16,
+        wgpu::TextureUsages::COPY_SRC,
+        &view_normals,
+    );
+    let integer = host_texture(
+        &ctx,
+        size,
+        wgpu::TextureFormat::Rgba8Uint,
+        usage,
+        &vec![0; (w * h * 4) as usize],
+    );
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    for (bad, expected) in [
+        (
+            HostGBuffer {
+                normal: &small,
+                ..gbuffer
+            },
+            "gbuffer.normal is 16×16",
+        ),
+        (
+            HostGBuffer {
+                emission: Some(&unbound),
+                ..gbuffer
+            },
+            "gbuffer.emission was created without TEXTURE_BINDING",
+        ),
+        (
+            HostGBuffer {
+                base_colour: &integer,
+                ..gbuffer
+            },
+            "gbuffer.base_colour has format Rgba8Uint",
+        ),
+        (
+            HostGBuffer {
+                depth_convention: DepthConvention::Hardware {
+                    near: 0.0,
+                    far: 10.0,
+                },
+                ..gbuffer
+            },
+            "near plane above 0",
+        ),
+    ] {
+        let e = gi
+            .record(&mut encoder, &scene.camera, &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(expected), "{e}");
+    }
+    let mut lost = scene.camera.clone();
+    lost.position.x = f32::NAN;
+    let e = gi
+        .record(&mut encoder, &lost, &gbuffer)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("camera"), "{e}");
+}
