@@ -174,6 +174,13 @@ impl HostGi {
         &self.output.view
     }
 
+    /// The direct light Irradiant computes for its techniques from the host's G-buffer and
+    /// the scene's lights (ray-traced shadows, emitters sampled; a running mean while nothing
+    /// moves): rgba32float, radiance in rgb. A host adds its own direct light instead, or this.
+    pub fn direct(&self) -> &wgpu::TextureView {
+        self.session.frame().resources.view("direct")
+    }
+
     /// The texture behind [`HostGi::indirect`] (to copy or read back).
     pub fn indirect_texture(&self) -> &wgpu::Texture {
         &self.output.texture
