@@ -262,12 +262,8 @@ impl GpuContext {
     /// The features and limits Irradiant needs of `adapter`'s device (a host that creates its
     /// own device asks for at least these): the reason in words where the adapter cannot.
     pub fn requirements(adapter: &Adapter) -> Result<(Features, Limits), GpuError> {
-        let adapter_info = adapter.get_info();
         let available = adapter.limits();
-        let unsuitable = |reason: String| GpuError::Unsuitable {
-            adapter: adapter_info.name.clone(),
-            reason,
-        };
+        let unsuitable = |reason| unsuitable(adapter, reason);
         if available.max_storage_textures_per_shader_stage < STORAGE_TEXTURES_NEEDED {
             return Err(unsuitable(format!(
                 "it allows {} storage textures per shader stage and Irradiant needs {STORAGE_TEXTURES_NEEDED}",
@@ -325,10 +321,7 @@ impl GpuContext {
             required_limits: limits,
             ..Default::default()
         }))
-        .map_err(|e| GpuError::Unsuitable {
-            adapter: adapter.get_info().name,
-            reason: e.to_string(),
-        })?;
+        .map_err(|e| unsuitable(&adapter, e.to_string()))?;
         let errors = Arc::new(Mutex::new(Vec::new()));
         let out_of_memory = Arc::new(Mutex::new(None));
         let (sink, memory_sink) = (errors.clone(), out_of_memory.clone());
@@ -368,10 +361,7 @@ impl GpuContext {
         queue: Queue,
     ) -> Result<Self, GpuError> {
         let (features, limits) = Self::requirements(&adapter)?;
-        let unsuitable = |reason: String| GpuError::Unsuitable {
-            adapter: adapter.get_info().name,
-            reason,
-        };
+        let unsuitable = |reason| unsuitable(&adapter, reason);
         let missing = features - device.features();
         if !missing.is_empty() {
             return Err(unsuitable(format!(
@@ -522,6 +512,14 @@ fn device_local_memory(adapter: &Adapter) -> Option<u64> {
             .filter(|h| h.flags.contains(ash::vk::MemoryHeapFlags::DEVICE_LOCAL))
             .map(|h| h.size)
             .max()
+    }
+}
+
+/// The error of an adapter (or a device on it) that cannot serve Irradiant, and why.
+fn unsuitable(adapter: &Adapter, reason: String) -> GpuError {
+    GpuError::Unsuitable {
+        adapter: adapter.get_info().name,
+        reason,
     }
 }
 

@@ -2,25 +2,14 @@
 //! builds from every registered technique's settings, a changed setting reaches the session's
 //! live settings without a rebuild, and a setting that shapes the passes rebuilds the technique.
 
-use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use irradiant_view::Viewer;
-use irradiant_view::ui::{PanelState, draw};
 
 mod common;
 
 /// A small viewer on the Cornell box, or None (skipped) without an adapter outside CI.
 fn viewer() -> Option<Viewer> {
     common::viewer(&common::options("cornell", (32, 24)))
-}
-
-fn harness(viewer: Viewer) -> Harness<'static, (Viewer, PanelState)> {
-    Harness::builder()
-        .with_size(egui::vec2(900.0, 2400.0))
-        .build_ui_state(
-            |ui, (viewer, panel): &mut (Viewer, PanelState)| draw(ui, viewer, panel, 16.0),
-            (viewer, PanelState::default()),
-        )
 }
 
 /// The address of the technique the session runs: a rebuilt one is a new object.
@@ -37,7 +26,7 @@ fn the_panel_shows_every_techniques_settings() {
         .filter(|t| *t != "path" && !t.starts_with("lightfield"))
         .cloned()
         .collect();
-    let mut harness = harness(viewer);
+    let mut harness = common::harness(viewer);
     for name in names {
         harness.state_mut().0.switch_to(&name).unwrap();
         harness.run();
@@ -62,7 +51,7 @@ fn the_panel_shows_every_techniques_settings() {
 #[test]
 fn a_live_setting_changes_in_place_and_a_structural_one_rebuilds() {
     let Some(viewer) = viewer() else { return };
-    let mut harness = harness(viewer);
+    let mut harness = common::harness(viewer);
     harness.run();
     let before = technique_address(&harness.state().0);
     // Opens the `update` group, then flips a setting the blend reads each frame.

@@ -5,12 +5,10 @@
 
 mod common;
 
-use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use irradiant_view::Viewer;
 use irradiant_view::present::Decode;
 use irradiant_view::truth::TruthShow;
-use irradiant_view::ui::{PanelState, draw};
 
 /// Renders frames until the truth has its verdict (the comparison runs on a thread).
 fn until_verdict(viewer: &mut Viewer) {
@@ -56,12 +54,7 @@ fn the_truth_is_rendered_cached_compared_and_shown_three_ways() {
     let shown = viewer.image_view();
     assert!(shown.beside.is_none() && shown.decode == Decode::Shown);
     // The panel says FLIP's mean.
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(900.0, 2400.0))
-        .build_ui_state(
-            |ui, (viewer, panel): &mut (Viewer, PanelState)| draw(ui, viewer, panel, 16.0),
-            (viewer, PanelState::default()),
-        );
+    let mut harness = common::harness(viewer);
     harness.run();
     let label = format!("FLIP {:.4} mean", verdict.flip_mean);
     assert!(
@@ -123,12 +116,7 @@ fn a_click_on_a_probe_picks_it_in_the_inspector() {
         "a corner sees no probe"
     );
     assert_eq!(viewer.picked, Some(probe), "a miss keeps the last pick");
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(900.0, 2400.0))
-        .build_ui_state(
-            |ui, (viewer, panel): &mut (Viewer, PanelState)| draw(ui, viewer, panel, 16.0),
-            (viewer, PanelState::default()),
-        );
+    let mut harness = common::harness(viewer);
     harness.run();
     let label = format!("probe {probe} at");
     assert!(
@@ -147,12 +135,7 @@ fn the_panel_switches_a_light_and_f12_writes_png_and_exr() {
         return;
     };
     viewer.render(1.0 / 60.0).unwrap();
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(900.0, 2400.0))
-        .build_ui_state(
-            |ui, (viewer, panel): &mut (Viewer, PanelState)| draw(ui, viewer, panel, 16.0),
-            (viewer, PanelState::default()),
-        );
+    let mut harness = common::harness(viewer);
     harness.run();
     harness.get_by_label("lights (1)").click();
     harness.run();

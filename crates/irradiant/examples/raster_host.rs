@@ -10,7 +10,8 @@
 //! ```
 //!
 //! Options: `--scene S`, `--size WxH` (640x360), `--frames N` (60), `--technique NAME` (ddgi),
-//! `--out FILE.png` (raster-host.png).
+//! `--out FILE.png` (raster-host.png), `--timings` (time every pass of the host's frames and of
+//! Irradiant's own frames of the same scene on the same device, and print the API's overhead).
 
 use std::error::Error;
 use std::path::PathBuf;
@@ -37,6 +38,8 @@ pub struct Options {
     pub technique: String,
     /// The PNG written.
     pub out: PathBuf,
+    /// Time the passes, the host's frames against Irradiant's own.
+    pub timings: bool,
 }
 
 /// One vertex of the host's geometry: every instance's triangles in world space, each with its
@@ -52,78 +55,9 @@ struct Vertex {
     material: [f32; 3],
 }
 
-const RASTER_WGSL: &str = r#"
-struct Camera { view_projection: mat4x4<f32> }
-@group(0) @binding(0) var<uniform> camera: Camera;
+const RASTER_WGSL: &str = include_str!("raster_host_shaders/raster.wgsl");
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) base_colour: vec3<f32>,
-    @location(3) emission: vec3<f32>,
-    @location(4) material: vec3<f32>,
-}
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) normal: vec3<f32>,
-    @location(1) base_colour: vec3<f32>,
-    @location(2) emission: vec3<f32>,
-    @location(3) material: vec3<f32>,
-}
-struct GBuffer {
-    @location(0) normal: vec4<f32>,
-    @location(1) base_colour: vec4<f32>,
-    @location(2) material: vec4<f32>,
-    @location(3) emission: vec4<f32>,
-}
-
-@vertex
-fn vertex(v: VertexIn) -> VertexOut {
-    var out: VertexOut;
-    out.clip = camera.view_projection * vec4<f32>(v.position, 1.0);
-    out.normal = v.normal;
-    out.base_colour = v.base_colour;
-    out.emission = v.emission;
-    out.material = v.material;
-    return out;
-}
-
-@fragment
-fn fragment(v: VertexOut, @builtin(front_facing) front: bool) -> GBuffer {
-    var g: GBuffer;
-    g.normal = vec4<f32>(normalize(v.normal), 0.0);
-    g.base_colour = vec4<f32>(v.base_colour, 1.0);
-    g.material = vec4<f32>(v.material, 0.0);
-    // Emitters emit from their front (counter-clockwise) side.
-    g.emission = vec4<f32>(select(vec3<f32>(0.0), v.emission, front), 1.0);
-    return g;
-}
-"#;
-
-const COMPOSE_WGSL: &str = r#"
-@group(0) @binding(0) var emission: texture_2d<f32>;
-@group(0) @binding(1) var direct: texture_2d<f32>;
-@group(0) @binding(2) var indirect: texture_2d<f32>;
-@group(0) @binding(3) var depth: texture_2d<f32>;
-@group(0) @binding(4) var<uniform> sky: vec4<f32>;
-
-@vertex
-fn vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let corner = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-
-@fragment
-fn fragment(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
-    let at = vec2<i32>(p.xy);
-    // Reversed Z: 0 is the far plane, where no surface was drawn.
-    if textureLoad(depth, at, 0).r <= 0.0 {
-        return vec4<f32>(sky.rgb, 1.0);
-    }
-    let lit = textureLoad(emission, at, 0).rgb + textureLoad(direct, at, 0).rgb + textureLoad(indirect, at, 0).rgb;
-    return vec4<f32>(lit, 1.0);
-}
-"#;
+const COMPOSE_WGSL: &str = include_str!("raster_host_shaders/compose.wgsl");
 
 /// The host's G-buffer targets.
 struct GBufferTargets {
@@ -423,6 +357,7 @@ pub fn run(options: &Options) -> Result<irradiant::frame::Image, Box<dyn Error>>
         view(&targets.emission),
     ];
     let hdr_view = view(&hdr);
+    let mut host_times = Vec::new();
     for _ in 0..options.frames.max(1) {
         let mut encoder = device.create_command_encoder(&Default::default());
         {
@@ -460,7 +395,11 @@ pub fn run(options: &Options) -> Result<irradiant::frame::Image, Box<dyn Error>>
             pass.draw(0..vertices.len() as u32, 0..1);
         }
         // Irradiant: its passes into the same encoder, after the G-buffer.
-        gi.record(&mut encoder, &scene.camera, &targets.for_irradiant())?;
+        if options.timings {
+            gi.record_timed(&mut encoder, &scene.camera, &targets.for_irradiant())?;
+        } else {
+            gi.record(&mut encoder, &scene.camera, &targets.for_irradiant())?;
+        }
         {
             // The host's lighting: emission + direct + indirect.
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -484,6 +423,25 @@ pub fn run(options: &Options) -> Result<irradiant::frame::Image, Box<dyn Error>>
             pass.draw(0..3, 0..1);
         }
         queue.submit([encoder.finish()]);
+        if options.timings {
+            host_times.push(gi.session_mut().read_timings()?);
+        }
+    }
+    if options.timings {
+        let mut own = irradiant::Session::new(
+            ctx.clone(),
+            scene.clone(),
+            SessionSettings {
+                size,
+                technique: TechniqueSpec::new(&options.technique, Preset::Balanced),
+                frame: irradiant::frame::FrameSettings::default().without_taa(),
+                ..Default::default()
+            },
+        )?;
+        let own_times = (0..options.frames.max(1))
+            .map(|_| own.render_profiled())
+            .collect::<Result<Vec<_>, _>>()?;
+        print_overhead(&host_times, &own_times);
     }
     let texels: Vec<[f32; 4]> =
         bytemuck::pod_collect_to_vec(&irradiant_gpu::read_texture(&ctx, &hdr, 16)?);
@@ -501,6 +459,57 @@ pub fn run(options: &Options) -> Result<irradiant::frame::Image, Box<dyn Error>>
     Ok(image)
 }
 
+/// The median of each pass's time over the frames' second half (the first frames build
+/// pipelines and fill caches), in the order they ran.
+fn medians(frames: &[Vec<irradiant_gpu::PassTiming>]) -> Vec<(String, f64)> {
+    let settled = &frames[frames.len() / 2..];
+    let Some(last) = settled.last() else {
+        return Vec::new();
+    };
+    last.iter()
+        .map(|pass| {
+            let mut ms: Vec<f64> = (settled.iter())
+                .filter_map(|f| f.iter().find(|t| t.label == pass.label))
+                .map(|t| t.milliseconds)
+                .collect();
+            ms.sort_by(f64::total_cmp);
+            (pass.label.clone(), ms[ms.len() / 2])
+        })
+        .collect()
+}
+
+/// Every pass of the host's frames beside Irradiant's own, and the API's overhead: what the
+/// host's frame adds (host/import and host/indirect) against the technique's GI time.
+fn print_overhead(host: &[Vec<irradiant_gpu::PassTiming>], own: &[Vec<irradiant_gpu::PassTiming>]) {
+    let (host, own) = (medians(host), medians(own));
+    if host.is_empty() {
+        println!("timings: the adapter has no timestamp queries");
+        return;
+    }
+    println!("{:<28} {:>10} {:>10}", "pass (median ms)", "host", "own");
+    for (label, ms) in &host {
+        let mine = own.iter().find(|o| &o.0 == label).map(|o| o.1);
+        println!(
+            "{label:<28} {ms:>10.4} {:>10}",
+            mine.map_or("-".into(), |m| format!("{m:.4}"))
+        );
+    }
+    for (label, ms) in own.iter().filter(|o| !host.iter().any(|h| h.0 == o.0)) {
+        println!("{label:<28} {:>10} {ms:>10.4}", "-");
+    }
+    let sum = |passes: &[(String, f64)], keep: &dyn Fn(&str) -> bool| -> f64 {
+        passes.iter().filter(|p| keep(&p.0)).map(|p| p.1).sum()
+    };
+    let technique = |label: &str| !label.starts_with("frame/") && !label.starts_with("host/");
+    let gi_host = sum(&host, &technique);
+    let gi_own = sum(&own, &technique);
+    let api = sum(&host, &|label: &str| label.starts_with("host/"));
+    println!(
+        "GI (the technique's passes): host {gi_host:.4} ms, own {gi_own:.4} ms; the API adds {api:.4} ms (host/import, host/indirect): {:.2} % of the host's GI time",
+        100.0 * api / gi_host.max(1e-9)
+    );
+}
+
 fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
     let mut options = Options {
         scene: "cornell".into(),
@@ -508,8 +517,13 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
         frames: 60,
         technique: "ddgi".into(),
         out: "raster-host.png".into(),
+        timings: false,
     };
     while let Some(flag) = args.next() {
+        if flag == "--timings" {
+            options.timings = true;
+            continue;
+        }
         let value = args.next().ok_or_else(|| format!("{flag} needs a value"))?;
         match flag.as_str() {
             "--scene" => options.scene = value,
@@ -529,7 +543,7 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
             }
             other => {
                 return Err(format!(
-                    "unknown option {other}: use --scene, --size, --frames, --technique or --out"
+                    "unknown option {other}: use --scene, --size, --frames, --technique, --out or --timings"
                 ));
             }
         }
@@ -566,6 +580,7 @@ mod tests {
             frames: 16,
             technique: "ddgi".into(),
             out: out.clone(),
+            timings: false,
         };
         let hosted = match run(&options) {
             Ok(image) => image,

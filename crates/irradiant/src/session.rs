@@ -403,8 +403,7 @@ impl Session {
     /// none), in the order the passes ran.
     pub fn render_profiled(&mut self) -> Result<Vec<PassTiming>, RenderError> {
         self.record_and_submit(true)?;
-        self.ctx.wait()?;
-        Ok(self.profiler.read(&self.ctx)?)
+        self.read_timings()
     }
 
     /// Records a frame into `encoder`: the G-buffer from `source`, the direct light and the
@@ -435,11 +434,27 @@ impl Session {
             self.technique.visualize(encoder, view);
         }
         if matches!(source, GBufferSource::Traced) {
-            self.frame.record_output(encoder, profiler.as_deref_mut());
+            self.frame.record_output(encoder, profiler);
         }
-        if let Some(p) = profiler {
-            p.resolve(encoder);
+    }
+
+    /// The profiler, when this frame is timed and the adapter has timestamps: a host's own
+    /// passes after [`Session::record`] are timed with it.
+    pub(crate) fn profiler(&mut self, profiled: bool) -> Option<&mut Profiler> {
+        (profiled && self.profiler.enabled()).then_some(&mut self.profiler)
+    }
+
+    /// Records the copy of a timed frame's timestamps, after its last pass.
+    pub(crate) fn resolve_timestamps(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        if self.profiler.enabled() {
+            self.profiler.resolve(encoder);
         }
+    }
+
+    /// A timed frame's pass times, once its commands were submitted (it waits for the GPU).
+    pub fn read_timings(&mut self) -> Result<Vec<PassTiming>, RenderError> {
+        self.ctx.wait()?;
+        Ok(self.profiler.read(&self.ctx)?)
     }
 
     /// Counts a recorded frame (the frame's running means and TAA's history move on).
@@ -455,6 +470,9 @@ impl Session {
                 label: Some("frame"),
             });
         self.record(&mut encoder, GBufferSource::Traced, profiled);
+        if profiled {
+            self.resolve_timestamps(&mut encoder);
+        }
         self.in_flight
             .push_back(self.ctx.queue.submit([encoder.finish()]));
         if self.in_flight.len() > MAX_FRAMES_IN_FLIGHT

@@ -2,6 +2,8 @@
 
 #![allow(dead_code)]
 
+use egui_kittest::Harness;
+use irradiant_view::ui::{PanelState, draw};
 use irradiant_view::{ViewOptions, Viewer};
 
 /// Offscreen options for a small viewer of `scene`: the references and bakes are cached in a
@@ -44,4 +46,15 @@ pub fn viewer(options: &ViewOptions) -> Option<Viewer> {
         }
         Err(e) => panic!("{e}"),
     }
+}
+
+/// The panel over `viewer`, driven as a person would (egui_kittest), tall enough to show
+/// every row.
+pub fn harness(viewer: Viewer) -> Harness<'static, (Viewer, PanelState)> {
+    Harness::builder()
+        .with_size(egui::vec2(900.0, 2400.0))
+        .build_ui_state(
+            |ui, (viewer, panel): &mut (Viewer, PanelState)| draw(ui, viewer, panel, 16.0),
+            (viewer, PanelState::default()),
+        )
 }

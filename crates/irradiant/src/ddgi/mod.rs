@@ -378,45 +378,25 @@ impl Technique for Ddgi {
             updating += v.read_updating_probes(ctx)?;
         }
         let states = self.read_state_counts(ctx)?;
-        Ok(vec![
-            Counter {
-                name: "probes_vigilant",
-                value: states.vigilant as f64,
-            },
-            Counter {
-                name: "probes_awake",
-                value: states.awake as f64,
-            },
-            Counter {
-                name: "probes_sleeping",
-                value: states.sleeping as f64,
-            },
-            Counter {
-                name: "probes_off",
-                value: states.off as f64,
-            },
-            Counter {
-                name: "probes",
-                value: probes as f64,
-            },
-            Counter {
-                name: "updating_probes",
-                value: updating as f64,
-            },
+        let counters = [
+            ("probes_vigilant", states.vigilant as f64),
+            ("probes_awake", states.awake as f64),
+            ("probes_sleeping", states.sleeping as f64),
+            ("probes_off", states.off as f64),
+            ("probes", probes as f64),
+            ("updating_probes", updating as f64),
             // The paper's Table 2 counts every probe's rays; sleeping probes trace none.
-            Counter {
-                name: "probe_rays",
-                value: probes as f64 * rays,
-            },
-            Counter {
-                name: "traced_rays",
-                value: updating as f64 * rays,
-            },
-            Counter {
-                name: "queued_shadow_rays",
-                value: self.read_queued_shadow_rays(ctx)? as f64,
-            },
-        ])
+            ("probe_rays", probes as f64 * rays),
+            ("traced_rays", updating as f64 * rays),
+            (
+                "queued_shadow_rays",
+                self.read_queued_shadow_rays(ctx)? as f64,
+            ),
+        ];
+        Ok(counters
+            .into_iter()
+            .map(|(name, value)| Counter { name, value })
+            .collect())
     }
     fn as_any(&self) -> &dyn Any {
         self

@@ -1,16 +1,8 @@
 // frame/gbuffer: one primary ray through each pixel's sample point (its centre, plus this
 // frame's sub-pixel jitter when TAA is on); what it hits, as the G-buffer (gbuffer_layout).
-#import frame_types
-#import gbuffer_layout
+#import gbuffer_write
 #import bvh
 #import camera
-
-@group(1) @binding(0) var<uniform> frame: GpuFrameParams;
-@group(1) @binding(1) var gbuffer_depth: texture_storage_2d<r32float, write>;
-@group(1) @binding(2) var gbuffer_normal: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(3) var gbuffer_albedo: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(4) var gbuffer_emission: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(5) var gbuffer_motion: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
@@ -37,10 +29,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         let motion = project(frame.previous_camera, previous, size) - project(frame.camera, s.position, size);
         t = gbuffer_pack(s, hit.t, motion);
     }
-    let pixel = vec2<i32>(id.xy);
-    textureStore(gbuffer_depth, pixel, vec4<f32>(t.depth, 0.0, 0.0, 0.0));
-    textureStore(gbuffer_normal, pixel, t.normal);
-    textureStore(gbuffer_albedo, pixel, t.albedo);
-    textureStore(gbuffer_emission, pixel, t.emission);
-    textureStore(gbuffer_motion, pixel, t.motion);
+    gbuffer_store(vec2<i32>(id.xy), t);
 }

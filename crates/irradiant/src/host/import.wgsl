@@ -3,8 +3,7 @@
 // is read as the host's convention says; the position is not stored (the ray through the pixel
 // centre at the stored distance), which is why the host's projection must be the camera's.
 #import host_constants
-#import frame_types
-#import gbuffer_layout
+#import gbuffer_write
 #import camera
 
 struct GpuHostImport {
@@ -34,13 +33,6 @@ struct GpuHostImport {
 @group(0) @binding(4) var host_material: texture_2d<f32>;
 @group(0) @binding(5) var host_emission: texture_2d<f32>;
 @group(0) @binding(6) var host_motion: texture_2d<f32>;
-
-@group(1) @binding(0) var<uniform> frame: GpuFrameParams;
-@group(1) @binding(1) var gbuffer_depth: texture_storage_2d<r32float, write>;
-@group(1) @binding(2) var gbuffer_normal: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(3) var gbuffer_albedo: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(4) var gbuffer_emission: texture_storage_2d<rgba16float, write>;
-@group(1) @binding(5) var gbuffer_motion: texture_storage_2d<rgba32float, write>;
 
 // The distance along the ray `dir` of the host's depth texel d; negative where the pixel sees no
 // surface (the far plane, or 0 in a reversed buffer).
@@ -139,9 +131,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         t = gbuffer_pack(s, depth, motion);
     }
-    textureStore(gbuffer_depth, pixel, vec4<f32>(t.depth, 0.0, 0.0, 0.0));
-    textureStore(gbuffer_normal, pixel, t.normal);
-    textureStore(gbuffer_albedo, pixel, t.albedo);
-    textureStore(gbuffer_emission, pixel, t.emission);
-    textureStore(gbuffer_motion, pixel, t.motion);
+    gbuffer_store(pixel, t);
 }

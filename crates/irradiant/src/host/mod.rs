@@ -133,6 +133,27 @@ impl HostGi {
         camera: &Camera,
         gbuffer: &HostGBuffer,
     ) -> Result<(), RenderError> {
+        self.record_frame(encoder, camera, gbuffer, false)
+    }
+
+    /// [`HostGi::record`] with every pass timed (timestamp queries, where the adapter has
+    /// them): after the host submits `encoder`, `session_mut().read_timings()` reads them.
+    pub fn record_timed(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &Camera,
+        gbuffer: &HostGBuffer,
+    ) -> Result<(), RenderError> {
+        self.record_frame(encoder, camera, gbuffer, true)
+    }
+
+    fn record_frame(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &Camera,
+        gbuffer: &HostGBuffer,
+        profiled: bool,
+    ) -> Result<(), RenderError> {
         gbuffer.check(self.session.frame().size())?;
         let eye = camera.position;
         let valid = [eye, camera.target, camera.up]
@@ -159,10 +180,14 @@ impl HostGi {
             .import
             .bind(ctx, &[&host, &self.session.frame().resources.table()])?;
         self.session
-            .record(encoder, GBufferSource::Host(&import), false);
+            .record(encoder, GBufferSource::Host(&import), profiled);
+        let groups = self.session.frame().image_groups();
         self.output
             .pass
-            .dispatch(encoder, None, self.session.frame().image_groups());
+            .dispatch(encoder, self.session.profiler(profiled), groups);
+        if profiled {
+            self.session.resolve_timestamps(encoder);
+        }
         self.session.finish_frame();
         Ok(())
     }

@@ -35,6 +35,7 @@ pub fn library() -> &'static ShaderLibrary {
                 include_str!("../frame/gbuffer_layout.wgsl"),
             )
             .with("gbuffer", include_str!("../frame/gbuffer_read.wgsl"))
+            .with("gbuffer_write", include_str!("../frame/gbuffer_write.wgsl"))
             .with("history", include_str!("../frame/history.wgsl"))
             .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
             .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
