@@ -321,3 +321,187 @@ fn a_hosts_gbuffer_in_its_conventions_gives_the_sessions_own_light() {
         .to_string();
     assert!(e.contains("camera"), "{e}");
 }
+
+/// `compose_into` adds the indirect light into the host's HDR target, leaving what the host
+/// drew there; a target of another size or a format that cannot be blended is refused.
+#[test]
+fn the_indirect_light_is_added_into_the_hosts_target() {
+    use irradiant::host::{DepthConvention, HostGBuffer, HostGi, MaterialChannels, NormalEncoding};
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (16, 16);
+    let texels = (size.0 * size.1) as usize;
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+    let f16 = wgpu::TextureFormat::Rgba16Float;
+    // A wall facing the camera a metre away, grey.
+    let depth = host_texture(
+        &ctx,
+        size,
+        wgpu::TextureFormat::R32Float,
+        usage,
+        bytemuck::cast_slice(&vec![1.0f32; texels]),
+    );
+    let normal = host_texture(
+        &ctx,
+        size,
+        f16,
+        usage,
+        &halves((0..texels).flat_map(|_| [0.0, 0.0, 1.0, 0.0])),
+    );
+    let grey = host_texture(
+        &ctx,
+        size,
+        f16,
+        usage,
+        &halves((0..texels).flat_map(|_| [0.5, 0.5, 0.5, 1.0])),
+    );
+    let gbuffer = HostGBuffer {
+        depth: &depth,
+        depth_convention: DepthConvention::ViewZ,
+        normal: &normal,
+        normal_encoding: NormalEncoding::ViewSigned,
+        base_colour: &grey,
+        material: None,
+        material_channels: MaterialChannels::GLTF,
+        emission: None,
+        motion: None,
+    };
+    let mut gi = HostGi::new(
+        ctx.clone(),
+        scene.clone(),
+        irradiant::SessionSettings {
+            size,
+            technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let target_usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+    let target = host_texture(
+        &ctx,
+        size,
+        f16,
+        target_usage,
+        &halves((0..texels).flat_map(|_| [0.25, 0.25, 0.25, 1.0])),
+    );
+    for _ in 0..3 {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        gi.record(&mut encoder, &scene.camera, &gbuffer).unwrap();
+        ctx.queue.submit([encoder.finish()]);
+    }
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    gi.compose_into(&mut encoder, &target).unwrap();
+    ctx.queue.submit([encoder.finish()]);
+    let indirect = read_rgba16(&ctx, gi.indirect_texture());
+    let composed = read_rgba16(&ctx, &target);
+    assert!(
+        indirect.iter().any(|p| p[0] > 0.0),
+        "no indirect light on the wall"
+    );
+    for (c, i) in composed.iter().zip(&indirect) {
+        for k in 0..3 {
+            assert!(
+                (c[k] - (0.25 + i[k])).abs() <= 2e-3 * (1.0 + i[k]),
+                "{c:?} against 0.25 + {i:?}"
+            );
+        }
+        assert_eq!(c[3], 1.0, "the target's alpha stays");
+    }
+    let small = host_texture(&ctx, (8, 8), f16, target_usage, &vec![0; 8 * 8 * 8]);
+    let integer = host_texture(
+        &ctx,
+        size,
+        wgpu::TextureFormat::Rgba8Uint,
+        target_usage,
+        &vec![0; texels * 4],
+    );
+    for (bad, expected) in [(&small, "is 8×8"), (&integer, "cannot be blended")] {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let e = gi.compose_into(&mut encoder, bad).unwrap_err().to_string();
+        assert!(e.contains(expected), "{e}");
+    }
+}
+
+/// Every registered technique runs on a host's G-buffer (the light fields with a small bake):
+/// its indirect light is finite, and some technique's is not all black.
+#[test]
+fn every_registered_technique_runs_on_a_hosts_gbuffer() {
+    use irradiant::host::{DepthConvention, HostGBuffer, HostGi, MaterialChannels, NormalEncoding};
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    // SSIL's pyramid needs an image of a few levels.
+    let size = (64, 64);
+    let texels = (size.0 * size.1) as usize;
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+    let f16 = wgpu::TextureFormat::Rgba16Float;
+    let depth = host_texture(
+        &ctx,
+        size,
+        wgpu::TextureFormat::R32Float,
+        usage,
+        bytemuck::cast_slice(&vec![1.5f32; texels]),
+    );
+    let normal = host_texture(
+        &ctx,
+        size,
+        f16,
+        usage,
+        &halves((0..texels).flat_map(|_| [0.0, 0.0, 1.0, 0.0])),
+    );
+    let grey = host_texture(
+        &ctx,
+        size,
+        f16,
+        usage,
+        &halves((0..texels).flat_map(|_| [0.5, 0.5, 0.5, 1.0])),
+    );
+    let gbuffer = HostGBuffer {
+        depth: &depth,
+        depth_convention: DepthConvention::ViewZ,
+        normal: &normal,
+        normal_encoding: NormalEncoding::ViewSigned,
+        base_colour: &grey,
+        material: None,
+        material_channels: MaterialChannels::GLTF,
+        emission: None,
+        motion: None,
+    };
+    let small_bake: toml::Table = toml::from_str(
+        "bake = { probe_counts = [2, 2, 2], resolution = 32, prefilter_resolution = 16, bounces = 1, emitter_samples = 2 }",
+    )
+    .unwrap();
+    let mut lit = Vec::new();
+    for name in irradiant::registry::names() {
+        let mut technique = irradiant::TechniqueSpec::new(name, irradiant::Preset::Fast);
+        if name.starts_with("lightfield") {
+            technique.settings = small_bake.clone();
+        }
+        let cache = std::env::temp_dir().join(format!("irradiant-host-{}", std::process::id()));
+        let mut gi = HostGi::new(
+            ctx.clone(),
+            scene.clone(),
+            irradiant::SessionSettings {
+                size,
+                technique,
+                cache_dir: Some(cache),
+                ..Default::default()
+            },
+        )
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+        for _ in 0..2 {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            gi.record(&mut encoder, &scene.camera, &gbuffer)
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            ctx.queue.submit([encoder.finish()]);
+        }
+        let indirect = read_rgba16(&ctx, gi.indirect_texture());
+        assert!(
+            indirect.iter().all(|p| p.iter().all(|c| c.is_finite())),
+            "{name}: light that is not finite"
+        );
+        if indirect.iter().any(|p| p[0] > 0.0) {
+            lit.push(name);
+        }
+    }
+    assert!(lit.contains(&"ddgi"), "lit: {lit:?}");
+}

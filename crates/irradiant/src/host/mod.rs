@@ -25,6 +25,7 @@
 //! # Ok(()) }
 //! ```
 
+mod compose;
 pub mod constants;
 mod gbuffer;
 
@@ -61,6 +62,7 @@ struct HostOutput {
 /// Global illumination for a host's frames: a session whose G-buffer is the host's.
 pub struct HostGi {
     session: Session,
+    composer: compose::Composer,
     import: Arc<ComputePass>,
     import_params: wgpu::Buffer,
     output: HostOutput,
@@ -90,6 +92,7 @@ impl HostGi {
         let output = Self::output(&session)?;
         Ok(Self {
             session,
+            composer: Default::default(),
             import,
             import_params,
             output,
@@ -197,6 +200,20 @@ impl HostGi {
     /// image.
     pub fn indirect(&self) -> &wgpu::TextureView {
         &self.output.view
+    }
+
+    /// Adds the indirect light of the frame just recorded into the host's HDR `target` (of the
+    /// frame's size, RENDER_ATTACHMENT usage, a blendable format such as Rgba16Float), on the
+    /// same encoder after [`HostGi::record`]: for a host that would rather not sample
+    /// [`HostGi::indirect`] in its own lighting pass. The target's alpha is left as it is.
+    pub fn compose_into(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::Texture,
+    ) -> Result<(), RenderError> {
+        let size = self.session.frame().size();
+        self.composer
+            .record(self.session.ctx(), encoder, &self.output.view, target, size)
     }
 
     /// The direct light Irradiant computes for its techniques from the host's G-buffer and
