@@ -90,6 +90,8 @@ pub struct Session {
     pose: Pose,
     /// Lights switched off by hand ([`Session::set_light_enabled`]), in the scene's order.
     lights_off: Vec<bool>,
+    /// Instances moved by hand ([`Session::set_instance_transform`]), in the scene's order.
+    moved: Vec<Option<glam::Mat4>>,
     /// The technique's probe overlay, when drawn.
     probes_shown: Option<ProbeView>,
     profiler: Profiler,
@@ -143,6 +145,7 @@ impl Session {
         warnings.dedup();
         let profiler = Profiler::new(&ctx, PROFILED_PASSES);
         let lights_off = vec![false; scene.lights.len()];
+        let moved = vec![None; scene.instances.len()];
         Ok(Self {
             camera: pose.camera.clone(),
             ctx,
@@ -153,6 +156,7 @@ impl Session {
             spec: settings.technique,
             time: settings.time,
             lights_off,
+            moved,
             pose,
             probes_shown: None,
             profiler,
@@ -242,6 +246,11 @@ impl Session {
         for (light, off) in next.lights.iter_mut().zip(&self.lights_off) {
             light.enabled &= !off;
         }
+        for (transform, moved) in next.instance_transforms.iter_mut().zip(&self.moved) {
+            if let Some(m) = moved {
+                *transform = *m;
+            }
+        }
         if next == self.pose {
             return;
         }
@@ -282,6 +291,35 @@ impl Session {
             *off = !on;
             self.seek(self.time);
         }
+    }
+
+    /// Moves instance `index` (in [`Scene::instances`]' order) to `transform` from the next
+    /// frame, over what the scene's animation says; the technique is told as of any moving
+    /// instance, and the instance counts as moving from then on (DDGI wakes the probes around
+    /// it). A host moves its objects so. An index past the instances, or a transform that is
+    /// not finite or not invertible, is refused by name.
+    pub fn set_instance_transform(
+        &mut self,
+        index: usize,
+        transform: glam::Mat4,
+    ) -> Result<(), RenderError> {
+        let count = self.moved.len();
+        if index >= count {
+            return Err(RenderError::Settings(format!(
+                "instance {index} does not exist: the scene has {count} instances (0 to {})",
+                count.saturating_sub(1)
+            )));
+        }
+        let determinant = transform.determinant();
+        if !transform.is_finite() || determinant.abs() < 1e-12 || !determinant.is_finite() {
+            return Err(RenderError::Settings(format!(
+                "instance {index}'s transform {transform:?} is not finite or not invertible: give a finite transform that does not flatten the object"
+            )));
+        }
+        self.moved[index] = Some(transform);
+        self.gpu_scene.set_moving(index);
+        self.seek(self.time);
+        Ok(())
     }
 
     /// Whether light `index` is on by hand (an animation may still dim it).

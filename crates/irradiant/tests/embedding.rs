@@ -505,3 +505,52 @@ fn every_registered_technique_runs_on_a_hosts_gbuffer() {
     }
     assert!(lit.contains(&"ddgi"), "lit: {lit:?}");
 }
+
+/// A host moves its objects by hand: the frame sees the instance where it was put, the pose
+/// says so, and an index or a transform that cannot be used is refused by name.
+#[test]
+fn an_instance_moved_by_hand_is_seen_where_it_was_put() {
+    let Some(ctx) = gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    // A small copy of the box in the middle of the room.
+    let small = glam::Mat4::from_scale_rotation_translation(
+        glam::Vec3::splat(0.2),
+        glam::Quat::IDENTITY,
+        glam::Vec3::new(0.0, 0.8, 0.0),
+    );
+    scene.instances.push(irradiant_scene::Instance {
+        name: "small".into(),
+        mesh: 0,
+        transform: small,
+    });
+    let mut s = session(
+        &ctx,
+        &scene,
+        (32, 32),
+        spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
+    );
+    let centre_depth = |s: &mut irradiant::Session| {
+        s.render().unwrap();
+        s.gbuffer().unwrap()[16 * 32 + 16].depth
+    };
+    let before = centre_depth(&mut s);
+    let aside = glam::Mat4::from_translation(glam::Vec3::new(5.0, 0.0, 0.0)) * small;
+    s.set_instance_transform(1, aside).unwrap();
+    assert_eq!(s.pose().instance_transforms[1], aside);
+    let after = centre_depth(&mut s);
+    assert!(
+        after > before + 0.5,
+        "the centre saw {before} before and {after} after"
+    );
+    let e = s.set_instance_transform(2, aside).unwrap_err().to_string();
+    assert!(
+        e.contains("instance 2 does not exist") && e.contains("2 instances"),
+        "{e}"
+    );
+    let flat = glam::Mat4::from_scale(glam::Vec3::new(1.0, 0.0, 1.0));
+    let e = s.set_instance_transform(1, flat).unwrap_err().to_string();
+    assert!(e.contains("not invertible"), "{e}");
+    let mut nan = aside;
+    nan.w_axis.x = f32::NAN;
+    assert!(s.set_instance_transform(1, nan).is_err());
+}

@@ -432,6 +432,14 @@ impl GpuScene {
         self.instance_bounds = boxes;
     }
 
+    /// Counts instance `index` as moving from now on (a host moves it by hand): its bounds join
+    /// [`GpuScene::dynamic_bounds`], where DDGI wakes sleeping probes.
+    pub fn set_moving(&mut self, index: usize) {
+        if let Some(moving) = self.animated.get_mut(index) {
+            *moving = true;
+        }
+    }
+
     /// World-space bounds of every instance an animation moves, at the current pose: where
     /// geometry may appear that the static scene does not have (DDGI wakes probes there).
     pub fn dynamic_bounds(&self) -> Vec<(Vec3, Vec3)> {
