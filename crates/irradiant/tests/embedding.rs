@@ -322,50 +322,73 @@ fn a_hosts_gbuffer_in_its_conventions_gives_the_sessions_own_light() {
     assert!(e.contains("camera"), "{e}");
 }
 
+/// A host's G-buffer of a grey wall facing the camera `distance` away (view-space depth and
+/// normals): the least a host can hand.
+struct Wall {
+    depth: wgpu::Texture,
+    normal: wgpu::Texture,
+    grey: wgpu::Texture,
+}
+
+impl Wall {
+    fn new(ctx: &GpuContext, size: (u32, u32), distance: f32) -> Self {
+        let texels = (size.0 * size.1) as usize;
+        let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+        let f16 = wgpu::TextureFormat::Rgba16Float;
+        let depth = vec![distance; texels];
+        Self {
+            depth: host_texture(
+                ctx,
+                size,
+                wgpu::TextureFormat::R32Float,
+                usage,
+                bytemuck::cast_slice(&depth),
+            ),
+            normal: host_texture(
+                ctx,
+                size,
+                f16,
+                usage,
+                &halves((0..texels).flat_map(|_| [0.0, 0.0, 1.0, 0.0])),
+            ),
+            grey: host_texture(
+                ctx,
+                size,
+                f16,
+                usage,
+                &halves((0..texels).flat_map(|_| [0.5, 0.5, 0.5, 1.0])),
+            ),
+        }
+    }
+
+    fn gbuffer(&self) -> irradiant::host::HostGBuffer<'_> {
+        use irradiant::host::{DepthConvention, MaterialChannels, NormalEncoding};
+        irradiant::host::HostGBuffer {
+            depth: &self.depth,
+            depth_convention: DepthConvention::ViewZ,
+            normal: &self.normal,
+            normal_encoding: NormalEncoding::ViewSigned,
+            base_colour: &self.grey,
+            material: None,
+            material_channels: MaterialChannels::GLTF,
+            emission: None,
+            motion: None,
+        }
+    }
+}
+
 /// `compose_into` adds the indirect light into the host's HDR target, leaving what the host
 /// drew there; a target of another size or a format that cannot be blended is refused.
 #[test]
 fn the_indirect_light_is_added_into_the_hosts_target() {
-    use irradiant::host::{DepthConvention, HostGBuffer, HostGi, MaterialChannels, NormalEncoding};
+    use irradiant::host::HostGi;
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let size = (16, 16);
     let texels = (size.0 * size.1) as usize;
-    let usage = wgpu::TextureUsages::TEXTURE_BINDING;
     let f16 = wgpu::TextureFormat::Rgba16Float;
-    // A wall facing the camera a metre away, grey.
-    let depth = host_texture(
-        &ctx,
-        size,
-        wgpu::TextureFormat::R32Float,
-        usage,
-        bytemuck::cast_slice(&vec![1.0f32; texels]),
-    );
-    let normal = host_texture(
-        &ctx,
-        size,
-        f16,
-        usage,
-        &halves((0..texels).flat_map(|_| [0.0, 0.0, 1.0, 0.0])),
-    );
-    let grey = host_texture(
-        &ctx,
-        size,
-        f16,
-        usage,
-        &halves((0..texels).flat_map(|_| [0.5, 0.5, 0.5, 1.0])),
-    );
-    let gbuffer = HostGBuffer {
-        depth: &depth,
-        depth_convention: DepthConvention::ViewZ,
-        normal: &normal,
-        normal_encoding: NormalEncoding::ViewSigned,
-        base_colour: &grey,
-        material: None,
-        material_channels: MaterialChannels::GLTF,
-        emission: None,
-        motion: None,
-    };
+    let wall = Wall::new(&ctx, size, 1.0);
+    let gbuffer = wall.gbuffer();
     let mut gi = HostGi::new(
         ctx.clone(),
         scene.clone(),
@@ -426,46 +449,13 @@ fn the_indirect_light_is_added_into_the_hosts_target() {
 /// its indirect light is finite, and some technique's is not all black.
 #[test]
 fn every_registered_technique_runs_on_a_hosts_gbuffer() {
-    use irradiant::host::{DepthConvention, HostGBuffer, HostGi, MaterialChannels, NormalEncoding};
+    use irradiant::host::HostGi;
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     // SSIL's pyramid needs an image of a few levels.
     let size = (64, 64);
-    let texels = (size.0 * size.1) as usize;
-    let usage = wgpu::TextureUsages::TEXTURE_BINDING;
-    let f16 = wgpu::TextureFormat::Rgba16Float;
-    let depth = host_texture(
-        &ctx,
-        size,
-        wgpu::TextureFormat::R32Float,
-        usage,
-        bytemuck::cast_slice(&vec![1.5f32; texels]),
-    );
-    let normal = host_texture(
-        &ctx,
-        size,
-        f16,
-        usage,
-        &halves((0..texels).flat_map(|_| [0.0, 0.0, 1.0, 0.0])),
-    );
-    let grey = host_texture(
-        &ctx,
-        size,
-        f16,
-        usage,
-        &halves((0..texels).flat_map(|_| [0.5, 0.5, 0.5, 1.0])),
-    );
-    let gbuffer = HostGBuffer {
-        depth: &depth,
-        depth_convention: DepthConvention::ViewZ,
-        normal: &normal,
-        normal_encoding: NormalEncoding::ViewSigned,
-        base_colour: &grey,
-        material: None,
-        material_channels: MaterialChannels::GLTF,
-        emission: None,
-        motion: None,
-    };
+    let wall = Wall::new(&ctx, size, 1.5);
+    let gbuffer = wall.gbuffer();
     let small_bake: toml::Table = toml::from_str(
         "bake = { probe_counts = [2, 2, 2], resolution = 32, prefilter_resolution = 16, bounces = 1, emitter_samples = 2 }",
     )
