@@ -81,7 +81,7 @@ pub fn run(args: &AgreementArgs, adapter: &AdapterChoice) -> Result<(), CliError
                 size: args.size,
                 frame: run.frame.clone(),
                 technique: spec,
-                cache_dir: Some(crate::cache::dir(None)),
+                cache_dir: Some(irradiant::pathtrace::reference_cache::cache_dir(None)),
                 progress: Some(crate::cache::bake_progress()),
                 ..Default::default()
             },

@@ -1,16 +1,10 @@
-//! Where the CLI caches what it renders and bakes (path-traced references, light-field
-//! probes), and the bar a bake draws.
+//! The bar a bake draws on the terminal. (Where bakes and references are cached is the
+//! library's rule: irradiant::pathtrace::reference_cache::cache_dir.)
 
-use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use irradiant::technique::Progress;
-
-/// `explicit` (--cache), else the user's cache directory (the library's one rule).
-pub fn dir(explicit: Option<&Path>) -> PathBuf {
-    irradiant::pathtrace::reference_cache::cache_dir(explicit)
-}
 
 /// A progress bar on stderr for bakes (hidden where stderr is not a terminal).
 pub fn bake_progress() -> Progress {

@@ -118,7 +118,9 @@ impl Setup<'_> {
                 technique: spec.clone(),
                 scene: GpuSceneSettings::default(),
                 time,
-                cache_dir: Some(crate::cache::dir(self.args.cache.as_deref())),
+                cache_dir: Some(irradiant::pathtrace::reference_cache::cache_dir(
+                    self.args.cache.as_deref(),
+                )),
                 progress: Some(crate::cache::bake_progress()),
             },
         )?)

@@ -247,7 +247,7 @@ fn render_frames(
             technique: spec,
             scene: GpuSceneSettings::default(),
             time: frame_time(0),
-            cache_dir: Some(crate::cache::dir(None)),
+            cache_dir: Some(irradiant::pathtrace::reference_cache::cache_dir(None)),
             progress: Some(crate::cache::bake_progress()),
         },
     )?;

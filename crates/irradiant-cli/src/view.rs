@@ -61,7 +61,9 @@ pub fn run(args: &ViewArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         offscreen: args.offscreen,
         panel: !args.no_panel,
         out_dir: args.out_dir.clone(),
-        cache_dir: Some(crate::cache::dir(args.cache.as_deref())),
+        cache_dir: Some(irradiant::pathtrace::reference_cache::cache_dir(
+            args.cache.as_deref(),
+        )),
         truth_spp: args.truth_spp,
         build: crate::reference::BUILD.into(),
         progress: Some(crate::cache::bake_progress()),

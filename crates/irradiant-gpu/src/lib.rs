@@ -7,6 +7,7 @@
 
 mod budget;
 mod context;
+mod fullscreen;
 mod layout;
 mod pass;
 mod profiler;
@@ -15,6 +16,7 @@ mod shader;
 
 pub use budget::{Allocation, AllocationKind, Budget, bytes, texture_2d, texture_2d_array};
 pub use context::{AdapterChoice, GpuContext, GpuError, GpuInfo};
+pub use fullscreen::{FULLSCREEN_VERTEX_WGSL, fullscreen_pipeline, unfiltered_texture_entry};
 pub use layout::{Expected, StructLayoutError, check_struct_layouts};
 pub use pass::{
     BindingDecl, BoundPass, ComputePass, MAX_WORKGROUPS_PER_DIMENSION, PassDesc, PassError,

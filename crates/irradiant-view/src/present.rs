@@ -56,7 +56,8 @@ struct GpuShow {
 }
 const _: () = assert!(std::mem::size_of::<GpuShow>() == 16);
 
-/// The blit's WGSL, after the octahedral mapping's: a full-screen triangle that loads the image
+/// The blit's fragment stage, after the octahedral mapping's (the full-screen triangle is
+/// irradiant_gpu's): it loads the image
 /// texel under each pixel (the image is the target's size; a texel past its edge repeats the
 /// last, during a resize) and decodes it as `Show.decode` says.
 const BLIT_WGSL: &str = r#"
@@ -70,12 +71,6 @@ struct Show {
 @group(0) @binding(0) var image: texture_2d<f32>;
 @group(0) @binding(1) var<uniform> show: Show;
 @group(0) @binding(2) var beside: texture_2d<f32>;
-
-@vertex
-fn vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {
-    let corner = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4f(corner * 2.0 - 1.0, 0.0, 1.0);
-}
 
 fn encode_srgb(c: vec3f) -> vec3f {
     let x = clamp(c, vec3f(0.0), vec3f(1.0));
@@ -135,6 +130,9 @@ pub struct Presenter {
     timer: Option<PresentTimer>,
     blit: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
+    /// The blit's bind group and the views it binds (image, beside): made again only when
+    /// what is shown changes, not every frame.
+    group: Option<((wgpu::TextureView, wgpu::TextureView), wgpu::BindGroup)>,
     show: wgpu::Buffer,
     /// egui's renderer, for the target's format.
     pub egui: egui_wgpu::Renderer,
@@ -148,26 +146,7 @@ impl Presenter {
     pub fn new(ctx: &GpuContext, format: wgpu::TextureFormat) -> Self {
         let format = format.remove_srgb_suffix();
         let device = &ctx.device;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("view/blit"),
-            source: wgpu::ShaderSource::Wgsl(
-                format!(
-                    "{}\n{BLIT_WGSL}",
-                    irradiant::probes::octahedral::OCTAHEDRAL_WGSL
-                )
-                .into(),
-            ),
-        });
-        let image_entry = wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        let image_entry = irradiant_gpu::unfiltered_texture_entry(0);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("view/blit"),
             entries: &[
@@ -194,37 +173,22 @@ impl Presenter {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("view/blit"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let blit = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("view/blit"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vertex"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            multiview_mask: None,
-            cache: None,
-        });
+        let blit = irradiant_gpu::fullscreen_pipeline(
+            device,
+            "view/blit",
+            &format!(
+                "{}\n{BLIT_WGSL}",
+                irradiant::probes::octahedral::OCTAHEDRAL_WGSL
+            ),
+            &layout,
+            format.into(),
+        );
         let egui = egui_wgpu::Renderer::new(device, format, egui_wgpu::RendererOptions::default());
         Self {
             timer: None,
             blit,
             layout,
+            group: None,
             show,
             egui,
             format,
@@ -302,24 +266,29 @@ impl Presenter {
         let beside = shown.beside.map_or(shown.image, |b| b.0);
         ctx.queue
             .write_buffer(&self.show, 0, bytemuck::bytes_of(&show));
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("view/blit"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(shown.image),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.show.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(beside),
-                },
-            ],
-        });
+        let views = (shown.image.clone(), beside.clone());
+        if self.group.as_ref().is_none_or(|(bound, _)| *bound != views) {
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("view/blit"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(shown.image),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: self.show.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(beside),
+                    },
+                ],
+            });
+            self.group = Some((views, group));
+        }
+        let group = &self.group.as_ref().expect("made above").1;
         let mut pass = encoder
             .begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("view/present"),
@@ -346,7 +315,7 @@ impl Presenter {
             })
             .forget_lifetime();
         pass.set_pipeline(&self.blit);
-        pass.set_bind_group(0, &group, &[]);
+        pass.set_bind_group(0, group, &[]);
         pass.draw(0..3, 0..1);
         self.egui.render(&mut pass, &shapes, &screen);
         drop(pass);

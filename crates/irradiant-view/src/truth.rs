@@ -56,6 +56,8 @@ struct Compared {
 enum Stage {
     /// Tracing the reference, a few samples a frame.
     Rendering(PathTracer),
+    /// The reference is there; the comparison waits for the technique's frame.
+    Awaiting,
     /// The worker compares; the result comes on the channel.
     Comparing(mpsc::Receiver<Result<Compared, String>>),
     /// Shown.
@@ -100,7 +102,7 @@ impl Truth {
     ) -> Result<Self, ViewError> {
         let reference = entry.load(size);
         let stage = match reference {
-            Some(_) => Stage::Comparing(mpsc::channel().1),
+            Some(_) => Stage::Awaiting,
             None => {
                 let mut tracer = PathTracer::new(ctx, gpu_scene, size.0, size.1)?;
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -140,19 +142,14 @@ impl Truth {
         }
     }
 
-    /// Whether the comparison is under way (the reference is done).
-    pub fn comparing(&self) -> bool {
-        matches!(self.stage, Stage::Comparing(_))
-    }
-
     /// Whether the reference still renders.
     pub fn rendering(&self) -> bool {
         matches!(self.stage, Stage::Rendering(_))
     }
 
     /// Moves the truth on by one frame: traces up to `samples` more samples a pixel, or takes
-    /// the comparison's result. Returns true when the reference has just been finished (the
-    /// caller then starts the comparison with the technique's frame).
+    /// the comparison's result. Returns true while the reference waits for its comparison (the
+    /// caller then starts it with the technique's frame).
     pub fn step(
         &mut self,
         ctx: &GpuContext,
@@ -179,7 +176,7 @@ impl Truth {
                 let image = tracer.image(ctx)?;
                 self.entry.store(&image);
                 self.reference = Some(image);
-                self.stage = Stage::Comparing(mpsc::channel().1);
+                self.stage = Stage::Awaiting;
                 Ok(true)
             }
             Stage::Comparing(rx) => {
@@ -197,11 +194,15 @@ impl Truth {
                     }
                     Ok(Err(problem)) => return Err(ViewError::Settings(problem)),
                     Err(mpsc::TryRecvError::Empty) => {}
-                    // No worker yet (a cached reference): the caller starts one.
-                    Err(mpsc::TryRecvError::Disconnected) => return Ok(true),
+                    Err(mpsc::TryRecvError::Disconnected) => {
+                        return Err(ViewError::Settings(
+                            "the truth's comparison stopped without a result".into(),
+                        ));
+                    }
                 }
                 Ok(false)
             }
+            Stage::Awaiting => Ok(true),
             Stage::Ready { .. } => Ok(false),
         }
     }

@@ -8,14 +8,9 @@ use irradiant_gpu::{GpuContext, wgpu};
 
 use crate::RenderError;
 
+/// The fragment stage (the full-screen triangle is irradiant_gpu's).
 const ADD_WGSL: &str = r#"
 @group(0) @binding(0) var indirect: texture_2d<f32>;
-
-@vertex
-fn vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let corner = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
-}
 
 @fragment
 fn fragment(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
@@ -24,10 +19,20 @@ fn fragment(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
 }
 "#;
 
-/// host/compose's pipelines, one a target format.
+/// host/compose's pipelines, one a target format, and the last target's view and bind group
+/// (a host composes into the same target frame after frame: nothing is made again then).
 #[derive(Default)]
 pub struct Composer {
     pipelines: HashMap<wgpu::TextureFormat, (wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
+    bound: Option<Bound>,
+}
+
+/// What one composition binds: the indirect light read, the target drawn into.
+struct Bound {
+    indirect: wgpu::TextureView,
+    target: wgpu::Texture,
+    target_view: wgpu::TextureView,
+    group: wgpu::BindGroup,
 }
 
 impl Composer {
@@ -81,19 +86,31 @@ impl Composer {
             .pipelines
             .entry(format)
             .or_insert_with(|| pipeline(ctx, format));
-        let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("host/compose"),
-            layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(indirect),
-            }],
-        });
-        let view = target.create_view(&Default::default());
+        let current = self
+            .bound
+            .as_ref()
+            .is_some_and(|b| b.indirect == *indirect && b.target == *target);
+        if !current {
+            let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("host/compose"),
+                layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(indirect),
+                }],
+            });
+            self.bound = Some(Bound {
+                indirect: indirect.clone(),
+                target: target.clone(),
+                target_view: target.create_view(&Default::default()),
+                group,
+            });
+        }
+        let bound = self.bound.as_ref().expect("made above");
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("host/compose"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
+                view: &bound.target_view,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
@@ -107,7 +124,7 @@ impl Composer {
             multiview_mask: None,
         });
         pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &group, &[]);
+        pass.set_bind_group(0, &bound.group, &[]);
         pass.draw(0..3, 0..1);
         Ok(())
     }
@@ -117,61 +134,26 @@ fn pipeline(
     ctx: &GpuContext,
     format: wgpu::TextureFormat,
 ) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
-    let device = &ctx.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("host/compose"),
-        source: wgpu::ShaderSource::Wgsl(ADD_WGSL.into()),
-    });
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("host/compose"),
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        }],
-    });
-    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("host/compose"),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
+    let layout = ctx
+        .device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("host/compose"),
+            entries: &[irradiant_gpu::unfiltered_texture_entry(0)],
+        });
     let add = wgpu::BlendComponent {
         src_factor: wgpu::BlendFactor::One,
         dst_factor: wgpu::BlendFactor::One,
         operation: wgpu::BlendOperation::Add,
     };
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("host/compose"),
-        layout: Some(&pipeline_layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vertex"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fragment"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: Some(wgpu::BlendState {
-                    color: add,
-                    alpha: add,
-                }),
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
+    let target = wgpu::ColorTargetState {
+        format,
+        blend: Some(wgpu::BlendState {
+            color: add,
+            alpha: add,
         }),
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: None,
-        multisample: wgpu::MultisampleState::default(),
-        multiview_mask: None,
-        cache: None,
-    });
+        write_mask: wgpu::ColorWrites::ALL,
+    };
+    let pipeline =
+        irradiant_gpu::fullscreen_pipeline(&ctx.device, "host/compose", ADD_WGSL, &layout, target);
     (pipeline, layout)
 }

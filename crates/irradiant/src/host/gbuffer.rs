@@ -218,6 +218,20 @@ impl HostGBuffer<'_> {
         }
     }
 
+    /// The textures host/import binds, in [`HostGBuffer::views`]' order: an absent channel's
+    /// place is the base colour's.
+    pub fn textures(&self) -> [wgpu::Texture; 6] {
+        let or_base = |t: Option<&wgpu::Texture>| t.unwrap_or(self.base_colour).clone();
+        [
+            self.depth.clone(),
+            self.normal.clone(),
+            self.base_colour.clone(),
+            or_base(self.material),
+            or_base(self.emission),
+            or_base(self.motion.map(|m| m.0)),
+        ]
+    }
+
     /// The views host/import binds: each channel's, an absent one standing in as the base
     /// colour (its flag keeps it unread).
     pub fn views(&self) -> [(&'static str, wgpu::TextureView); 6] {

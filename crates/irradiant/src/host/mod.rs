@@ -64,6 +64,9 @@ pub struct HostGi {
     session: Session,
     composer: compose::Composer,
     import: Arc<ComputePass>,
+    /// host/import bound to the host's textures and the frame's G-buffer (its depth stands
+    /// for the frame): bound again only when either changes, not every frame.
+    bound_import: Option<([wgpu::Texture; 7], BoundPass)>,
     import_params: wgpu::Buffer,
     output: HostOutput,
 }
@@ -94,6 +97,7 @@ impl HostGi {
             session,
             composer: Default::default(),
             import,
+            bound_import: None,
             import_params,
             output,
         })
@@ -177,13 +181,29 @@ impl HostGi {
             0,
             bytemuck::bytes_of(&gbuffer.params()),
         );
-        let views = gbuffer.views();
-        let host = gbuffer::import_table(&views, &self.import_params);
-        let import = self
-            .import
-            .bind(ctx, &[&host, &self.session.frame().resources.table()])?;
+        let [a, b, c, d, e, f] = gbuffer.textures();
+        let frame_depth = self
+            .session
+            .frame()
+            .resources
+            .texture("gbuffer_depth")
+            .clone();
+        let key = [a, b, c, d, e, f, frame_depth];
+        if self
+            .bound_import
+            .as_ref()
+            .is_none_or(|(bound, _)| *bound != key)
+        {
+            let views = gbuffer.views();
+            let host = gbuffer::import_table(&views, &self.import_params);
+            let import = self
+                .import
+                .bind(ctx, &[&host, &self.session.frame().resources.table()])?;
+            self.bound_import = Some((key, import));
+        }
+        let import = &self.bound_import.as_ref().expect("bound above").1;
         self.session
-            .record(encoder, GBufferSource::Host(&import), profiled);
+            .record(encoder, GBufferSource::Host(import), profiled);
         let groups = self.session.frame().image_groups();
         self.output
             .pass
