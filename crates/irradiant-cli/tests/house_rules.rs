@@ -131,6 +131,17 @@ fn link_targets(markdown: &str) -> Vec<String> {
     targets
 }
 
+/// Whether git would leave this file out of a commit (false where git is absent).
+fn ignored_by_git(path: &Path) -> bool {
+    std::process::Command::new("git")
+        .arg("-C")
+        .arg(root())
+        .args(["check-ignore", "-q"])
+        .arg(path)
+        .status()
+        .is_ok_and(|status| status.success())
+}
+
 #[test]
 fn every_relative_link_in_the_docs_resolves() {
     let root = root();
@@ -150,6 +161,9 @@ fn every_relative_link_in_the_docs_resolves() {
             // The papers and scenes beside the repository (../shared) are CI's too.
             if !resolved.exists() {
                 broken.push(format!("{}: {target}", relative(page)));
+            } else if ignored_by_git(&resolved) {
+                // Here on disk, absent from a clean clone.
+                broken.push(format!("{}: {target} (ignored by .gitignore)", relative(page)));
             }
         }
     }
