@@ -135,7 +135,7 @@ pub enum ProbeView {
 }
 
 /// A built technique, bound to the frame it was built for.
-pub trait Technique: Any {
+pub trait Technique: Any + Send {
     /// The registry name it was built from.
     fn name(&self) -> &'static str;
     /// The labels of the passes it records (bench groups timings by them).

@@ -496,51 +496,98 @@ fn every_registered_technique_runs_on_a_hosts_gbuffer() {
     assert!(lit.contains(&"ddgi"), "lit: {lit:?}");
 }
 
-/// A host moves its objects by hand: the frame sees the instance where it was put, the pose
-/// says so, and an index or a transform that cannot be used is refused by name.
+/// frame/direct runs for a host only once it asks (a host lights its own surfaces): the direct
+/// light stays black before, and a wall inside the box is lit by its lamp after.
 #[test]
-fn an_instance_moved_by_hand_is_seen_where_it_was_put() {
+fn the_direct_light_is_computed_for_a_host_only_when_asked() {
+    use irradiant::host::HostGi;
     let Some(ctx) = gpu() else { return };
-    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
-    // A small copy of the box in the middle of the room.
-    let small = glam::Mat4::from_scale_rotation_translation(
-        glam::Vec3::splat(0.2),
-        glam::Quat::IDENTITY,
-        glam::Vec3::new(0.0, 0.8, 0.0),
-    );
-    scene.instances.push(irradiant_scene::Instance {
-        name: "small".into(),
-        mesh: 0,
-        transform: small,
-    });
-    let mut s = session(
-        &ctx,
-        &scene,
-        (32, 32),
-        spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
-    );
-    let centre_depth = |s: &mut irradiant::Session| {
-        s.render().unwrap();
-        s.gbuffer().unwrap()[16 * 32 + 16].depth
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (8, 8);
+    // The camera stands 3.5 m before the box's middle: a wall 0.1 m short of its back.
+    let wall = Wall::new(&ctx, size, 4.4);
+    let mut gi = HostGi::new(
+        ctx.clone(),
+        scene.clone(),
+        irradiant::SessionSettings {
+            size,
+            technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let direct_sum = |gi: &mut HostGi| {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        gi.record(&mut encoder, &scene.camera, &wall.gbuffer())
+            .unwrap();
+        ctx.queue.submit([encoder.finish()]);
+        let direct = gi.session().direct().unwrap();
+        direct
+            .pixels
+            .iter()
+            .map(|p| p[0] + p[1] + p[2])
+            .sum::<f32>()
     };
-    let before = centre_depth(&mut s);
-    let aside = glam::Mat4::from_translation(glam::Vec3::new(5.0, 0.0, 0.0)) * small;
-    s.set_instance_transform(1, aside).unwrap();
-    assert_eq!(s.pose().instance_transforms[1], aside);
-    let after = centre_depth(&mut s);
+    assert_eq!(direct_sum(&mut gi), 0.0, "frame/direct ran unasked");
+    gi.set_direct_light(true);
+    let lit = direct_sum(&mut gi);
+    assert!(lit > 0.0, "the lamp does not light the wall: {lit}");
+}
+
+/// A technique that bakes (the light field) is built on a host's worker thread while the
+/// host's frames go on, telling its progress; the finished `HostGi` is handed back and lights
+/// the host's G-buffer.
+#[test]
+fn a_bake_runs_on_a_hosts_worker_thread_with_progress() {
+    use irradiant::host::HostGi;
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (16, 16);
+    let mut technique = irradiant::TechniqueSpec::new("lightfield", irradiant::Preset::Fast);
+    technique.settings = toml::from_str(
+        "bake = { probe_counts = [2, 2, 2], resolution = 32, prefilter_resolution = 16, bounces = 1, emitter_samples = 2 }",
+    )
+    .unwrap();
+    let (sender, progress) = std::sync::mpsc::channel();
+    let report = irradiant::technique::Progress(std::sync::Arc::new(
+        move |what: &str, done: u32, all: u32| {
+            let _ = sender.send((what.to_owned(), done, all));
+        },
+    ));
+    let settings = irradiant::SessionSettings {
+        size,
+        technique,
+        progress: Some(report),
+        ..Default::default()
+    };
+    let worker = {
+        let (ctx, scene) = (ctx.clone(), scene.clone());
+        std::thread::spawn(move || HostGi::new(ctx, scene, settings))
+    };
+    // The host's loop: frames go on while the worker bakes (the session keeps the callback,
+    // so the channel stays open: poll until the worker is done).
+    let mut steps: Vec<(String, u32, u32)> = Vec::new();
+    while !worker.is_finished() {
+        steps.extend(progress.recv_timeout(std::time::Duration::from_millis(50)));
+    }
+    steps.extend(progress.try_iter());
+    let mut gi = worker.join().unwrap().unwrap();
+    let last = steps.last().expect("the bake told no progress");
+    assert_eq!(last.1, last.2, "the bake ended at {last:?}");
     assert!(
-        after > before + 0.5,
-        "the centre saw {before} before and {after} after"
+        steps
+            .windows(2)
+            .all(|w| w[0].0 != w[1].0 || w[0].1 <= w[1].1),
+        "{steps:?}"
     );
-    let e = s.set_instance_transform(2, aside).unwrap_err().to_string();
+    let wall = Wall::new(&ctx, size, 4.4);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    gi.record(&mut encoder, &scene.camera, &wall.gbuffer())
+        .unwrap();
+    ctx.queue.submit([encoder.finish()]);
+    let indirect = read_rgba16(&ctx, gi.indirect_texture());
     assert!(
-        e.contains("instance 2 does not exist") && e.contains("2 instances"),
-        "{e}"
+        indirect.iter().any(|p| p[0] > 0.0),
+        "the baked light field lit nothing"
     );
-    let flat = glam::Mat4::from_scale(glam::Vec3::new(1.0, 0.0, 1.0));
-    let e = s.set_instance_transform(1, flat).unwrap_err().to_string();
-    assert!(e.contains("not invertible"), "{e}");
-    let mut nan = aside;
-    nan.w_axis.x = f32::NAN;
-    assert!(s.set_instance_transform(1, nan).is_err());
 }

@@ -287,20 +287,23 @@ impl Frame {
         self.passes
             .gbuffer
             .dispatch(encoder, profiler.as_deref_mut(), self.image_groups());
-        self.record_lighting_inputs(encoder, profiler);
+        self.record_lighting(encoder, profiler, true);
     }
 
-    /// Records frame/direct and the G-buffer pyramid over a G-buffer already written (by
-    /// frame/gbuffer, or a host's through host/import).
-    pub fn record_lighting_inputs(
+    /// Records frame/direct (where `direct`) and the G-buffer pyramid over a G-buffer already
+    /// written (by frame/gbuffer, or a host's through host/import).
+    pub fn record_lighting(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         mut profiler: Option<&mut Profiler>,
+        direct: bool,
     ) {
         let groups = self.image_groups();
-        self.passes
-            .direct
-            .dispatch(encoder, profiler.as_deref_mut(), groups);
+        if direct {
+            self.passes
+                .direct
+                .dispatch(encoder, profiler.as_deref_mut(), groups);
+        }
         let pyramid = Self::dispatches(self.size(), self.resources.needs)
             .into_iter()
             .filter(|(label, _)| label.starts_with("frame/pyramid"));

@@ -69,6 +69,8 @@ pub struct HostGi {
     bound_import: Option<([wgpu::Texture; 7], BoundPass)>,
     import_params: wgpu::Buffer,
     output: HostOutput,
+    /// Whether frame/direct runs for the host ([`HostGi::set_direct_light`]).
+    direct_light: bool,
 }
 
 impl HostGi {
@@ -100,6 +102,7 @@ impl HostGi {
             bound_import: None,
             import_params,
             output,
+            direct_light: false,
         })
     }
 
@@ -202,8 +205,14 @@ impl HostGi {
             self.bound_import = Some((key, import));
         }
         let import = &self.bound_import.as_ref().expect("bound above").1;
-        self.session
-            .record(encoder, GBufferSource::Host(import), profiled);
+        self.session.record(
+            encoder,
+            GBufferSource::Host {
+                import,
+                direct: self.direct_light,
+            },
+            profiled,
+        );
         let groups = self.session.frame().image_groups();
         self.output
             .pass
@@ -236,9 +245,22 @@ impl HostGi {
             .record(self.session.ctx(), encoder, &self.output.view, target, size)
     }
 
-    /// The direct light Irradiant computes for its techniques from the host's G-buffer and
-    /// the scene's lights (ray-traced shadows, emitters sampled; a running mean while nothing
-    /// moves): rgba32float, radiance in rgb. A host adds its own direct light instead, or this.
+    /// Whether Irradiant computes the direct light into [`HostGi::direct`] each frame (off at
+    /// first: a host lights its surfaces itself). On costs frame/direct, a ray-traced shadow
+    /// ray a light and emitter samples a pixel (0.86 ms of Sibenik at 1080p on an H200,
+    /// BENCHMARKS.md); a technique that gathers the lit image (`ssil`) runs it either way.
+    pub fn set_direct_light(&mut self, on: bool) {
+        if on && !self.direct_light {
+            // Its running mean holds frames from before it stopped.
+            self.session.restart_direct();
+        }
+        self.direct_light = on;
+    }
+
+    /// The direct light Irradiant computes from the host's G-buffer and the scene's lights
+    /// (ray-traced shadows, emitters sampled; a running mean while nothing moves):
+    /// rgba32float, radiance in rgb; written only after [`HostGi::set_direct_light`]`(true)`.
+    /// A host adds its own direct light instead, or this.
     pub fn direct(&self) -> &wgpu::TextureView {
         self.session.frame().resources.view("direct")
     }

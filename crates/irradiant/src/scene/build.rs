@@ -137,7 +137,7 @@ impl SceneBuild {
         // Room for the top level: a binary tree over n leaves has fewer than n inner nodes.
         nodes.extend(std::iter::repeat_n(
             <GpuBvhNode as bytemuck::Zeroable>::zeroed(),
-            scene.instances.len().max(1),
+            (scene.instances.len() + settings.instance_headroom as usize).max(1),
         ));
         if wide_nodes.is_empty() {
             wide_nodes.push(<GpuWideBvhNode as bytemuck::Zeroable>::zeroed());

@@ -39,6 +39,12 @@ pub struct GpuSceneSettings {
     /// incoherent rays faster on the GPUs measured (BENCHMARKS.md) and takes about half the
     /// node memory; binary is the simpler reference, and the one `stack_in_workgroup` applies to.
     pub blas_layout: BlasLayout,
+    /// Instances a host may add at run time ([`crate::Session::add_instance`]) beyond the
+    /// scene's own before the scene's buffers are built anew (which rebuilds the frame and the
+    /// technique, losing the probes' history). Each costs about 300 bytes, plus room for its
+    /// mesh's emissive triangles were it the most emissive mesh; none for a scene that only
+    /// ever holds what it loaded.
+    pub instance_headroom: u32,
 }
 
 /// How the bottom-level trees are laid out for traversal.
@@ -58,6 +64,7 @@ impl Default for GpuSceneSettings {
             bvh_quality: BuildQuality::Quality,
             stack_in_workgroup: false,
             blas_layout: BlasLayout::Wide,
+            instance_headroom: 0,
         }
     }
 }
@@ -109,6 +116,9 @@ pub struct GpuScene {
     /// Object-space triangles of each slot, for emitter areas.
     slot_triangles: Vec<[Vec3; 3]>,
     instance_meshes: Vec<u32>,
+    /// Instances and emissive triangles the buffers hold room for.
+    instance_capacity: usize,
+    emitter_capacity: usize,
     /// Radiance of rays that leave the scene.
     pub sky: Vec3,
     /// The instance buffer is in top-level leaf order: entry k holds scene instance
@@ -174,12 +184,16 @@ impl GpuScene {
                 },
             })
             .collect();
+        let headroom = settings.instance_headroom as usize;
+        let most_emissive_mesh = built.mesh_emitters.iter().map(Vec::len).max().unwrap_or(0);
         let emitter_capacity: usize = scene
             .instances
             .iter()
             .map(|i| built.mesh_emitters[i.mesh as usize].len())
-            .sum();
-        let instance_bytes = size_of::<GpuInstance>() * scene.instances.len().max(1);
+            .sum::<usize>()
+            + headroom * most_emissive_mesh;
+        let instance_capacity = scene.instances.len() + headroom;
+        let instance_bytes = size_of::<GpuInstance>() * instance_capacity.max(1);
         let light_bytes = size_of::<GpuLight>() * scene.lights.len().max(1);
         let emitter_bytes = size_of::<GpuEmitter>() * emitter_capacity.max(1);
         let setting = "the scene (fewer or smaller meshes)";
@@ -265,6 +279,8 @@ impl GpuScene {
             mesh_emitters: built.mesh_emitters,
             slot_triangles: built.slot_triangles,
             instance_meshes: scene.instances.iter().map(|i| i.mesh).collect(),
+            instance_capacity,
+            emitter_capacity,
             sky: scene.sky,
             instance_order: Vec::new(),
             previous_transforms: Vec::new(),
@@ -280,7 +296,7 @@ impl GpuScene {
             instance_bounds: Vec::new(),
             stack_in_workgroup: settings.stack_in_workgroup,
             blas_layout: settings.blas_layout,
-            tlas_stack: irradiant_bvh::tlas_depth_bound(scene.instances.len()),
+            tlas_stack: irradiant_bvh::tlas_depth_bound(instance_capacity),
             stats: GpuSceneStats {
                 triangles: built.triangles.len(),
                 bvh_nodes: built.nodes.len() + built.wide_nodes.len(),
@@ -338,12 +354,11 @@ impl GpuScene {
         ]
     }
 
-    /// Whether any instance's mesh has an emissive triangle (animation moves emitters but
-    /// never makes or removes one).
+    /// Whether the scene can hold an emissive triangle: an instance's mesh has one, or room
+    /// was left for a host to add one (shaders compiled without emitters skip them; animation
+    /// moves emitters but never makes one).
     fn has_emitters(&self) -> bool {
-        self.instance_meshes
-            .iter()
-            .any(|&m| !self.mesh_emitters[m as usize].is_empty())
+        self.emitter_capacity > 0
     }
 
     /// Uploads what animation changes: instance transforms, the top-level BVH, lights and the
@@ -438,6 +453,34 @@ impl GpuScene {
         if let Some(moving) = self.animated.get_mut(index) {
             *moving = true;
         }
+    }
+
+    /// Whether the buffers have room for one more instance of `mesh` (its transform, its
+    /// top-level node, its emissive triangles).
+    pub fn has_room_for(&self, mesh: u32) -> bool {
+        let emitters = |m: u32| self.mesh_emitters.get(m as usize).map_or(0, Vec::len);
+        let used: usize = self.instance_meshes.iter().map(|&m| emitters(m)).sum();
+        self.instance_meshes.len() < self.instance_capacity
+            && used + emitters(mesh) <= self.emitter_capacity
+    }
+
+    /// Adds an instance of `mesh` after the last (its transform comes with the next pose),
+    /// counted as moving; the caller checked [`GpuScene::has_room_for`].
+    pub fn add_instance(&mut self, mesh: u32) {
+        debug_assert!(self.has_room_for(mesh));
+        self.instance_meshes.push(mesh);
+        self.animated.push(true);
+    }
+
+    /// Removes instance `index` (later ones move down one); its world bounds at the last pose
+    /// are returned, where the light it blocked or reflected changes.
+    pub fn remove_instance(&mut self, index: usize) -> Option<(Vec3, Vec3)> {
+        self.instance_meshes.remove(index);
+        self.animated.remove(index);
+        if index < self.previous_transforms.len() {
+            self.previous_transforms.remove(index);
+        }
+        (index < self.instance_bounds.len()).then(|| self.instance_bounds.remove(index))
     }
 
     /// World-space bounds of every instance an animation moves, at the current pose: where

@@ -14,6 +14,8 @@ use crate::scene::{GpuScene, GpuSceneSettings};
 use crate::settings::TechniqueSpec;
 use crate::technique::{ProbeView, Technique, TechniqueContext};
 
+mod scene_edits;
+
 /// How a session starts.
 #[derive(Clone, Debug)]
 pub struct SessionSettings {
@@ -61,8 +63,13 @@ const MAX_FRAMES_IN_FLIGHT: usize = 3;
 pub(crate) enum GBufferSource<'a> {
     /// frame/gbuffer's primary rays (Irradiant's own frames).
     Traced,
-    /// A host's G-buffer, through host/import bound to its textures.
-    Host(&'a irradiant_gpu::BoundPass),
+    /// A host's G-buffer, through host/import bound to its textures. frame/direct runs only
+    /// where `direct` (the host reads it) or the technique needs it (the pyramid's light);
+    /// frame/compose only under the probe overlay: a host composes the light itself.
+    Host {
+        import: &'a irradiant_gpu::BoundPass,
+        direct: bool,
+    },
 }
 
 /// What a frame of `size` and the technique of `spec` allocate on the GPU.
@@ -90,8 +97,14 @@ pub struct Session {
     pose: Pose,
     /// Lights switched off by hand ([`Session::set_light_enabled`]), in the scene's order.
     lights_off: Vec<bool>,
-    /// Instances moved by hand ([`Session::set_instance_transform`]), in the scene's order.
+    /// Instances moved or placed by hand ([`Session::set_instance_transform`],
+    /// [`Session::add_instance`]), in the scene's order.
     moved: Vec<Option<glam::Mat4>>,
+    /// Each instance's id, in the scene's order: its index in the loaded scene, or what
+    /// [`Session::add_instance`] returned. Ids stay when other instances are removed.
+    instance_ids: Vec<usize>,
+    next_instance_id: usize,
+    scene_settings: GpuSceneSettings,
     /// The technique's probe overlay, when drawn.
     probes_shown: Option<ProbeView>,
     profiler: Profiler,
@@ -147,6 +160,9 @@ impl Session {
         let lights_off = vec![false; scene.lights.len()];
         let moved = vec![None; scene.instances.len()];
         Ok(Self {
+            instance_ids: (0..scene.instances.len()).collect(),
+            next_instance_id: scene.instances.len(),
+            scene_settings: settings.scene,
             camera: pose.camera.clone(),
             ctx,
             scene,
@@ -242,7 +258,13 @@ impl Session {
     /// it affects.
     pub fn seek(&mut self, time: f32) {
         self.time = time;
-        let mut next = self.scene.pose_at(time);
+        self.repose(Vec::new());
+    }
+
+    /// Poses the scene at the session's time with what was set by hand, and tells the frame
+    /// and the technique what changed; `vacated` are the bounds of instances just removed.
+    fn repose(&mut self, vacated: Vec<(glam::Vec3, glam::Vec3)>) {
+        let mut next = self.scene.pose_at(self.time);
         for (light, off) in next.lights.iter_mut().zip(&self.lights_off) {
             light.enabled &= !off;
         }
@@ -265,11 +287,18 @@ impl Session {
         }
         self.gpu_scene.update(&self.ctx, &next);
         self.frame.restart_direct();
+        let mut dynamic_bounds = self.gpu_scene.dynamic_bounds();
+        dynamic_bounds.extend(vacated);
         self.technique.scene_changed(&SceneChange {
-            dynamic_bounds: self.gpu_scene.dynamic_bounds(),
+            dynamic_bounds,
             ..change
         });
         self.pose = next;
+    }
+
+    /// Starts the direct light's running mean again (a host turned frame/direct back on).
+    pub(crate) fn restart_direct(&mut self) {
+        self.frame.restart_direct();
     }
 
     /// [`Self::seek`] `dt` seconds on.
@@ -291,35 +320,6 @@ impl Session {
             *off = !on;
             self.seek(self.time);
         }
-    }
-
-    /// Moves instance `index` (in [`Scene::instances`]' order) to `transform` from the next
-    /// frame, over what the scene's animation says; the technique is told as of any moving
-    /// instance, and the instance counts as moving from then on (DDGI wakes the probes around
-    /// it). A host moves its objects so. An index past the instances, or a transform that is
-    /// not finite or not invertible, is refused by name.
-    pub fn set_instance_transform(
-        &mut self,
-        index: usize,
-        transform: glam::Mat4,
-    ) -> Result<(), RenderError> {
-        let count = self.moved.len();
-        if index >= count {
-            return Err(RenderError::Settings(format!(
-                "instance {index} does not exist: the scene has {count} instances (0 to {})",
-                count.saturating_sub(1)
-            )));
-        }
-        let determinant = transform.determinant();
-        if !transform.is_finite() || determinant.abs() < 1e-12 || !determinant.is_finite() {
-            return Err(RenderError::Settings(format!(
-                "instance {index}'s transform {transform:?} is not finite or not invertible: give a finite transform that does not flatten the object"
-            )));
-        }
-        self.moved[index] = Some(transform);
-        self.gpu_scene.set_moving(index);
-        self.seek(self.time);
-        Ok(())
     }
 
     /// Whether light `index` is on by hand (an animation may still dim it).
@@ -459,15 +459,18 @@ impl Session {
         let mut profiler = (profiled && self.profiler.enabled()).then_some(&mut self.profiler);
         match source {
             GBufferSource::Traced => self.frame.record_inputs(encoder, profiler.as_deref_mut()),
-            GBufferSource::Host(import) => {
+            GBufferSource::Host { import, direct } => {
                 import.dispatch(encoder, profiler.as_deref_mut(), self.frame.image_groups());
+                let direct = direct || self.frame.resources.needs.pyramid_levels > 0;
                 self.frame
-                    .record_lighting_inputs(encoder, profiler.as_deref_mut());
+                    .record_lighting(encoder, profiler.as_deref_mut(), direct);
             }
         }
         self.technique.update(encoder, profiler.as_deref_mut());
         self.technique.resolve(encoder, profiler.as_deref_mut());
-        self.frame.record_compose(encoder, profiler.as_deref_mut());
+        if matches!(source, GBufferSource::Traced) || self.probes_shown.is_some() {
+            self.frame.record_compose(encoder, profiler.as_deref_mut());
+        }
         if let Some(view) = self.probes_shown {
             self.technique.visualize(encoder, view);
         }
