@@ -1,4 +1,4 @@
-// The raster host's lighting (examples/raster_host.rs): emission + direct + Irradiant's
+// The raster host's lighting (examples/raster_host/host.rs): emission + direct + Irradiant's
 // indirect light, the sky where the depth buffer is clear.
 @group(0) @binding(0) var emission: texture_2d<f32>;
 @group(0) @binding(1) var direct: texture_2d<f32>;

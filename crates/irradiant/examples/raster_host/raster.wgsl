@@ -1,4 +1,4 @@
-// The raster host's G-buffer pass (examples/raster_host.rs): world normals, base colour,
+// The raster host's G-buffer pass (examples/raster_host/host.rs): world normals, base colour,
 // material and emission from the scene's triangles, under the host's camera.
 struct Camera { view_projection: mat4x4<f32> }
 @group(0) @binding(0) var<uniform> camera: Camera;
