@@ -163,7 +163,10 @@ fn every_relative_link_in_the_docs_resolves() {
                 broken.push(format!("{}: {target}", relative(page)));
             } else if ignored_by_git(&resolved) {
                 // Here on disk, absent from a clean clone.
-                broken.push(format!("{}: {target} (ignored by .gitignore)", relative(page)));
+                broken.push(format!(
+                    "{}: {target} (ignored by .gitignore)",
+                    relative(page)
+                ));
             }
         }
     }

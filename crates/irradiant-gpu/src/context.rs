@@ -308,6 +308,9 @@ impl GpuContext {
             // frame/gbuffer writes five channels; Vulkan adapters allow far more than 4.
             max_storage_textures_per_shader_stage: STORAGE_TEXTURES_NEEDED
                 .max(Limits::default().max_storage_textures_per_shader_stage),
+            // A host drawing into Irradiant's G-buffer in one pass (irradiant::host's
+            // NativeGBuffer) writes 44 bytes a sample; Vulkan adapters allow 128.
+            max_color_attachment_bytes_per_sample: available.max_color_attachment_bytes_per_sample,
             ..Limits::default()
         };
         Ok((features, limits))

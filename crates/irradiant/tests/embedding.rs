@@ -591,3 +591,38 @@ fn a_bake_runs_on_a_hosts_worker_thread_with_progress() {
         "the baked light field lit nothing"
     );
 }
+
+/// Drawing into Irradiant's G-buffer needs 44 bytes a sample of colour targets: a host's device
+/// made with wgpu's default 32 is told which limit to ask for; one made with Irradiant's
+/// requirements gets the five targets, in their formats.
+#[test]
+fn the_native_gbuffer_names_the_limit_it_needs() {
+    use irradiant::host::HostGi;
+    let Some(ours) = gpu() else { return };
+    let (features, limits) = GpuContext::requirements(&ours.adapter).unwrap();
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let gi_on = |limits: wgpu::Limits| {
+        let (device, queue) = host_device(&ours, features, limits);
+        let ctx = GpuContext::from_host(ours.instance.clone(), ours.adapter.clone(), device, queue);
+        HostGi::new(
+            std::sync::Arc::new(ctx.unwrap()),
+            scene.clone(),
+            irradiant::SessionSettings {
+                size: (8, 8),
+                technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let narrow = gi_on(wgpu::Limits {
+        max_color_attachment_bytes_per_sample: 32,
+        ..limits.clone()
+    });
+    let e = narrow.native_gbuffer().err().unwrap().to_string();
+    assert!(e.contains("max_color_attachment_bytes_per_sample"), "{e}");
+    let wide = gi_on(limits);
+    let native = wide.native_gbuffer().unwrap();
+    assert_eq!(native.formats[0], wgpu::TextureFormat::R32Float);
+    assert_eq!(native.formats[4], wgpu::TextureFormat::Rgba32Float);
+}

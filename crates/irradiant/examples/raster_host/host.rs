@@ -176,7 +176,9 @@ pub struct Host {
     compose: wgpu::RenderPipeline,
     compose_group: wgpu::BindGroup,
     depth_view: wgpu::TextureView,
-    gbuffer_views: [wgpu::TextureView; 4],
+    /// The G-buffer pass's colour targets: the host's, or with --native Irradiant's own.
+    gbuffer_views: Vec<wgpu::TextureView>,
+    native: bool,
     hdr_view: wgpu::TextureView,
 }
 
@@ -222,14 +224,36 @@ impl Host {
         });
         let camera = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("host/camera"),
-            contents: bytemuck::bytes_of(&view_projection(&scene.camera, size)),
+            // The shader's Camera: the view-projection matrix, then the eye.
+            contents: bytemuck::cast_slice(
+                &[
+                    view_projection(&scene.camera, size)
+                        .to_cols_array()
+                        .as_slice(),
+                    &scene.camera.position.extend(1.0).to_array(),
+                ]
+                .concat(),
+            ),
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let targets = GBufferTargets::new(&device, size);
         let raster_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("host/raster"),
-            source: wgpu::ShaderSource::Wgsl(RASTER_WGSL.into()),
+            // Irradiant's octahedral encoding, for the native G-buffer's normals.
+            source: wgpu::ShaderSource::Wgsl(
+                format!("{}\n{RASTER_WGSL}", irradiant::host::OCTAHEDRAL_WGSL).into(),
+            ),
         });
+        // --native: the fragment shader writes Irradiant's layout into its textures.
+        let native = if options.native {
+            Some(gi.native_gbuffer()?)
+        } else {
+            None
+        };
+        let (fragment, formats) = match &native {
+            Some(native) => ("fragment_native", native.formats.to_vec()),
+            None => ("fragment", FORMATS.to_vec()),
+        };
         let raster = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("host/raster"),
             layout: None,
@@ -245,9 +269,9 @@ impl Host {
             },
             fragment: Some(wgpu::FragmentState {
                 module: &raster_module,
-                entry_point: Some("fragment"),
+                entry_point: Some(fragment),
                 compilation_options: Default::default(),
-                targets: &FORMATS.map(|f| Some(f.into())),
+                targets: &formats.iter().map(|&f| Some(f.into())).collect::<Vec<_>>(),
             }),
             // Two-sided, as Irradiant's surfaces are.
             primitive: wgpu::PrimitiveState::default(),
@@ -322,7 +346,11 @@ impl Host {
             aspect: wgpu::TextureAspect::DepthOnly,
             ..Default::default()
         });
-        let emission_view = view(&targets.emission);
+        // The emission and whether a pixel sees a surface (depth above 0 in both layouts).
+        let (emission_view, surface_view) = match &native {
+            Some(native) => (native.emission.clone(), native.depth.clone()),
+            None => (view(&targets.emission), depth_view.clone()),
+        };
         let compose_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("host/compose"),
             layout: &compose.get_bind_group_layout(0),
@@ -341,7 +369,7 @@ impl Host {
                 },
                 wgpu::BindGroupEntry {
                     binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&depth_view),
+                    resource: wgpu::BindingResource::TextureView(&surface_view),
                 },
                 wgpu::BindGroupEntry {
                     binding: 4,
@@ -349,12 +377,20 @@ impl Host {
                 },
             ],
         });
-        let gbuffer_views = [
-            view(&targets.normal),
-            view(&targets.base_colour),
-            view(&targets.material),
-            view(&targets.emission),
-        ];
+        let gbuffer_views = if let Some(n) = &native {
+            [n.depth, n.normal, n.albedo, n.emission, n.motion]
+                .map(|v| v.clone())
+                .to_vec()
+        } else {
+            [
+                &targets.normal,
+                &targets.base_colour,
+                &targets.material,
+                &targets.emission,
+            ]
+            .map(view)
+            .to_vec()
+        };
         let hdr_view = view(&hdr);
         Ok(Self {
             ctx,
@@ -373,6 +409,7 @@ impl Host {
             compose_group,
             depth_view,
             gbuffer_views,
+            native: options.native,
             hdr_view,
         })
     }
@@ -387,17 +424,28 @@ impl Host {
     ) -> Result<(), Box<dyn Error>> {
         {
             // The host's G-buffer pass.
-            let attachments = self.gbuffer_views.each_ref().map(|v| {
-                Some(wgpu::RenderPassColorAttachment {
-                    view: v,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
+            let attachments: Vec<_> = (self.gbuffer_views.iter().enumerate())
+                .map(|(i, v)| {
+                    // Irradiant's depth is cleared to "no surface", -1.
+                    let clear = if self.native && i == 0 {
+                        wgpu::Color {
+                            r: -1.0,
+                            ..wgpu::Color::TRANSPARENT
+                        }
+                    } else {
+                        wgpu::Color::TRANSPARENT
+                    };
+                    Some(wgpu::RenderPassColorAttachment {
+                        view: v,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(clear),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })
                 })
-            });
+                .collect();
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("host/gbuffer"),
                 color_attachments: &attachments,
@@ -420,12 +468,12 @@ impl Host {
             pass.draw(0..self.vertex_count, 0..1);
         }
         // Irradiant: its passes into the same encoder, after the G-buffer.
-        if timed {
-            self.gi
-                .record_timed(encoder, &self.scene.camera, &self.targets.for_irradiant())?;
-        } else {
-            self.gi
-                .record(encoder, &self.scene.camera, &self.targets.for_irradiant())?;
+        let (camera, gbuffer) = (&self.scene.camera, self.targets.for_irradiant());
+        match (self.native, timed) {
+            (false, false) => self.gi.record(encoder, camera, &gbuffer)?,
+            (false, true) => self.gi.record_timed(encoder, camera, &gbuffer)?,
+            (true, false) => self.gi.record_native(encoder, camera)?,
+            (true, true) => self.gi.record_native_timed(encoder, camera)?,
         }
         {
             // The host's lighting: emission + direct + indirect.

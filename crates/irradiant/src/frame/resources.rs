@@ -236,7 +236,13 @@ fn frame_texture(
         wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::COPY_DST,
+            | wgpu::TextureUsages::COPY_DST
+            // A host may rasterize into the G-buffer itself (host::NativeGBuffer).
+            | if name.starts_with("gbuffer_") {
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+            } else {
+                wgpu::TextureUsages::empty()
+            },
     );
     let view = texture.create_view(&Default::default());
     let levels = if per_level_views {

@@ -63,11 +63,12 @@ const MAX_FRAMES_IN_FLIGHT: usize = 3;
 pub(crate) enum GBufferSource<'a> {
     /// frame/gbuffer's primary rays (Irradiant's own frames).
     Traced,
-    /// A host's G-buffer, through host/import bound to its textures. frame/direct runs only
-    /// where `direct` (the host reads it) or the technique needs it (the pyramid's light);
-    /// frame/compose only under the probe overlay: a host composes the light itself.
+    /// A host's G-buffer, through host/import bound to its textures (None: the host drew
+    /// into the frame's own, host::NativeGBuffer). frame/direct runs only where `direct` (the
+    /// host reads it) or the technique needs it (the pyramid's light); frame/compose only under
+    /// the probe overlay: a host composes the light itself.
     Host {
-        import: &'a irradiant_gpu::BoundPass,
+        import: Option<&'a irradiant_gpu::BoundPass>,
         direct: bool,
     },
 }
@@ -460,7 +461,9 @@ impl Session {
         match source {
             GBufferSource::Traced => self.frame.record_inputs(encoder, profiler.as_deref_mut()),
             GBufferSource::Host { import, direct } => {
-                import.dispatch(encoder, profiler.as_deref_mut(), self.frame.image_groups());
+                if let Some(import) = import {
+                    import.dispatch(encoder, profiler.as_deref_mut(), self.frame.image_groups());
+                }
                 let direct = direct || self.frame.resources.needs.pyramid_levels > 0;
                 self.frame
                     .record_lighting(encoder, profiler.as_deref_mut(), direct);
