@@ -6,9 +6,10 @@ cd "$(dirname "$0")/../.."
 cargo build --release --locked -p irradiant-cli
 cargo build --release --locked -p irradiant --example raster_host
 rm -rf .dev && mkdir -p .dev/repo .dev/shared/scenes
-cp target/release/irradiant .dev/
+target="${CARGO_TARGET_DIR:-target}"
+cp "$target/release/irradiant" .dev/
 # The raster host (crates/irradiant/examples/raster_host/), for tools/device/embedding.sh.
-cp target/release/examples/raster_host .dev/
+cp "$target/release/examples/raster_host" .dev/
 cp -r scenes .dev/repo/
 cp -r ../shared/scenes/sponza-dabrovic ../shared/scenes/sibenik ../shared/scenes/cornell-box .dev/shared/scenes/
 cp tools/device/*.sh .dev/

@@ -33,7 +33,7 @@ pub use manifest::{
 };
 pub use model::*;
 pub use textures::{MAX_TEXTURE_SIDE, decode_texture};
-pub use validate::MAX_PROBES_PER_AXIS;
+pub use validate::{MAX_PROBES_PER_AXIS, validate};
 
 /// A loaded scene and the warnings collected on the way (missing textures, unknown keys, …).
 #[derive(Debug)]

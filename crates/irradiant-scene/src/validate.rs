@@ -9,6 +9,11 @@ use crate::model::Scene;
 /// Probes per axis above this are refused: 256³ probes would need gigabytes of atlas.
 pub const MAX_PROBES_PER_AXIS: u32 = 256;
 
+/// Checks `scene` (named `path` in the messages: its file, or what a host calls it) and
+/// repairs what can be repaired, saying so in `warnings` (invalid normals or UVs dropped,
+/// degenerate triangles removed, material values clamped); refuses, naming the mesh, material,
+/// light or volume and the fix, what cannot: a vertex that is not finite, an index or material
+/// out of range, a camera or sky that is not one.
 pub fn validate(scene: &mut Scene, path: &Path, warnings: &mut Vec<String>) -> Result<()> {
     let invalid = |problem: String, fix: &str| SceneError::Invalid {
         path: path.to_owned(),

@@ -626,3 +626,21 @@ fn the_native_gbuffer_names_the_limit_it_needs() {
     assert_eq!(native.formats[0], wgpu::TextureFormat::R32Float);
     assert_eq!(native.formats[4], wgpu::TextureFormat::Rgba32Float);
 }
+
+/// A host's scene is checked as a loaded file is: a mesh whose indices run past its vertices
+/// is refused by name, before anything reaches the GPU.
+#[test]
+fn a_hosts_mesh_with_indices_out_of_range_is_refused_by_name() {
+    use irradiant::host::HostGi;
+    let Some(ctx) = gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    scene.meshes[0].indices[4] = 100_000;
+    let e = HostGi::new(ctx, scene, irradiant::SessionSettings::default())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("the host's scene") && e.contains("refers to vertex 100000"),
+        "{e}"
+    );
+}

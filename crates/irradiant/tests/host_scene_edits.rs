@@ -216,3 +216,63 @@ fn lights_and_the_sky_are_changed_between_frames() {
         .to_string();
     assert!(e.contains("the sky"), "{e}");
 }
+
+/// A card 0.4 m square facing the camera at z = 0.5, with its triangles' materials from 0.
+fn card(indices: Vec<u32>) -> irradiant_scene::Mesh {
+    irradiant_scene::Mesh {
+        name: "card".into(),
+        positions: vec![
+            Vec3::new(-0.2, 0.8, 0.5),
+            Vec3::new(0.2, 0.8, 0.5),
+            Vec3::new(0.2, 1.2, 0.5),
+            Vec3::new(-0.2, 1.2, 0.5),
+        ],
+        triangle_materials: vec![0; indices.len() / 3],
+        indices,
+        ..Default::default()
+    }
+}
+
+/// A mesh registered while running is placed like any other (the scene built anew); a mesh
+/// with an index past its vertices, or a material whose texture the scene lacks, is refused
+/// naming the mesh and nothing changes.
+#[test]
+fn a_mesh_is_registered_while_running() {
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let Some(mut s) = cornell_session(scene, 0) else {
+        return;
+    };
+    let empty_room = centre_depth(&mut s);
+    let grey = irradiant_scene::Material {
+        name: "grey".into(),
+        ..Default::default()
+    };
+    let mesh = s
+        .add_mesh(card(vec![0, 1, 2, 0, 2, 3]), vec![grey.clone()])
+        .unwrap();
+    assert_eq!(mesh, 1);
+    s.add_instance(mesh, Mat4::IDENTITY, "card").unwrap();
+    let blocked = centre_depth(&mut s);
+    // The camera stands at z = 3.5: the card is 3 m away.
+    assert!(
+        (blocked - 3.0).abs() < 0.01,
+        "{blocked} against {empty_room}"
+    );
+
+    let e = s
+        .add_mesh(card(vec![0, 1, 7]), vec![grey.clone()])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("mesh 'card' refers to vertex 7"), "{e}");
+    let textured = irradiant_scene::Material {
+        base_color_texture: Some(3),
+        ..grey
+    };
+    let e = s
+        .add_mesh(card(vec![0, 1, 2]), vec![textured])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("texture"), "{e}");
+    assert_eq!(s.scene().meshes.len(), 2);
+    assert!((centre_depth(&mut s) - blocked).abs() < 1e-3);
+}

@@ -41,6 +41,9 @@ pub use gbuffer::{
 use crate::session::GBufferSource;
 use crate::{RenderError, Session, SessionSettings};
 
+/// What messages about a host's scene call it, where a loaded scene's name its file.
+pub(crate) const HOST_SCENE: &str = "the host's scene";
+
 /// The host's textures host/import reads: never filterable (a depth or 32-bit float texture
 /// may stand in any of them).
 const HOST_TEXTURES: &[&str] = &[
@@ -106,13 +109,20 @@ pub struct HostGi {
 impl HostGi {
     /// Builds the scene, the frame (without TAA: the host's G-buffer is not jittered) and the
     /// technique on `ctx` (the host's device, [`GpuContext::from_host`]).
+    /// The host's scene is checked first as a loaded file is (`irradiant_scene::validate`): a
+    /// vertex that is not finite, an index or a material out of range is refused naming the
+    /// mesh; what can be repaired is, with a warning in `session().warnings()`.
     pub fn new(
         ctx: Arc<GpuContext>,
-        scene: Scene,
+        mut scene: Scene,
         mut settings: SessionSettings,
     ) -> Result<Self, RenderError> {
         settings.frame = settings.frame.without_taa();
-        let session = Session::new(ctx, scene, settings)?;
+        let mut warnings = Vec::new();
+        irradiant_scene::validate(&mut scene, HOST_SCENE.as_ref(), &mut warnings)
+            .map_err(|e| RenderError::Settings(e.to_string()))?;
+        let mut session = Session::new(ctx, scene, settings)?;
+        session.add_warnings(warnings);
         let ctx = session.ctx();
         let import = crate::shaders::pass(
             ctx,

@@ -234,6 +234,11 @@ impl Session {
         &self.spec
     }
 
+    /// Adds warnings for the user (a host's scene repaired on the way in).
+    pub(crate) fn add_warnings(&mut self, warnings: Vec<String>) {
+        self.warnings.extend(warnings);
+    }
+
     /// Warnings from the settings (unknown keys), for the user to see.
     pub fn warnings(&self) -> &[String] {
         &self.warnings

@@ -3,7 +3,7 @@
 //! name; each reaches the GPU scene and the technique as an animation's would.
 
 use glam::{Mat4, Vec3};
-use irradiant_scene::{Instance, Light, LightKind};
+use irradiant_scene::{Instance, Light, LightKind, Material, Mesh};
 
 use super::Session;
 use crate::RenderError;
@@ -74,7 +74,7 @@ impl Session {
         });
         if self.gpu_scene.has_room_for(mesh) {
             self.gpu_scene.add_instance(mesh);
-        } else if let Err(error) = self.rebuild_scene() {
+        } else if let Err(error) = self.rebuild_scene(true) {
             self.scene.instances.pop();
             return Err(error);
         }
@@ -83,6 +83,47 @@ impl Session {
         self.moved.push(Some(transform));
         self.repose(Vec::new());
         Ok(id)
+    }
+
+    /// Registers a mesh while running, with its own `materials` (its triangle materials index
+    /// them, from 0), and returns its index for [`Session::add_instance`]. Checked as a loaded
+    /// file is: a vertex that is not finite or an index or material out of range is refused
+    /// naming the mesh. Costly: every mesh's tree, the scene's buffers, the frame and the
+    /// technique are built anew (the probes start again): register meshes up front where you
+    /// can. A material's texture must be one the scene has.
+    pub fn add_mesh(
+        &mut self,
+        mut mesh: Mesh,
+        materials: Vec<Material>,
+    ) -> Result<u32, RenderError> {
+        let textures = self.scene.textures.len();
+        if let Some(m) = materials
+            .iter()
+            .find(|m| m.base_color_texture.is_some_and(|t| t as usize >= textures))
+        {
+            return Err(RenderError::Settings(format!(
+                "material '{}' of mesh '{}' uses a texture the scene lacks (it has {textures}): give the session's scene every texture at the start",
+                m.name, mesh.name
+            )));
+        }
+        let first_material = self.scene.materials.len() as u32;
+        for m in &mut mesh.triangle_materials {
+            // Past the new materials stays past them: validation names it.
+            *m = m.saturating_add(first_material);
+        }
+        let mut scene = self.scene.clone();
+        scene.meshes.push(mesh);
+        scene.materials.extend(materials);
+        let mut warnings = Vec::new();
+        irradiant_scene::validate(&mut scene, crate::host::HOST_SCENE.as_ref(), &mut warnings)
+            .map_err(|e| RenderError::Settings(e.to_string()))?;
+        let previous = std::mem::replace(&mut self.scene, scene);
+        if let Err(error) = self.rebuild_scene(false) {
+            self.scene = previous;
+            return Err(error);
+        }
+        self.warnings.extend(warnings);
+        Ok(self.scene.meshes.len() as u32 - 1)
     }
 
     /// Removes instance `id` from the next frame; DDGI wakes the probes where it stood. The
@@ -172,8 +213,9 @@ impl Session {
     }
 
     /// Builds the scene's buffers anew with twice the room for added instances, and the frame
-    /// and the technique over them: what adding past the headroom costs.
-    fn rebuild_scene(&mut self) -> Result<(), RenderError> {
+    /// and the technique over them: what adding past the headroom, or a mesh, costs.
+    /// `instance_added`: the scene's last instance was just pushed (placed by hand).
+    fn rebuild_scene(&mut self, instance_added: bool) -> Result<(), RenderError> {
         self.ctx.wait()?;
         self.in_flight.clear();
         let mut settings = self.scene_settings.clone();
@@ -184,8 +226,10 @@ impl Session {
                 gpu_scene.set_moving(index);
             }
         }
-        // The instance just pushed (past `moved`) is placed by hand too.
-        gpu_scene.set_moving(self.scene.instances.len() - 1);
+        if instance_added {
+            // The instance just pushed (past `moved`) is placed by hand too.
+            gpu_scene.set_moving(self.scene.instances.len() - 1);
+        }
         let frame = crate::frame::Frame::new(
             &self.ctx,
             &gpu_scene,
