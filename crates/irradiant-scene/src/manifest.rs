@@ -38,7 +38,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, SceneError};
 use crate::model::{
-    Animation, AnimationTarget, Camera, Instance, Light, LightKind, Mesh, ProbeVolumeDesc, Region,
+    Animation, AnimationTarget, Camera, Follow, Instance, Light, LightKind, Mesh, ProbeVolumeDesc,
+    Region,
     Scene, Tracks,
 };
 
@@ -193,6 +194,10 @@ pub struct ProbeVolumeManifest {
     pub max: [f32; 3],
     /// Probes per axis, 1 to [`MAX_PROBES_PER_AXIS`](crate::MAX_PROBES_PER_AXIS).
     pub counts: [u32; 3],
+    /// `"camera"`: the volume follows the camera in whole cells, keeping its size (a tracking
+    /// window, placed by `min` and `max` until the first frame); absent: it stays.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub follow: Option<String>,
 }
 
 /// An override of one of the mesh file's materials; the keys left out keep the file's values.
@@ -403,11 +408,21 @@ impl Manifest {
             });
         }
         for (i, v) in self.probe_volumes.iter().enumerate() {
+            let name = v.name.clone().unwrap_or_else(|| format!("volume{i}"));
+            let follow = match v.follow.as_deref() {
+                None => None,
+                Some(word) => Some(Follow::parse(word).ok_or_else(|| SceneError::Invalid {
+                    path: path.to_owned(),
+                    problem: format!("probe volume '{name}' has follow = \"{word}\""),
+                    fix: "Write follow = \"camera\", or leave it out for a volume that stays.".into(),
+                })?),
+            };
             scene.probe_volumes.push(ProbeVolumeDesc {
-                name: v.name.clone().unwrap_or_else(|| format!("volume{i}")),
+                name,
                 min: v.min.into(),
                 max: v.max.into(),
                 counts: v.counts,
+                follow,
             });
         }
         for m in &self.materials {

@@ -254,16 +254,34 @@ pub struct ProbeVolumeDesc {
     pub max: Vec3,
     /// Probes per axis (any count ≥ 2, not only powers of two).
     pub counts: [u32; 3],
+    /// What the volume follows, in whole cells, keeping its size (a tracking window); None:
+    /// it stays where `min` and `max` put it.
+    pub follow: Option<Follow>,
+}
+
+/// What a probe volume follows.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Follow {
+    /// The camera: the volume stays centred on it.
+    Camera,
+}
+
+impl Follow {
+    /// The manifest's and the settings' word for it: `camera`.
+    pub fn parse(word: &str) -> Option<Self> {
+        (word == "camera").then_some(Self::Camera)
+    }
 }
 
 impl ProbeVolumeDesc {
-    /// A volume over `min`..`max` with `counts` probes per axis.
+    /// A volume over `min`..`max` with `counts` probes per axis, staying where it is put.
     pub fn new(name: &str, min: Vec3, max: Vec3, counts: [u32; 3]) -> Self {
         Self {
             name: name.into(),
             min,
             max,
             counts,
+            follow: None,
         }
     }
 }

@@ -217,9 +217,11 @@ pub fn all_layouts() -> Vec<Expected> {
             shade_probes_in_geometry,
             gather_history_frames,
             gather_interval,
-            _pad0,
-            _pad1,
-            _pad2
+            phase_x,
+            phase_y,
+            phase_z,
+            entering_start,
+            entering_end
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,

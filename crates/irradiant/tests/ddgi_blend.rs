@@ -127,6 +127,7 @@ fn blend_session(
         min: Vec3::splat(-0.5),
         max: Vec3::splat(0.5),
         counts,
+        follow: None,
     }];
     common::session(ctx, &scene, (8, 8), common::spec(Some(settings)))
 }

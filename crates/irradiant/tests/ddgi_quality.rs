@@ -257,6 +257,7 @@ fn the_query_past_the_outermost_probes_stays_bounded() {
         min: glam::Vec3::new(-0.4, 0.6, -0.4),
         max: glam::Vec3::new(0.4, 1.4, 0.4),
         counts: [3, 3, 3],
+        follow: None,
     }];
     let mut clamped = converging(ProbeWeights::Full);
     clamped.update.extrapolation = 0.0;

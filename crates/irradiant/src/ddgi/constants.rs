@@ -29,9 +29,19 @@ irradiant_gpu::wgsl_constants! {
     PROBE_STATE_MASK: u32 = 3;
     /// State word bit: a classification frame saw static geometry near the probe.
     PROBE_NEAR_GEOMETRY: u32 = 4;
+    /// State word bits 3 to 7: the frames left in which a probe that entered a tracking window
+    /// is relocated and classified on its own (as a volume's probes are in its first
+    /// frames); 0 for every other probe.
+    PROBE_FRESH_SHIFT: u32 = 3;
+    /// The fresh count's bits, shifted down.
+    PROBE_FRESH_MASK: u32 = 31;
     /// The state word's bits from here up count the frames blended since the probe last
     /// started updating.
     PROBE_AGE_SHIFT: u32 = 8;
+
+    /// `GpuDdgiVolume::relocating`: only the probes that entered a tracking window (a fresh
+    /// count above 0) are relocated; 1 relocates every probe, 0 none.
+    RELOCATING_FRESH: u32 = 2;
 
     /// `GpuDdgiVolume::state_phase`: no classification; the states stay as written (the light
     /// field's prefiltered volume, whose own pass writes them). DDGI's volumes always classify,

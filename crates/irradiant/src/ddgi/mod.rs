@@ -87,6 +87,11 @@ pub fn volume_descs(scene: &Scene, settings: &DdgiSettings) -> Vec<ProbeVolumeDe
             v.counts = settings.volume.probe_counts;
         }
     }
+    if let Some(follow) = irradiant_scene::Follow::parse(&settings.volume.follow) {
+        for v in &mut volumes {
+            v.follow = Some(follow.clone());
+        }
+    }
     let spacing = |v: &ProbeVolumeDesc| crate::probes::ProbeGrid::new(v).min_spacing();
     volumes.sort_by(|a, b| spacing(a).total_cmp(&spacing(b)));
     volumes
@@ -298,8 +303,9 @@ impl Technique for Ddgi {
         }
         TechniquePasses { update, resolve }
     }
-    fn prepare(&mut self, ctx: &GpuContext, _camera: &irradiant_scene::Camera) {
+    fn prepare(&mut self, ctx: &GpuContext, camera: &irradiant_scene::Camera) {
         for v in &mut self.volumes {
+            v.follow(camera.position);
             v.prepare(ctx);
         }
     }

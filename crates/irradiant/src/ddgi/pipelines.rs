@@ -21,6 +21,7 @@ pub struct DdgiPipelines {
     /// Present when shadow rays are queued (`DdgiSettings::queues_shadow_rays`).
     pub shadow: Option<Arc<ComputePass>>,
     pub relocate: Arc<ComputePass>,
+    pub window_enter: Arc<ComputePass>,
     pub probe_states: Arc<ComputePass>,
     pub blend_weights: Arc<ComputePass>,
     pub blend_irradiance: Arc<ComputePass>,
@@ -112,6 +113,11 @@ impl DdgiPipelines {
                 None
             },
             relocate: compile_plain("ddgi/relocate", include_str!("relocate.wgsl"), vec![])?,
+            window_enter: compile_plain(
+                "ddgi/window_enter",
+                include_str!("window_enter.wgsl"),
+                vec![],
+            )?,
             probe_states: compile_plain(
                 "ddgi/probe_states",
                 include_str!("probe_states.wgsl"),

@@ -15,6 +15,7 @@
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
+#import ddgi_active_list
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
@@ -23,12 +24,6 @@
 @group(2) @binding(16) var<storage, read_write> probe_states: array<u32>;
 // min, max corners, two vec4 a box
 @group(2) @binding(17) var<storage, read> wake_boxes: array<vec4<f32>>;
-
-// The list of probes that update next frame, built here (cleared before this pass).
-@group(2) @binding(21) var<storage, read_write> active_probes: DdgiActiveProbesWrite;
-
-var<workgroup> listed_before: array<u32, 64>;
-var<workgroup> list_base: u32;
 
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
@@ -42,44 +37,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     list_if_updating(probe, updates, li);
 }
 
-// Appends the workgroup's updating probes to active_probes in grid order, with one global
-// atomic a workgroup, and raises both indirect dispatches to cover them.
-fn list_if_updating(probe: u32, updates: bool, li: u32) {
-    // Inclusive prefix sum of the flags over the workgroup: each probe's place.
-    listed_before[li] = u32(updates);
-    workgroupBarrier();
-    for (var stride = 1u; stride < 64u; stride <<= 1u) {
-        var other = 0u;
-        if li >= stride {
-            other = listed_before[li - stride];
-        }
-        workgroupBarrier();
-        listed_before[li] += other;
-        workgroupBarrier();
-    }
-    if li == 63u {
-        let count = listed_before[63];
-        var base = 0u;
-        if count > 0u {
-            base = atomicAdd(&active_probes.count, count);
-            let listed = base + count;
-            let rays = folded_groups((listed + PROBES_PER_GROUP - 1u) / PROBES_PER_GROUP * ray_blocks(volume.rays_per_probe));
-            atomicMax(&active_probes.rays_x, rays.x);
-            atomicMax(&active_probes.rays_y, rays.y);
-            atomicMax(&active_probes.rays_z, 1u);
-            let blends = folded_groups(listed);
-            atomicMax(&active_probes.blends_x, blends.x);
-            atomicMax(&active_probes.blends_y, blends.y);
-            atomicMax(&active_probes.blends_z, 1u);
-        }
-        list_base = base;
-    }
-    workgroupBarrier();
-    if updates {
-        active_probes.probes[list_base + listed_before[li] - 1u] = probe;
-    }
-}
-
 // The probe's state word for the next frame.
 fn next_state(probe: u32) -> u32 {
     let word = probe_states[probe];
@@ -90,7 +47,13 @@ fn next_state(probe: u32) -> u32 {
         // It traced and blended this frame.
         blends = min(blends + 1u, 0xffffffu);
     }
-    let phase = volume.state_phase;
+    // A probe that entered a tracking window is classified on its own frames.
+    var fresh = probe_fresh(word);
+    var phase = volume.state_phase;
+    if fresh > 0u {
+        phase = select(STATES_CLASSIFYING, STATES_CLASSIFY_LAST, fresh == 1u);
+        fresh -= 1u;
+    }
     if phase == STATES_CLASSIFYING || phase == STATES_CLASSIFY_LAST {
         let m = volume.rays_per_probe;
         // A cell and the self-shadow bias at the smallest spacing. The query's bias is per axis
@@ -98,7 +61,7 @@ fn next_state(probe: u32) -> u32 {
         // of a biased point's trilinear weight: on Sibenik the per-axis reach woke 11 % more
         // probes for 8 % more GI time and changed its query by 0.4 % (docs/ddgi.md).
         let margin = 0.75 * volume.min_spacing * volume.self_shadow_bias;
-        let coord = grid_coord(probe, volume.counts);
+        let coord = probe_grid_coord(probe);
         let unbounded = vec3<f32>(volume.max_ray_distance);
         let reach = volume.spacing + margin;
         let reach_below = select(reach, unbounded, coord == vec3<u32>(0u));
@@ -134,5 +97,5 @@ fn next_state(probe: u32) -> u32 {
         }
         state = select(PROBE_SLEEPING, PROBE_AWAKE, woken);
     }
-    return state | select(0u, PROBE_NEAR_GEOMETRY, near) | (blends << PROBE_AGE_SHIFT);
+    return state | select(0u, PROBE_NEAR_GEOMETRY, near) | (fresh << PROBE_FRESH_SHIFT) | (blends << PROBE_AGE_SHIFT);
 }

@@ -8,7 +8,7 @@
 @group(2) @binding(15) var<storage, read> probe_states: array<u32>;
 
 fn probe_position(probe: u32) -> vec3<f32> {
-    return probe_position_at(grid_coord(probe, volume.counts), probe);
+    return probe_position_at(probe_grid_coord(probe), probe);
 }
 
 // probe_position where the caller knows the probe's grid coordinates (the query's cage), which

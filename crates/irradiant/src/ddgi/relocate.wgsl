@@ -7,11 +7,13 @@
 // (relocation_keeps_grid).
 #import ddgi_volume
 #import ddgi_rays
+#import ddgi_states
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
 @group(2) @binding(6) var<storage, read> samples: array<GpuDdgiRaySample>;
 @group(2) @binding(13) var<storage, read_write> probe_offsets: array<vec4<f32>>;
+@group(2) @binding(15) var<storage, read> probe_states: array<u32>;
 
 // How far a ray went to the backface it hit; 0 for a front face or a miss. ddgi/shade stores a
 // backface hit as minus its distance, shortened by the backface-hit rule when that is on.
@@ -20,7 +22,7 @@ fn backface_distance(distance: f32) -> f32 {
 }
 
 fn within(probe: u32, offset: vec3<f32>) -> bool {
-    return relocation_keeps_grid(grid_coord(probe, volume.counts), volume.counts, volume.spacing, offset);
+    return relocation_keeps_grid(probe_grid_coord(probe), volume.counts, volume.spacing, offset);
 }
 
 @compute @workgroup_size(64, 1, 1)
@@ -29,12 +31,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     if probe >= volume.probe_count || volume.relocating == 0u {
         return;
     }
+    // After a tracking window's step, only the probes that entered move.
+    if volume.relocating == RELOCATING_FRESH && probe_fresh(probe_states[probe]) == 0u {
+        return;
+    }
     let m = volume.rays_per_probe;
     let current = probe_offsets[probe].xyz;
     // First, a probe of the outer layers moves a hair inwards (OUTER_PROBE_INSET): in a wall's
     // plane its rays miss the wall, so this iteration's are no guide, and the next ones see
     // the wall's face.
-    let coord = grid_coord(probe, volume.counts);
+    let coord = probe_grid_coord(probe);
     let inset = OUTER_PROBE_INSET * volume.spacing * outer_layer_inwards(coord, volume.counts);
     if all(current == vec3<f32>(0.0)) && any(inset != vec3<f32>(0.0)) {
         probe_offsets[probe] = vec4<f32>(inset, probe_offsets[probe].w);

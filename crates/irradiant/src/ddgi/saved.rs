@@ -111,6 +111,14 @@ impl Ddgi {
 
     /// Writes every volume's probes to `path` (it waits for the GPU).
     pub fn save_probes(&self, ctx: &GpuContext, path: &Path) -> Result<(), RenderError> {
+        if self.volumes.iter().any(|v| v.follows()) {
+            // Its probes are where the camera was: a file would start another session's
+            // window in the wrong place.
+            return Err(RenderError::Probes {
+                path: path.to_owned(),
+                problem: "a volume follows the camera, and its probes move with it: save the probes of volumes that stay (leave out `follow`)".into(),
+            });
+        }
         let mut bytes = Vec::new();
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&self.probes_key().to_le_bytes());

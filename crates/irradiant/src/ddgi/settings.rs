@@ -66,6 +66,12 @@ pub struct DdgiVolumeSettings {
     /// Probes per axis in every volume, overriding the scene's; [0, 0, 0] keeps each volume's
     /// own. More probes: finer light and visibility, at a linear cost in the update.
     pub probe_counts: [u32; 3],
+    /// `"camera"`: every volume follows the camera in whole cells, keeping its size (a tracking
+    /// window, 003 §7.3), so its cost stays fixed however large the world, and what lies
+    /// outside it gets no probe light; `""` keeps each volume's own (the manifest's `follow`).
+    /// The probes that enter as it steps start over: fast motion shows their convergence.
+    #[serde(default)]
+    pub follow: String,
 }
 
 /// The probe update and the query (`[technique.update]`): most apply from the next frame.
@@ -256,6 +262,7 @@ impl DdgiSettings {
                 irradiance_gamma: 1.0,
                 shade_all_lights: false,
                 probe_counts: [0; 3],
+                follow: String::new(),
             },
             update: DdgiUpdateSettings {
                 hysteresis: 0.97,
@@ -369,6 +376,13 @@ impl DdgiSettings {
                 "technique.volume.probe_counts",
                 format!("{counts:?}"),
                 format!("1 to {limit} probes on each axis, or [0, 0, 0] for each volume's own"),
+            ));
+        }
+        if !v.follow.is_empty() && irradiant_scene::Follow::parse(&v.follow).is_none() {
+            return Err(SettingsError::invalid(
+                "technique.volume.follow",
+                format!("{:?}", v.follow),
+                "\"camera\", or \"\" for each volume's own".to_string(),
             ));
         }
         check_range("technique.update.hysteresis", u.hysteresis, 0.0, 0.999)?;

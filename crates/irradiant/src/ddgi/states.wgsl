@@ -8,6 +8,10 @@
 //   never shades.
 // - AWAKE: sleeping, but an animated instance's box (grown by a cell and the self-shadow bias)
 //   reaches it: traces and updates, starting from scratch, until the box leaves.
+//
+// A probe that enters a tracking window (ddgi/window_enter) starts vigilant with nothing
+// blended and a fresh count (bits 3–7): for that many frames it is relocated and classified on
+// its own, as every probe is in a volume's first frames.
 
 // PROBE_* (the state word's fields) and STATES_* (volume.state_phase) come from
 // ddgi::constants.
@@ -28,6 +32,12 @@ fn probe_updates(word: u32) -> bool {
 // only those that update by their state (probe_updates).
 fn probe_traces(word: u32, every_probe_updates: u32) -> bool {
     return probe_updates(word) || every_probe_updates != 0u;
+}
+
+// Frames left in which a probe that entered a tracking window is relocated and classified on
+// its own; 0 for every other probe.
+fn probe_fresh(word: u32) -> u32 {
+    return (word >> PROBE_FRESH_SHIFT) & PROBE_FRESH_MASK;
 }
 
 // Frames blended since the probe last started updating.

@@ -78,14 +78,21 @@ pub struct GpuDdgiVolume {
     pub gather_history_frames: u32,
     /// Frames between a pixel's gathers (`DdgiGatherSettings::pixel_interval`).
     pub gather_interval: u32,
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad0: u32,
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad1: u32,
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad2: u32,
+    /// The slot of grid coordinate 0 along x of a tracking window (`ProbeGrid::phase`); 0 for a
+    /// volume that stays.
+    pub phase_x: u32,
+    /// The same along y.
+    pub phase_y: u32,
+    /// The same along z.
+    pub phase_z: u32,
+    /// The planes a window step brought in this frame (`EnteringPlanes`): first coordinate
+    /// along each axis; w is 1 on the frame of a step, when ddgi/window_enter runs.
+    pub entering_start: [u32; 4],
+    /// One past the last entering coordinate along each axis; w: the frames a probe that
+    /// entered keeps being relocated and classified on its own (PROBE_FRESH_*).
+    pub entering_end: [u32; 4],
 }
-const _: () = assert!(size_of::<GpuDdgiVolume>() == 208);
+const _: () = assert!(size_of::<GpuDdgiVolume>() == 240);
 
 /// A probe ray's closest hit; `t` < 0 for a miss; `bary` is `pack2x16unorm`.
 #[repr(C)]

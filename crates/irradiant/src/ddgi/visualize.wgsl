@@ -63,7 +63,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
         if COLOUR_BY_STATE != 0u {
-            let home = grid_position_at(grid_coord(p, volume.counts));
+            let home = grid_position_at(probe_grid_coord(p));
             let line = ray_segment(origin, dir, home, centre);
             if line.x < 0.15 * radius && line.y > 0.0 && line.y < nearest {
                 nearest = line.y;

@@ -22,6 +22,7 @@ use crate::technique::{ProbeView, non_finite};
 
 mod readback;
 mod saved;
+mod window;
 pub use readback::{Atlases, ProbeStateCounts};
 
 /// A hysteresis reduction after a scene change (003 §4.3): the factors hold for `hold` frames,
@@ -104,6 +105,7 @@ impl DdgiDispatches {
             ("ddgi/trace", self.rays),
             ("ddgi/shade", self.rays),
             ("ddgi/relocate", self.probes),
+            ("ddgi/window_enter", self.probes),
             ("ddgi/probe_states", self.probes),
             ("ddgi/blend_weights", self.blend_weights),
             ("ddgi/blend_irradiance", self.blends),
@@ -122,6 +124,7 @@ struct VolumePasses {
     shade: BoundPass,
     shadow: Option<BoundPass>,
     relocate: BoundPass,
+    window_enter: BoundPass,
     probe_states: BoundPass,
     blend_weights: BoundPass,
     blend_irradiance: BoundPass,
@@ -160,6 +163,8 @@ pub struct DdgiVolume {
     /// Wake boxes to upload at the next prepare, after animation moved something.
     wake_boxes: Option<Vec<(Vec3, Vec3)>>,
     wake_box_count: u32,
+    /// Whether it follows the camera, and its last step.
+    window: window::Window,
 }
 
 /// The final gather's history this frame: `history_frames`, shortened after a scene change as
@@ -215,6 +220,7 @@ impl DdgiVolume {
                 shade: bind_shading(&pipelines.shade)?,
                 shadow: pipelines.shadow.as_ref().map(bind).transpose()?,
                 relocate: bind(&pipelines.relocate)?,
+                window_enter: bind(&pipelines.window_enter)?,
                 probe_states: bind(&pipelines.probe_states)?,
                 blend_weights: bind(&pipelines.blend_weights)?,
                 blend_irradiance: bind(&pipelines.blend_irradiance)?,
@@ -242,6 +248,7 @@ impl DdgiVolume {
             states_pending: true,
             wake_boxes: Some(dynamic_bounds),
             wake_box_count: 0,
+            window: window::Window::new(desc.follow == Some(irradiant_scene::Follow::Camera)),
         };
         volume.set_settings(settings);
         Ok(volume)
@@ -304,6 +311,18 @@ impl DdgiVolume {
 
     fn relocating(&self) -> bool {
         self.settings.update.relocation && self.frame < RELOCATION_FRAMES
+    }
+
+    /// `GpuDdgiVolume::relocating`: every probe in the volume's first frames, those that
+    /// entered a window's step for a few frames after it, or none.
+    fn relocation_mode(&self) -> u32 {
+        if self.relocating() {
+            1
+        } else if self.settings.update.relocation && self.window.fresh_frames > 0 {
+            RELOCATING_FRESH
+        } else {
+            0
+        }
     }
 
     /// 003 §4.3's scene-level heuristics: a small lighting change lowers the irradiance
@@ -372,7 +391,7 @@ impl DdgiVolume {
             frame: self.frame,
             min_spacing: g.min_spacing(),
             convergence_heuristics: u.convergence_heuristics as u32,
-            relocating: self.relocating() as u32,
+            relocating: self.relocation_mode(),
             all_lights: v.shade_all_lights as u32,
             state_phase: self.state_phase(),
             wake_box_count: self.wake_box_count,
@@ -389,9 +408,11 @@ impl DdgiVolume {
                 irradiance_boost,
             ),
             gather_interval: self.settings.gather.pixel_interval,
-            _pad0: 0,
-            _pad1: 0,
-            _pad2: 0,
+            phase_x: g.phase.x,
+            phase_y: g.phase.y,
+            phase_z: g.phase.z,
+            entering_start: self.window.entering_start(),
+            entering_end: self.window.entering_end(),
         }
     }
 
@@ -440,13 +461,15 @@ impl DdgiVolume {
         encoder: &mut wgpu::CommandEncoder,
         mut profiler: Option<&mut Profiler>,
     ) {
-        let r = &self.resources;
         if self.states_pending {
             // Every probe starts vigilant, so every probe is listed.
+            let r = &self.resources;
             encoder.clear_buffer(&r.states, 0, None);
             encoder.copy_buffer_to_buffer(&r.every_probe, 0, &r.active_probes, 0, None);
             self.states_pending = false;
         }
+        self.record_window_enter(encoder, profiler.as_deref_mut());
+        let r = &self.resources;
         let (p, d) = (&self.passes, &self.dispatches);
         p.ray_directions
             .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
@@ -475,8 +498,8 @@ impl DdgiVolume {
                 4,
             );
         }
-        if self.relocating() {
-            if self.relocation_pending {
+        if self.relocation_mode() != 0 {
+            if self.relocating() && self.relocation_pending {
                 encoder.clear_buffer(&self.resources.offsets, 0, None);
                 self.relocation_pending = false;
             }
@@ -490,6 +513,7 @@ impl DdgiVolume {
             .probe_states
             .dispatch(encoder, profiler, self.dispatches.probes);
         self.frame += 1;
+        self.window.fresh_frames = self.window.fresh_frames.saturating_sub(1);
         for boost in &mut self.boosts {
             boost.age += 1;
         }

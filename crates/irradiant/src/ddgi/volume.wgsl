@@ -64,9 +64,16 @@ struct GpuDdgiVolume {
     gather_history_frames: u32,
     // frames between a pixel's gathers (DdgiGatherSettings::pixel_interval)
     gather_interval: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // a tracking window's circular buffer (ProbeGrid::phase): the slot of grid coordinate 0
+    phase_x: u32,
+    phase_y: u32,
+    phase_z: u32,
+    // the planes a window step brought in this frame (EnteringPlanes): xyz the first grid
+    // coordinate along each axis, w 1 on the frame of a step
+    entering_start: vec4<u32>,
+    // xyz one past the last entering coordinate, w the frames an entered probe is relocated and
+    // classified on its own (PROBE_FRESH_*)
+    entering_end: vec4<u32>,
 }
 
 // Whether the pixels of image tile `tile` (IMAGE_TILE pixels a side: one workgroup, so that
@@ -76,13 +83,24 @@ fn gather_tile_traces(tile: vec2<u32>, frame_index: u32) -> bool {
     return (tile.x + 3u * tile.y + frame_index) % max(volume.gather_interval, 1u) == 0u;
 }
 
+fn window_phase() -> vec3<u32> {
+    return vec3<u32>(volume.phase_x, volume.phase_y, volume.phase_z);
+}
+
+// The slot (the index into every per-probe buffer and atlas tile) of the probe at grid
+// coordinates `coord`: a tracking window stores its grid as a circular buffer (ProbeGrid::slot).
 fn probe_index(coord: vec3<u32>) -> u32 {
-    return grid_index(coord, volume.counts);
+    return grid_index((coord + window_phase()) % volume.counts, volume.counts);
+}
+
+// The grid coordinates of the probe in slot `probe` (ProbeGrid::coord).
+fn probe_grid_coord(probe: u32) -> vec3<u32> {
+    return (grid_coord(probe, volume.counts) + volume.counts - window_phase()) % volume.counts;
 }
 
 // Where a probe sits on the regular grid, before relocation.
 fn grid_position(probe: u32) -> vec3<f32> {
-    return grid_position_at(grid_coord(probe, volume.counts));
+    return grid_position_at(probe_grid_coord(probe));
 }
 
 // The same from the probe's grid coordinates.

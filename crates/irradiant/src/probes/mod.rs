@@ -42,5 +42,6 @@ pub fn default_volume(scene: &Scene) -> ProbeVolumeDesc {
         min: lo + inset,
         max: hi - inset,
         counts: counts.into(),
+        follow: None,
     }
 }
