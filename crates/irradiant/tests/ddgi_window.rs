@@ -166,3 +166,97 @@ fn the_probes_of_a_window_are_not_saved() {
     assert!(e.contains("follows the camera"), "{e}");
     assert!(!path.exists());
 }
+
+/// A floor 400 m across under a uniform sky: every point of it receives the same light, so
+/// whatever the cascades do at their borders shows as a step in the floor's indirect light.
+fn open_floor() -> irradiant_scene::Scene {
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    let r = 200.0;
+    scene.meshes = vec![irradiant_scene::Mesh {
+        name: "floor".into(),
+        positions: vec![
+            Vec3::new(-r, 0.0, -r),
+            Vec3::new(r, 0.0, -r),
+            Vec3::new(r, 0.0, r),
+            Vec3::new(-r, 0.0, r),
+        ],
+        indices: vec![0, 2, 1, 0, 3, 2],
+        triangle_materials: vec![0, 0],
+        ..Default::default()
+    }];
+    scene.materials.truncate(1);
+    scene.instances = vec![irradiant_scene::Instance {
+        name: "floor".into(),
+        mesh: 0,
+        transform: glam::Mat4::IDENTITY,
+    }];
+    scene.sky = Vec3::ONE;
+    scene.probe_volumes.clear();
+    scene.camera = Camera::looking_at(Vec3::new(0.0, 1.7, 0.0), Vec3::new(0.0, 0.0, -12.0), 60.0);
+    scene
+}
+
+/// Three cascades over the open floor: down the middle of the image, from the camera's feet
+/// to 20 m off, the floor's indirect light stays level across the cascades' borders (their
+/// weights add up to 1 and fade without a step), and the schedule updated the finest every
+/// frame and the coarser ones on their turns.
+#[test]
+fn cascades_light_an_open_floor_without_a_seam() {
+    let Some(ctx) = gpu() else { return };
+    let mut settings = settings();
+    settings.volume.cascades = 3;
+    settings.volume.cascade_spacing = 0.5;
+    settings.volume.cascade_probes = [8, 4, 8];
+    let scene = open_floor();
+    let mut s = session(&ctx, &scene, SIZE, spec(Some(&settings)));
+    for _ in 0..80 {
+        s.render().unwrap();
+    }
+    let ddgi = s.technique_as::<Ddgi>().unwrap();
+    let frames: Vec<u32> = ddgi.volumes.iter().map(|v| v.frame).collect();
+    assert_eq!(frames, [80, 40, 40]);
+    let spacing: Vec<f32> = ddgi.volumes.iter().map(|v| v.grid.spacing.x).collect();
+    assert_eq!(spacing, [0.5, 1.0, 2.0]);
+    let indirect = s.indirect().unwrap();
+    let gbuffer = s.gbuffer().unwrap();
+    let (w, h) = (SIZE.0 as usize, SIZE.1 as usize);
+    // The floor's rows from the bottom of the image up, each the mean of the middle 8 pixels.
+    let rows: Vec<(f32, f32)> = (0..h)
+        .rev()
+        .filter_map(|y| {
+            let pixels = (w / 2 - 4..w / 2 + 4).map(|x| y * w + x);
+            let depth = gbuffer[y * w + w / 2].depth;
+            (depth > 0.0).then(|| {
+                let light = pixels.map(|i| indirect.pixels[i][1]).sum::<f32>() / 8.0;
+                (depth, light)
+            })
+        })
+        .collect();
+    // The coarsest cascade reaches 7 m to either side: past 30 m no cascade holds the floor.
+    let rows: Vec<(f32, f32)> = rows.into_iter().filter(|r| r.0 < 30.0).collect();
+    let far = rows.last().unwrap().0;
+    assert!(
+        far > 8.0,
+        "the floor's rows reach only {far} m: not past the cascades' borders"
+    );
+    let mean = rows.iter().map(|r| r.1).sum::<f32>() / rows.len() as f32;
+    let worst_step = rows
+        .windows(2)
+        .map(|p| (p[1].1 - p[0].1).abs())
+        .fold(0.0, f32::max);
+    let worst_off = rows.iter().map(|r| (r.1 - mean).abs()).fold(0.0, f32::max);
+    eprintln!(
+        "the open floor's indirect light: mean {mean:.4}, the largest step between rows {:.4}, the farthest from the mean {:.4} (rows to {far:.1} m)",
+        worst_step / mean,
+        worst_off / mean
+    );
+    assert!(mean > 0.0, "the floor has no indirect light");
+    assert!(
+        worst_step < 0.05 * mean,
+        "a step of {worst_step} between rows"
+    );
+    assert!(
+        worst_off < 0.1 * mean,
+        "a row {worst_off} from the mean {mean}"
+    );
+}

@@ -13,6 +13,7 @@
 //! it over frames (gather.rs). The pipelines are compiled once (pipelines.rs) and shared by
 //! every volume ([`DdgiVolume`]).
 
+mod cascades;
 pub mod constants;
 mod gather;
 pub mod oracle;
@@ -79,8 +80,13 @@ impl DdgiKind {
     }
 }
 
-/// The volumes of a scene with the settings' probe counts applied, finest first.
+/// The volumes of a scene with the settings' probe counts applied (or the settings'
+/// cascades in their place), finest first.
 pub fn volume_descs(scene: &Scene, settings: &DdgiSettings) -> Vec<ProbeVolumeDesc> {
+    let v = &settings.volume;
+    if v.cascades > 0 {
+        return cascades::descs(scene.camera.position, v);
+    }
     let mut volumes = crate::probes::volumes_of(scene);
     if settings.volume.probe_counts != [0; 3] {
         for v in &mut volumes {
@@ -181,6 +187,8 @@ pub struct Ddgi {
     /// probe file's key covers besides the settings.
     scene_key: u64,
     descs: Vec<ProbeVolumeDesc>,
+    /// Frames updated, for the cascades' schedule.
+    frames: u64,
 }
 
 impl Ddgi {
@@ -235,6 +243,7 @@ impl Ddgi {
             gather,
             scene_key: saved::scene_key(cx.scene, &cx.scene.pose_at(0.0)),
             descs,
+            frames: 0,
         })
     }
 
@@ -310,9 +319,16 @@ impl Technique for Ddgi {
         }
     }
     fn update(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
-        for v in &mut self.volumes {
-            v.record_update(encoder, profiler.as_deref_mut());
+        let cascades = self.settings.volume.cascades;
+        for (i, v) in self.volumes.iter_mut().enumerate() {
+            if cascades == 0 || cascades::updates(i as u32, cascades, self.frames) {
+                v.record_update(encoder, profiler.as_deref_mut());
+            } else {
+                // Off its turn: only the planes a step brought in start over.
+                v.record_window_enter(encoder, profiler.as_deref_mut());
+            }
         }
+        self.frames += 1;
     }
     fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
         for v in &self.volumes {

@@ -18,9 +18,12 @@ fn probe_position_at(coord: vec3<u32>, probe: u32) -> vec3<f32> {
 }
 
 // Whether the probe's stored light is live: sleeping and switched-off probes are skipped by
-// the query (003 §6).
+// the query (003 §6), and so is one that has blended nothing since it entered a tracking
+// window (its tile still holds the light of the probe that left).
 fn probe_shades(probe: u32) -> bool {
-    return probe_updates(probe_states[probe]);
+    let word = probe_states[probe];
+    let unblended_entry = probe_fresh(word) > 0u && probe_blends(word) == 0u;
+    return probe_updates(word) && !unblended_entry;
 }
 
 // Whether relocation found the probe inside geometry with no single way out (ddgi/relocate):

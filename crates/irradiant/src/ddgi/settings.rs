@@ -72,6 +72,31 @@ pub struct DdgiVolumeSettings {
     /// The probes that enter as it steps start over: fast motion shows their convergence.
     #[serde(default)]
     pub follow: String,
+    /// Cascades in place of the scene's volumes: this many nested volumes following the camera,
+    /// each twice the spacing of the last, so that a world of any size gets fine light near
+    /// the camera and coarse light far off at a fixed cost. 0 keeps the scene's volumes. The
+    /// finest updates every frame and exactly one coarser one besides (cascade i every 2^i
+    /// frames, the coarsest every 2^(n−2) of n), so the rays a frame are two cascades' worth
+    /// however many there are; a coarse cascade's light lags by its interval.
+    #[serde(default)]
+    pub cascades: u32,
+    /// Spacing of the finest cascade's probes, in scene units (metres): finer catches smaller
+    /// rooms and contact light, and covers less around the camera before the next cascade
+    /// takes over.
+    #[serde(default = "default_cascade_spacing")]
+    pub cascade_spacing: f32,
+    /// Probes along each axis of every cascade. More: each cascade reaches further at the same
+    /// spacing, at a linear cost in its update.
+    #[serde(default = "default_cascade_probes")]
+    pub cascade_probes: [u32; 3],
+}
+
+fn default_cascade_spacing() -> f32 {
+    1.0
+}
+
+fn default_cascade_probes() -> [u32; 3] {
+    [16, 8, 16]
 }
 
 /// The probe update and the query (`[technique.update]`): most apply from the next frame.
@@ -225,6 +250,10 @@ pub struct DdgiGatherSettings {
 /// and no more, so that probes never oscillate through tangent backfaces).
 pub const RELOCATION_FRAMES: u32 = 5;
 
+/// Most cascades `technique.volume.cascades` takes: the eighth has 128 times the finest
+/// spacing, and updates every 64 frames.
+pub const MAX_CASCADES: u32 = 8;
+
 impl Default for DdgiSettings {
     fn default() -> Self {
         Self::balanced()
@@ -263,6 +292,9 @@ impl DdgiSettings {
                 shade_all_lights: false,
                 probe_counts: [0; 3],
                 follow: String::new(),
+                cascades: 0,
+                cascade_spacing: default_cascade_spacing(),
+                cascade_probes: default_cascade_probes(),
             },
             update: DdgiUpdateSettings {
                 hysteresis: 0.97,
@@ -377,6 +409,23 @@ impl DdgiSettings {
                 format!("{counts:?}"),
                 format!("1 to {limit} probes on each axis, or [0, 0, 0] for each volume's own"),
             ));
+        }
+        check_range("technique.volume.cascades", v.cascades, 0, MAX_CASCADES)?;
+        if v.cascades > 0 {
+            check_range(
+                "technique.volume.cascade_spacing",
+                v.cascade_spacing,
+                1e-3,
+                1e4,
+            )?;
+            let probes = v.cascade_probes;
+            if probes.iter().any(|&c| !(2..=limit).contains(&c)) {
+                return Err(SettingsError::invalid(
+                    "technique.volume.cascade_probes",
+                    format!("{probes:?}"),
+                    format!("2 to {limit} probes on each axis"),
+                ));
+            }
         }
         if !v.follow.is_empty() && irradiant_scene::Follow::parse(&v.follow).is_none() {
             return Err(SettingsError::invalid(

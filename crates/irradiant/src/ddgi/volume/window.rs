@@ -81,8 +81,10 @@ impl DdgiVolume {
         self.window.fresh_frames = RELOCATION_FRAMES;
     }
 
-    /// Records ddgi/window_enter on the frame of a step, before the probes trace.
-    pub(super) fn record_window_enter(
+    /// Records ddgi/window_enter on the frame of a step, before the probes trace (and on a
+    /// cascade's frames off its turn, so that the query skips the entered probes until they
+    /// have blended).
+    pub fn record_window_enter(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         profiler: Option<&mut Profiler>,

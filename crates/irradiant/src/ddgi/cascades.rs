@@ -1,0 +1,97 @@
+//! Cascades (issue 39): nested volumes that follow the camera at doubling spacing, from one
+//! setting (`technique.volume.cascades`), and the schedule that keeps their rays a frame at two
+//! cascades' worth.
+
+use irradiant_scene::ProbeVolumeDesc;
+
+use super::settings::DdgiVolumeSettings;
+
+/// `cascades` volumes following the camera, centred on `eye` to start with: cascade i at
+/// `cascade_spacing` × 2^i, each on its own lattice of whole cells (so a coarser cascade's
+/// probes sit on finer ones').
+pub fn descs(eye: glam::Vec3, v: &DdgiVolumeSettings) -> Vec<ProbeVolumeDesc> {
+    let counts = glam::UVec3::from(v.cascade_probes);
+    (0..v.cascades)
+        .map(|i| {
+            let spacing = v.cascade_spacing * (1u32 << i) as f32;
+            let extent = (counts.as_vec3() - 1.0) * spacing;
+            let min = ((eye - extent * 0.5) / spacing).round() * spacing;
+            ProbeVolumeDesc {
+                follow: Some(irradiant_scene::Follow::Camera),
+                ..ProbeVolumeDesc::new(&format!("cascade{i}"), min, min + extent, v.cascade_probes)
+            }
+        })
+        .collect()
+}
+
+/// Whether cascade `index` (0: the finest) of `cascades` updates on frame `frame` (from 0):
+/// the finest every frame; with n = frame + 1, cascade i ≥ 1 where n's lowest set bit is i − 1
+/// (every 2^i frames), and the coarsest wherever it is i − 1 or higher. Each frame updates the
+/// finest and exactly one other.
+pub fn updates(index: u32, cascades: u32, frame: u64) -> bool {
+    if index == 0 {
+        return true;
+    }
+    let lowest_bit = (frame + 1).trailing_zeros();
+    if index + 1 == cascades {
+        lowest_bit >= index - 1
+    } else {
+        lowest_bit == index - 1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// Every frame updates the finest cascade and exactly one other; cascade i ≥ 1 (not the
+    /// coarsest) every 2^i frames, the coarsest every 2^(n−2).
+    #[test]
+    fn each_frame_updates_the_finest_cascade_and_one_other() {
+        for n in 2..=8u32 {
+            let mut counts = vec![0u64; n as usize];
+            for frame in 0..1024u64 {
+                let updated: Vec<u32> = (0..n).filter(|&i| updates(i, n, frame)).collect();
+                assert_eq!(updated.len(), 2, "{n} cascades, frame {frame}: {updated:?}");
+                assert_eq!(updated[0], 0);
+                for i in updated {
+                    counts[i as usize] += 1;
+                }
+            }
+            for i in 1..n as usize {
+                let interval = if i + 1 == n as usize {
+                    1 << (n - 2)
+                } else {
+                    1 << i
+                };
+                assert_eq!(counts[i], 1024 / interval, "{n} cascades, cascade {i}");
+            }
+        }
+    }
+
+    /// Each cascade is centred on the eye within half a cell, twice the spacing of the last, on
+    /// a lattice of its own spacing: a coarser cascade's probes sit on finer ones' lattice.
+    #[test]
+    fn cascades_nest_around_the_eye_at_doubling_spacing() {
+        let settings = DdgiVolumeSettings {
+            cascades: 3,
+            cascade_spacing: 0.5,
+            cascade_probes: [8, 4, 8],
+            ..super::super::DdgiSettings::balanced().volume
+        };
+        let eye = Vec3::new(13.3, 1.7, -42.1);
+        let descs = descs(eye, &settings);
+        assert_eq!(descs.len(), 3);
+        for (i, d) in descs.iter().enumerate() {
+            let spacing = 0.5 * (1 << i) as f32;
+            let grid = crate::probes::ProbeGrid::new(d);
+            assert!((grid.spacing - Vec3::splat(spacing)).abs().max_element() < 1e-4);
+            let (lo, hi) = grid.bounds();
+            assert!(((lo + hi) * 0.5 - eye).abs().max_element() <= spacing * 0.5 + 1e-4);
+            let on_lattice = grid.origin / 0.5;
+            assert!((on_lattice - on_lattice.round()).abs().max_element() < 1e-3);
+            assert_eq!(d.follow, Some(irradiant_scene::Follow::Camera));
+        }
+    }
+}
