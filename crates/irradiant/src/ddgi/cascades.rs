@@ -59,13 +59,9 @@ mod tests {
                     counts[i as usize] += 1;
                 }
             }
-            for i in 1..n as usize {
-                let interval = if i + 1 == n as usize {
-                    1 << (n - 2)
-                } else {
-                    1 << i
-                };
-                assert_eq!(counts[i], 1024 / interval, "{n} cascades, cascade {i}");
+            for (i, &count) in counts.iter().enumerate().skip(1) {
+                let interval = if i + 1 == n as usize { 1 << (n - 2) } else { 1 << i };
+                assert_eq!(count, 1024 / interval, "{n} cascades, cascade {i}");
             }
         }
     }
