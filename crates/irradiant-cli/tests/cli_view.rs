@@ -137,13 +137,7 @@ fn the_offscreen_viewer_switches_techniques_and_matches_render() {
 #[test]
 fn the_viewer_runs_a_script_in_a_window_under_xvfb() {
     let xvfb = Command::new("xvfb-run").arg("--help").output().is_ok();
-    let icd = std::fs::read_dir("/usr/share/vulkan/icd.d")
-        .ok()
-        .and_then(|d| {
-            d.flatten()
-                .map(|e| e.path())
-                .find(|p| p.to_string_lossy().contains("lvp_icd"))
-        });
+    let icd = irradiant_gpu::lavapipe_icd();
     let (Some(icd), true) = (icd, xvfb) else {
         assert_ne!(
             std::env::var("CI").as_deref(),

@@ -567,3 +567,14 @@ impl GpuInfo {
         }
     }
 }
+
+/// The ICD file of Mesa's lavapipe (Vulkan on the CPU), where it is installed: setting
+/// `VK_ICD_FILENAMES` to it pins a process to that device, as the window tests under Xvfb do
+/// (Xvfb has no DRI3, which hardware drivers need to present).
+pub fn lavapipe_icd() -> Option<std::path::PathBuf> {
+    std::fs::read_dir("/usr/share/vulkan/icd.d")
+        .ok()?
+        .flatten()
+        .map(|entry| entry.path())
+        .find(|path| path.to_string_lossy().contains("lvp_icd"))
+}

@@ -15,7 +15,7 @@ mod readback;
 mod shader;
 
 pub use budget::{Allocation, AllocationKind, Budget, bytes, texture_2d, texture_2d_array};
-pub use context::{AdapterChoice, GpuContext, GpuError, GpuInfo};
+pub use context::{AdapterChoice, GpuContext, GpuError, GpuInfo, lavapipe_icd};
 pub use fullscreen::{FULLSCREEN_VERTEX_WGSL, fullscreen_pipeline, unfiltered_texture_entry};
 pub use layout::{Expected, StructLayoutError, check_struct_layouts};
 pub use pass::{

@@ -39,8 +39,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Result, SceneError};
 use crate::model::{
     Animation, AnimationTarget, Camera, Follow, Instance, Light, LightKind, Mesh, ProbeVolumeDesc,
-    Region,
-    Scene, Tracks,
+    Region, Scene, Tracks,
 };
 
 /// A scene manifest: a mesh file, and the lights, camera and the rest to add to it. Read
@@ -411,11 +410,14 @@ impl Manifest {
             let name = v.name.clone().unwrap_or_else(|| format!("volume{i}"));
             let follow = match v.follow.as_deref() {
                 None => None,
-                Some(word) => Some(Follow::parse(word).ok_or_else(|| SceneError::Invalid {
-                    path: path.to_owned(),
-                    problem: format!("probe volume '{name}' has follow = \"{word}\""),
-                    fix: "Write follow = \"camera\", or leave it out for a volume that stays.".into(),
-                })?),
+                Some(word) => Some(
+                    Follow::parse(word).ok_or_else(|| SceneError::Invalid {
+                        path: path.to_owned(),
+                        problem: format!("probe volume '{name}' has follow = \"{word}\""),
+                        fix: "Write follow = \"camera\", or leave it out for a volume that stays."
+                            .into(),
+                    })?,
+                ),
             };
             scene.probe_volumes.push(ProbeVolumeDesc {
                 name,

@@ -475,28 +475,14 @@ impl Host {
             (true, false) => self.gi.record_native(encoder, camera)?,
             (true, true) => self.gi.record_native_timed(encoder, camera)?,
         }
-        {
-            // The host's lighting: emission + direct + indirect.
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("host/compose"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.hdr_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&self.compose);
-            pass.set_bind_group(0, &self.compose_group, &[]);
-            pass.draw(0..3, 0..1);
-        }
+        // The host's lighting: emission + direct + indirect.
+        fullscreen_pass(
+            encoder,
+            "host/compose",
+            &self.hdr_view,
+            &self.compose,
+            &self.compose_group,
+        );
         Ok(())
     }
 
@@ -510,4 +496,34 @@ impl Host {
             pixels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect(),
         })
     }
+}
+
+/// A full-screen triangle drawn with `pipeline` and `group` into `target` (cleared first): the
+/// host's lighting pass, and the window's present pass.
+pub fn fullscreen_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    pipeline: &wgpu::RenderPipeline,
+    group: &wgpu::BindGroup,
+) {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, group, &[]);
+    pass.draw(0..3, 0..1);
 }

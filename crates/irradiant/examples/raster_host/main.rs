@@ -334,13 +334,7 @@ mod tests {
     #[test]
     fn the_raster_host_shows_its_frames_in_a_window_under_xvfb() {
         let xvfb = Command::new("xvfb-run").arg("--help").output().is_ok();
-        let icd = std::fs::read_dir("/usr/share/vulkan/icd.d")
-            .ok()
-            .and_then(|d| {
-                d.flatten()
-                    .map(|e| e.path())
-                    .find(|p| p.to_string_lossy().contains("lvp_icd"))
-            });
+        let icd = irradiant_gpu::lavapipe_icd();
         let (Some(icd), true) = (icd, xvfb) else {
             assert_ne!(
                 std::env::var("CI").as_deref(),

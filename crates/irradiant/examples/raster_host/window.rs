@@ -164,27 +164,13 @@ impl App<'_> {
             });
         let mut encoder = self.host.device.create_command_encoder(&Default::default());
         self.host.record(&mut encoder, false)?;
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("host/present"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&shown.present);
-            pass.set_bind_group(0, &shown.group, &[]);
-            pass.draw(0..3, 0..1);
-        }
+        crate::host::fullscreen_pass(
+            &mut encoder,
+            "host/present",
+            &target,
+            &shown.present,
+            &shown.group,
+        );
         self.host.queue.submit([encoder.finish()]);
         shown.window.pre_present_notify();
         self.host.queue.present(surface_texture);

@@ -60,7 +60,11 @@ mod tests {
                 }
             }
             for (i, &count) in counts.iter().enumerate().skip(1) {
-                let interval = if i + 1 == n as usize { 1 << (n - 2) } else { 1 << i };
+                let interval = if i + 1 == n as usize {
+                    1 << (n - 2)
+                } else {
+                    1 << i
+                };
                 assert_eq!(count, 1024 / interval, "{n} cascades, cascade {i}");
             }
         }
