@@ -24,6 +24,10 @@ pub struct ProbeGrid {
     pub phase: UVec3,
 }
 
+/// Cells a target may stray from a window's centre before it steps (past half a cell, so
+/// that no target can make it step back and forth).
+const CENTRE_DEAD_ZONE: f32 = 0.75;
+
 /// The grid coordinates a step brought in: along each axis, the planes `start..end` (empty
 /// where the step did not move along it). A probe whose coordinate lies in any of them is new.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -107,13 +111,17 @@ impl ProbeGrid {
         planes
     }
 
-    /// The whole cells from the grid's place to the one centred on `target` (on the grid's
-    /// lattice: its origin moves only by whole cells).
+    /// The whole cells to step so that the grid stays centred on `target`: none while the
+    /// target is within three quarters of a cell of the centre along an axis, so that a target
+    /// resting on a cell's middle (where rounding would step back and forth each frame,
+    /// starting the entering planes over every time) leaves the grid still.
     pub fn cells_to_centre(&self, target: Vec3) -> IVec3 {
         let extent = (self.counts.as_vec3() - 1.0) * self.spacing;
-        ((target - extent * 0.5 - self.origin) / self.spacing)
-            .round()
-            .as_ivec3()
+        let off_centre = (target - (self.origin + extent * 0.5)) / self.spacing;
+        let cells = (off_centre.abs() + 1.0 - CENTRE_DEAD_ZONE)
+            .floor()
+            .max(Vec3::ZERO);
+        (cells * off_centre.signum()).as_ivec3()
     }
 
     /// World position of probe `probe` (x fastest).
@@ -201,11 +209,22 @@ mod tests {
         g.step(cells);
         let (lo, hi) = g.bounds();
         let centre = (lo + hi) * 0.5;
+        // Within the dead zone of three quarters of a cell (0.5 apart).
         assert!(
-            (centre - target).abs().max_element() <= 0.25 + 1e-5,
+            (centre - target).abs().max_element() <= 0.75 * 0.5 + 1e-5,
             "{centre}"
         );
         assert_eq!(g.cells_to_centre(target), IVec3::ZERO);
+        // A target on a cell's middle, and one creeping past it, step once and no more (a
+        // rounding rule stepped back and forth there every frame).
+        for creep in [0.0, 1e-4, 0.3, 0.37, 0.38, 0.6] {
+            let mut g = grid([4, 4, 4]);
+            let (lo, hi) = g.bounds();
+            let mid = (lo + hi) * 0.5 + Vec3::new(0.25 + creep, 0.0, 0.0);
+            let first = g.cells_to_centre(mid);
+            g.step(first);
+            assert_eq!(g.cells_to_centre(mid), IVec3::ZERO, "creep {creep}");
+        }
         // The lattice stays: every probe sits on a multiple of the spacing.
         for slot in 0..g.probe_count {
             let p = g.probe_position(slot) / g.spacing;
