@@ -2,7 +2,7 @@
 //! setting (`technique.volume.cascades`), and the schedule that keeps their rays a frame at two
 //! cascades' worth.
 
-use irradiant_scene::ProbeVolumeDesc;
+use irradiant_scene::{ProbeVolumeDesc, Scene};
 
 use super::settings::DdgiVolumeSettings;
 
@@ -38,6 +38,44 @@ pub fn updates(index: u32, cascades: u32, frame: u64) -> bool {
     } else {
         lowest_bit == index - 1
     }
+}
+
+/// Warnings for volumes that follow the camera yet already span the whole scene (they would
+/// only step, paying for entering planes, to light what they cover anyway).
+pub fn window_warnings(scene: &Scene, descs: &[ProbeVolumeDesc], cascades: u32) -> Vec<String> {
+    let (lo, hi) = scene.bounds();
+    let scene_extent = hi - lo;
+    let covers = |d: &ProbeVolumeDesc| (d.max - d.min).cmpge(scene_extent).all();
+    if cascades > 0 {
+        return descs
+            .first()
+            .filter(|finest| covers(finest))
+            .map(|finest| {
+                format!(
+                    "technique.volume.cascades = {cascades}: the finest cascade ({}) already spans the whole scene ({}); fewer cascade_probes, a finer cascade_spacing, or the scene's own volumes (cascades = 0) light it at less cost",
+                    extent_text(finest.max - finest.min),
+                    extent_text(scene_extent)
+                )
+            })
+            .into_iter()
+            .collect();
+    }
+    descs
+        .iter()
+        .filter(|d| d.follow.is_some() && covers(d))
+        .map(|d| {
+            format!(
+                "probe volume '{}' follows the camera but spans the whole scene ({} against {}): it would only step; leave out `follow` (technique.volume.follow = \"\")",
+                d.name,
+                extent_text(d.max - d.min),
+                extent_text(scene_extent)
+            )
+        })
+        .collect()
+}
+
+fn extent_text(e: glam::Vec3) -> String {
+    format!("{:.1} × {:.1} × {:.1} m", e.x, e.y, e.z)
 }
 
 #[cfg(test)]
@@ -93,5 +131,34 @@ mod tests {
             assert!((on_lattice - on_lattice.round()).abs().max_element() < 1e-3);
             assert_eq!(d.follow, Some(irradiant_scene::Follow::Camera));
         }
+    }
+
+    /// A window or a finest cascade that spans the whole scene is warned about, naming the
+    /// setting; one that spans part of it is not.
+    #[test]
+    fn a_window_larger_than_the_scene_is_warned_about() {
+        let scene = irradiant_scene::load("cornell").unwrap().scene;
+        let mut settings = super::super::DdgiSettings::balanced().volume;
+        settings.cascades = 2;
+        settings.cascade_spacing = 0.5;
+        let big = descs(Vec3::ONE, &settings);
+        let warnings = window_warnings(&scene, &big, 2);
+        assert!(
+            warnings.len() == 1 && warnings[0].contains("technique.volume.cascades"),
+            "{warnings:?}"
+        );
+        settings.cascade_spacing = 0.05;
+        assert!(window_warnings(&scene, &descs(Vec3::ONE, &settings), 2).is_empty());
+        let mut window = scene.probe_volumes[0].clone();
+        window.min -= Vec3::splat(5.0);
+        window.max += Vec3::splat(5.0);
+        window.follow = Some(irradiant_scene::Follow::Camera);
+        let warnings = window_warnings(&scene, &[window.clone()], 0);
+        assert!(
+            warnings[0].contains("'box' follows the camera"),
+            "{warnings:?}"
+        );
+        window.follow = None;
+        assert!(window_warnings(&scene, &[window], 0).is_empty());
     }
 }

@@ -131,6 +131,13 @@ impl TechniqueKind for DdgiKind {
     fn setting_doc(&self, _spec: &TechniqueSpec, path: &[&str]) -> Option<&'static str> {
         <DdgiSettings as crate::settings::SettingDocs>::setting_doc(path)
     }
+    fn scene_warnings(&self, spec: &TechniqueSpec, scene: &Scene) -> Vec<String> {
+        let Ok(settings) = self.settings(spec, &mut Vec::new()) else {
+            return Vec::new();
+        };
+        let descs = volume_descs(scene, &settings);
+        cascades::window_warnings(scene, &descs, settings.volume.cascades)
+    }
     fn plan(
         &self,
         spec: &TechniqueSpec,
