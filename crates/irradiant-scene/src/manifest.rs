@@ -408,17 +408,7 @@ impl Manifest {
         }
         for (i, v) in self.probe_volumes.iter().enumerate() {
             let name = v.name.clone().unwrap_or_else(|| format!("volume{i}"));
-            let follow = match v.follow.as_deref() {
-                None => None,
-                Some(word) => Some(
-                    Follow::parse(word).ok_or_else(|| SceneError::Invalid {
-                        path: path.to_owned(),
-                        problem: format!("probe volume '{name}' has follow = \"{word}\""),
-                        fix: "Write follow = \"camera\", or leave it out for a volume that stays."
-                            .into(),
-                    })?,
-                ),
-            };
+            let follow = Follow::parse(v.follow.as_deref().unwrap_or(""));
             scene.probe_volumes.push(ProbeVolumeDesc {
                 name,
                 min: v.min.into(),

@@ -264,12 +264,19 @@ pub struct ProbeVolumeDesc {
 pub enum Follow {
     /// The camera: the volume stays centred on it.
     Camera,
+    /// The instance of this name: the volume stays centred on its origin (a vehicle, a player).
+    Instance(String),
 }
 
 impl Follow {
-    /// The manifest's and the settings' word for it: `camera`.
+    /// The manifest's and the settings' word for it: `camera`, or an instance's name; None for
+    /// an empty word (the volume stays).
     pub fn parse(word: &str) -> Option<Self> {
-        (word == "camera").then_some(Self::Camera)
+        match word {
+            "" => None,
+            "camera" => Some(Self::Camera),
+            name => Some(Self::Instance(name.to_owned())),
+        }
     }
 }
 

@@ -155,6 +155,19 @@ pub fn validate(scene: &mut Scene, path: &Path, warnings: &mut Vec<String>) -> R
         ));
     }
     for v in &scene.probe_volumes {
+        if let Some(crate::model::Follow::Instance(name)) = &v.follow
+            && !scene.instances.iter().any(|i| &i.name == name)
+        {
+            let names: Vec<&str> = scene.instances.iter().map(|i| i.name.as_str()).collect();
+            return Err(invalid(
+                format!(
+                    "probe volume '{}' has follow = \"{name}\", which is neither the camera nor an instance of the scene (its instances: {})",
+                    v.name,
+                    names.join(", ")
+                ),
+                "Write follow = \"camera\" or an instance's name, or leave it out for a volume that stays.",
+            ));
+        }
         if !(v.min.is_finite() && v.max.is_finite()) || v.min.cmpge(v.max).any() {
             return Err(invalid(
                 format!(

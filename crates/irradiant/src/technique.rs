@@ -154,6 +154,9 @@ pub trait Technique: Any + Send {
     fn invalidate(&mut self);
     /// Told when the scene changes between frames, so that it can adapt.
     fn scene_changed(&mut self, _change: &SceneChange) {}
+    /// The scene's pose, at the start and whenever it changes: where its instances stand (a
+    /// DDGI volume that follows an instance reads it).
+    fn pose_changed(&mut self, _scene: &irradiant_scene::Scene, _pose: &irradiant_scene::Pose) {}
     /// Applies new settings between frames if only settings that can change live differ;
     /// returns false when they need a rebuild (the session then builds it anew).
     fn reconfigure(

@@ -118,19 +118,28 @@ fn a_window_that_walked_into_the_next_room_lights_it_as_a_volume_placed_there() 
     assert_eq!(walked_states.sleeping, placed_states.sleeping);
 }
 
+/// A follow naming neither the camera nor an instance is refused by name: in the settings
+/// when the session starts, in a manifest when the scene loads.
 #[test]
 fn a_follow_that_names_nothing_is_refused_by_name() {
+    let Some(ctx) = gpu() else { return };
     let mut settings = DdgiSettings::fast();
     settings.volume.follow = "sun".into();
-    let spec = irradiant::TechniqueSpec::with_settings("ddgi", &settings);
-    let e = spec
-        .kind()
-        .and_then(|kind| kind.check(&spec))
-        .err()
-        .unwrap()
-        .to_string();
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let e = irradiant::Session::new(
+        ctx,
+        scene,
+        irradiant::SessionSettings {
+            size: (8, 8),
+            technique: spec(Some(&settings)),
+            ..Default::default()
+        },
+    )
+    .err()
+    .unwrap()
+    .to_string();
     assert!(
-        e.contains("technique.volume.follow") && e.contains("camera"),
+        e.contains("technique.volume.follow = \"sun\"") && e.contains("cornell"),
         "{e}"
     );
     let dir = std::env::temp_dir().join(format!("irradiant-window-{}", std::process::id()));
@@ -150,6 +159,58 @@ fn a_follow_that_names_nothing_is_refused_by_name() {
         "{e}"
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A window that follows an instance (by the settings' name for it) steps as the host moves
+/// the instance, and stays when the camera moves.
+#[test]
+fn a_window_follows_the_instance_it_names() {
+    let Some(ctx) = gpu() else { return };
+    let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+    let at = |x: f32| {
+        glam::Mat4::from_scale_rotation_translation(
+            Vec3::splat(0.2),
+            glam::Quat::IDENTITY,
+            Vec3::new(x, 0.4, 0.0),
+        )
+    };
+    scene.instances.push(irradiant_scene::Instance {
+        name: "cart".into(),
+        mesh: 0,
+        transform: at(-0.5),
+    });
+    let mut settings = settings();
+    settings.volume.follow = "cart".into();
+    settings.volume.probe_counts = [4, 4, 4];
+    let mut s = session(&ctx, &scene, (8, 8), spec(Some(&settings)));
+    let origin = |s: &irradiant::Session| s.technique_as::<Ddgi>().unwrap().volumes[0].grid.origin;
+    let centre = |s: &irradiant::Session| {
+        let (lo, hi) = s.technique_as::<Ddgi>().unwrap().volumes[0].grid.bounds();
+        (lo + hi) * 0.5
+    };
+    for _ in 0..3 {
+        s.render().unwrap();
+    }
+    let start = centre(&s);
+    assert!(
+        (start.x + 0.5).abs() < 0.5,
+        "the window is not on the cart: {start}"
+    );
+    s.set_instance_transform(1, at(0.5)).unwrap();
+    s.render().unwrap();
+    let moved = centre(&s);
+    assert!(
+        (moved.x - 0.5).abs() < 0.5 && moved.x > start.x,
+        "{start} → {moved}"
+    );
+    let before = origin(&s);
+    s.set_camera(Camera::looking_at(
+        Vec3::new(3.0, 1.0, 3.0),
+        Vec3::ZERO,
+        40.0,
+    ));
+    s.render().unwrap();
+    assert_eq!(origin(&s), before, "the camera moved the cart's window");
 }
 
 /// A window's probes move with the camera: saving them is refused, with the reason.

@@ -40,6 +40,23 @@ pub fn updates(index: u32, cascades: u32, frame: u64) -> bool {
     }
 }
 
+/// Refuses a volume that follows an instance the scene lacks: from the settings
+/// (`technique.volume.follow`; a manifest's own is refused when the scene loads).
+pub fn check_follow(scene: &Scene, descs: &[ProbeVolumeDesc]) -> Result<(), crate::RenderError> {
+    for d in descs {
+        if let Some(irradiant_scene::Follow::Instance(name)) = &d.follow
+            && !scene.instances.iter().any(|i| &i.name == name)
+        {
+            let names: Vec<&str> = scene.instances.iter().map(|i| i.name.as_str()).collect();
+            return Err(crate::RenderError::Settings(format!(
+                "technique.volume.follow = \"{name}\" is neither \"camera\" nor an instance of the scene (its instances: {}): write \"camera\", an instance's name, or \"\" for volumes that stay",
+                names.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Warnings for volumes that follow the camera yet already span the whole scene (they would
 /// only step, paying for entering planes, to light what they cover anyway).
 pub fn window_warnings(scene: &Scene, descs: &[ProbeVolumeDesc], cascades: u32) -> Vec<String> {

@@ -207,10 +207,11 @@ impl Ddgi {
         settings: &DdgiSettings,
     ) -> Result<Self, RenderError> {
         settings.validate()?;
+        let descs = volume_descs(cx.scene, settings);
+        cascades::check_follow(cx.scene, &descs)?;
         let pipelines = DdgiPipelines::new(cx.ctx, cx.gpu_scene, settings)?;
         let scene_table = cx.gpu_scene.resources();
         let frame_table = cx.frame.resources.table();
-        let descs = volume_descs(cx.scene, settings);
         let count = descs.len();
         let volumes = descs
             .iter()
@@ -358,6 +359,11 @@ impl Technique for Ddgi {
     fn scene_changed(&mut self, change: &SceneChange) {
         for v in &mut self.volumes {
             v.scene_changed(change);
+        }
+    }
+    fn pose_changed(&mut self, scene: &Scene, pose: &irradiant_scene::Pose) {
+        for v in &mut self.volumes {
+            v.follow_pose(scene, pose);
         }
     }
     fn reconfigure(

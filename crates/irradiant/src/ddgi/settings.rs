@@ -66,9 +66,10 @@ pub struct DdgiVolumeSettings {
     /// Probes per axis in every volume, overriding the scene's; [0, 0, 0] keeps each volume's
     /// own. More probes: finer light and visibility, at a linear cost in the update.
     pub probe_counts: [u32; 3],
-    /// `"camera"`: every volume follows the camera in whole cells, keeping its size (a tracking
-    /// window, 003 §7.3), so its cost stays fixed however large the world, and what lies
-    /// outside it gets no probe light; `""` keeps each volume's own (the manifest's `follow`).
+    /// `"camera"` (or an instance's name): every volume follows the camera (or that instance)
+    /// in whole cells, keeping its size (a tracking window, 003 §7.3), so its cost stays fixed
+    /// however large the world, and what lies outside it gets no probe light; `""` keeps each
+    /// volume's own (the manifest's `follow`).
     /// The probes that enter as it steps start over: fast motion shows their convergence.
     #[serde(default)]
     pub follow: String,
@@ -426,13 +427,6 @@ impl DdgiSettings {
                     format!("2 to {limit} probes on each axis"),
                 ));
             }
-        }
-        if !v.follow.is_empty() && irradiant_scene::Follow::parse(&v.follow).is_none() {
-            return Err(SettingsError::invalid(
-                "technique.volume.follow",
-                format!("{:?}", v.follow),
-                "\"camera\", or \"\" for each volume's own".to_string(),
-            ));
         }
         check_range("technique.update.hysteresis", u.hysteresis, 0.0, 0.999)?;
         check_range(

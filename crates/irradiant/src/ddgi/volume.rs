@@ -248,7 +248,7 @@ impl DdgiVolume {
             states_pending: true,
             wake_boxes: Some(dynamic_bounds),
             wake_box_count: 0,
-            window: window::Window::new(desc.follow == Some(irradiant_scene::Follow::Camera)),
+            window: window::Window::new(desc.follow.clone()),
         };
         volume.set_settings(settings);
         Ok(volume)

@@ -160,7 +160,7 @@ impl Session {
         let profiler = Profiler::new(&ctx, PROFILED_PASSES);
         let lights_off = vec![false; scene.lights.len()];
         let moved = vec![None; scene.instances.len()];
-        Ok(Self {
+        let mut session = Self {
             instance_ids: (0..scene.instances.len()).collect(),
             next_instance_id: scene.instances.len(),
             scene_settings: settings.scene,
@@ -181,7 +181,9 @@ impl Session {
             cache_dir: settings.cache_dir,
             progress: settings.progress,
             in_flight: Default::default(),
-        })
+        };
+        session.tell_pose();
+        Ok(session)
     }
 
     /// The GPU context it renders with.
@@ -289,6 +291,7 @@ impl Session {
         let change = SceneChange::between(&self.pose, &next);
         if change.is_empty() {
             self.pose = next;
+            self.tell_pose();
             return;
         }
         self.gpu_scene.update(&self.ctx, &next);
@@ -300,6 +303,12 @@ impl Session {
             ..change
         });
         self.pose = next;
+        self.tell_pose();
+    }
+
+    /// Tells the technique the scene's pose (at the start, after a change, after a rebuild).
+    fn tell_pose(&mut self) {
+        self.technique.pose_changed(&self.scene, &self.pose);
     }
 
     /// Starts the direct light's running mean again (a host turned frame/direct back on).
@@ -390,6 +399,7 @@ impl Session {
         self.technique = self.build_technique(kind, &spec)?;
         self.spec = spec;
         self.frame.invalidate();
+        self.tell_pose();
         Ok(())
     }
 
@@ -433,6 +443,7 @@ impl Session {
             needs,
         )?;
         self.technique = self.build_technique(kind, &self.spec)?;
+        self.tell_pose();
         Ok(())
     }
 

@@ -242,6 +242,7 @@ impl Session {
         let kind = self.spec.kind()?;
         self.technique = self.build_technique(kind, &self.spec)?;
         self.scene_settings = settings;
+        self.tell_pose();
         Ok(())
     }
 }

@@ -106,6 +106,9 @@ impl Technique for SsilDdgi {
     fn scene_changed(&mut self, change: &SceneChange) {
         self.ddgi.scene_changed(change);
     }
+    fn pose_changed(&mut self, scene: &irradiant_scene::Scene, pose: &irradiant_scene::Pose) {
+        self.ddgi.pose_changed(scene, pose);
+    }
     fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
         let mut all = self.ddgi.check_state(ctx)?;
         all.extend(self.ssil.check_state(ctx)?);

@@ -6,6 +6,7 @@
 
 use glam::Vec3;
 use irradiant_gpu::{Profiler, wgpu};
+use irradiant_scene::{Follow, Pose, Scene};
 
 use super::DdgiVolume;
 use crate::ddgi::settings::RELOCATION_FRAMES;
@@ -14,8 +15,10 @@ use crate::probes::grid::EnteringPlanes;
 /// What a volume follows, and its last step.
 #[derive(Debug, Default)]
 pub(super) struct Window {
-    /// Whether the volume follows the camera; false: it stays where it was put.
-    pub follows: bool,
+    /// What the volume follows; None: it stays where it was put.
+    pub follow: Option<Follow>,
+    /// Where the followed instance's origin stands at the scene's last pose.
+    instance_at: Option<Vec3>,
     /// The planes this frame's step brought in, until ddgi/window_enter has run.
     entering: Option<EnteringPlanes>,
     /// Frames left in which the probes that last entered are relocated on their own.
@@ -23,10 +26,10 @@ pub(super) struct Window {
 }
 
 impl Window {
-    /// A window that follows the camera where `follows`, else one that stays.
-    pub fn new(follows: bool) -> Self {
+    /// A window that follows `follow`, or (None) one that stays.
+    pub fn new(follow: Option<Follow>) -> Self {
         Self {
-            follows,
+            follow,
             ..Default::default()
         }
     }
@@ -49,18 +52,34 @@ impl Window {
 }
 
 impl DdgiVolume {
-    /// Whether the volume follows the camera.
+    /// Whether the volume follows the camera or an instance.
     pub fn follows(&self) -> bool {
-        self.window.follows
+        self.window.follow.is_some()
     }
 
-    /// Moves a following volume onto `target` in whole cells (before [`DdgiVolume::prepare`],
-    /// which uploads the step); nothing for a volume that stays or a target within half a
-    /// cell of the centre.
-    pub fn follow(&mut self, target: Vec3) {
-        if !self.window.follows {
-            return;
+    /// Notes where a followed instance stands at the scene's new pose (one removed since
+    /// leaves the volume where it is).
+    pub fn follow_pose(&mut self, scene: &Scene, pose: &Pose) {
+        if let Some(Follow::Instance(name)) = &self.window.follow {
+            let index = scene.instances.iter().position(|i| &i.name == name);
+            self.window.instance_at = index
+                .and_then(|i| pose.instance_transforms.get(i))
+                .map(|t| t.w_axis.truncate());
         }
+    }
+
+    /// Moves a following volume onto its target (the camera at `camera`, or the followed
+    /// instance) in whole cells, before [`DdgiVolume::prepare`] uploads the step; nothing for
+    /// a volume that stays or a target near the centre (`ProbeGrid::cells_to_centre`).
+    pub fn follow(&mut self, camera: Vec3) {
+        let target = match &self.window.follow {
+            None => return,
+            Some(Follow::Camera) => camera,
+            Some(Follow::Instance(_)) => match self.window.instance_at {
+                Some(at) => at,
+                None => return,
+            },
+        };
         let cells = self.grid.cells_to_centre(target);
         if cells == glam::IVec3::ZERO {
             return;
