@@ -322,6 +322,24 @@ fn a_hosts_gbuffer_in_its_conventions_gives_the_sessions_own_light() {
     assert!(e.contains("camera"), "{e}");
 }
 
+/// DDGI at its fast preset on a host's device `ctx`, for `scene` at `size`.
+fn fast_host_gi(
+    ctx: std::sync::Arc<GpuContext>,
+    scene: &irradiant_scene::Scene,
+    size: (u32, u32),
+) -> irradiant::host::HostGi {
+    irradiant::host::HostGi::new(
+        ctx,
+        scene.clone(),
+        irradiant::SessionSettings {
+            size,
+            technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
+            ..Default::default()
+        },
+    )
+    .unwrap()
+}
+
 /// A host's G-buffer of a grey wall facing the camera `distance` away (view-space depth and
 /// normals): the least a host can hand.
 struct Wall {
@@ -381,7 +399,6 @@ impl Wall {
 /// drew there; a target of another size or a format that cannot be blended is refused.
 #[test]
 fn the_indirect_light_is_added_into_the_hosts_target() {
-    use irradiant::host::HostGi;
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let size = (16, 16);
@@ -389,16 +406,7 @@ fn the_indirect_light_is_added_into_the_hosts_target() {
     let f16 = wgpu::TextureFormat::Rgba16Float;
     let wall = Wall::new(&ctx, size, 1.0);
     let gbuffer = wall.gbuffer();
-    let mut gi = HostGi::new(
-        ctx.clone(),
-        scene.clone(),
-        irradiant::SessionSettings {
-            size,
-            technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let mut gi = fast_host_gi(ctx.clone(), &scene, size);
     let target_usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
     let target = host_texture(
         &ctx,
@@ -506,16 +514,7 @@ fn the_direct_light_is_computed_for_a_host_only_when_asked() {
     let size = (8, 8);
     // The camera stands 3.5 m before the box's middle: a wall 0.1 m short of its back.
     let wall = Wall::new(&ctx, size, 4.4);
-    let mut gi = HostGi::new(
-        ctx.clone(),
-        scene.clone(),
-        irradiant::SessionSettings {
-            size,
-            technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let mut gi = fast_host_gi(ctx.clone(), &scene, size);
     let direct_sum = |gi: &mut HostGi| {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         gi.record(&mut encoder, &scene.camera, &wall.gbuffer())
@@ -597,23 +596,13 @@ fn a_bake_runs_on_a_hosts_worker_thread_with_progress() {
 /// requirements gets the five targets, in their formats.
 #[test]
 fn the_native_gbuffer_names_the_limit_it_needs() {
-    use irradiant::host::HostGi;
     let Some(ours) = gpu() else { return };
     let (features, limits) = GpuContext::requirements(&ours.adapter).unwrap();
     let scene = irradiant_scene::load("cornell").unwrap().scene;
     let gi_on = |limits: wgpu::Limits| {
         let (device, queue) = host_device(&ours, features, limits);
         let ctx = GpuContext::from_host(ours.instance.clone(), ours.adapter.clone(), device, queue);
-        HostGi::new(
-            std::sync::Arc::new(ctx.unwrap()),
-            scene.clone(),
-            irradiant::SessionSettings {
-                size: (8, 8),
-                technique: spec(Some(&irradiant::ddgi::DdgiSettings::fast())),
-                ..Default::default()
-            },
-        )
-        .unwrap()
+        fast_host_gi(std::sync::Arc::new(ctx.unwrap()), &scene, (8, 8))
     };
     let narrow = gi_on(wgpu::Limits {
         max_color_attachment_bytes_per_sample: 32,

@@ -38,11 +38,8 @@ pub use gbuffer::{
     DepthConvention, GpuHostImport, HostGBuffer, MaterialChannels, MotionConvention, NormalEncoding,
 };
 
-use crate::session::GBufferSource;
+use crate::session::{GBufferSource, HOST_SCENE};
 use crate::{RenderError, Session, SessionSettings};
-
-/// What messages about a host's scene call it, where a loaded scene's name its file.
-pub(crate) const HOST_SCENE: &str = "the host's scene";
 
 /// The host's textures host/import reads: never filterable (a depth or 32-bit float texture
 /// may stand in any of them).
@@ -101,6 +98,8 @@ pub struct HostGi {
     /// for the frame): bound again only when either changes, not every frame.
     bound_import: Option<([wgpu::Texture; 7], BoundPass)>,
     import_params: wgpu::Buffer,
+    /// The conventions last written into `import_params`: written again only when they change.
+    written_params: Option<GpuHostImport>,
     output: HostOutput,
     /// Whether frame/direct runs for the host ([`HostGi::set_direct_light`]).
     direct_light: bool,
@@ -141,6 +140,7 @@ impl HostGi {
             import,
             bound_import: None,
             import_params,
+            written_params: None,
             output,
             direct_light: false,
         })
@@ -270,11 +270,12 @@ impl HostGi {
             )));
         }
         self.session.set_camera(camera.clone());
-        let import = match gbuffer {
-            Some(gbuffer) => Some(self.bind_import(gbuffer)?),
-            None => None,
-        };
-        let import = import.map(|_| &self.bound_import.as_ref().expect("bound above").1);
+        if let Some(gbuffer) = gbuffer {
+            self.bind_import(gbuffer)?;
+        }
+        let import = gbuffer
+            .and(self.bound_import.as_ref())
+            .map(|(_, pass)| pass);
         self.session.record(
             encoder,
             GBufferSource::Host {
@@ -298,11 +299,13 @@ impl HostGi {
     /// the frame's G-buffer (its depth stands for the frame) where either changed.
     fn bind_import(&mut self, gbuffer: &HostGBuffer) -> Result<(), RenderError> {
         let ctx = self.session.ctx();
-        ctx.queue.write_buffer(
-            &self.import_params,
-            0,
-            bytemuck::bytes_of(&gbuffer.params()),
-        );
+        let params = gbuffer.params();
+        let written = self.written_params.as_ref().map(bytemuck::bytes_of);
+        if written != Some(bytemuck::bytes_of(&params)) {
+            ctx.queue
+                .write_buffer(&self.import_params, 0, bytemuck::bytes_of(&params));
+            self.written_params = Some(params);
+        }
         let [a, b, c, d, e, f] = gbuffer.textures();
         let frame_depth = self
             .session

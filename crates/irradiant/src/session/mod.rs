@@ -16,6 +16,10 @@ use crate::technique::{ProbeView, Technique, TechniqueContext};
 
 mod scene_edits;
 
+/// What messages call a scene given by hand (a host's, or meshes added to a session), where a
+/// loaded scene's name its file.
+pub(crate) const HOST_SCENE: &str = "the host's scene";
+
 /// How a session starts.
 #[derive(Clone, Debug)]
 pub struct SessionSettings {

@@ -115,7 +115,7 @@ impl Session {
         scene.meshes.push(mesh);
         scene.materials.extend(materials);
         let mut warnings = Vec::new();
-        irradiant_scene::validate(&mut scene, crate::host::HOST_SCENE.as_ref(), &mut warnings)
+        irradiant_scene::validate(&mut scene, super::HOST_SCENE.as_ref(), &mut warnings)
             .map_err(|e| RenderError::Settings(e.to_string()))?;
         let previous = std::mem::replace(&mut self.scene, scene);
         if let Err(error) = self.rebuild_scene(false) {

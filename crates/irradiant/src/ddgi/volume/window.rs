@@ -89,11 +89,12 @@ impl DdgiVolume {
             // Nothing blended yet: the whole volume starts over anyway.
             return;
         }
-        // A step over one not yet recorded brings in the planes of both.
-        self.window.entering = Some(match self.window.entering.take() {
-            Some(earlier) => EnteringPlanes {
-                start: earlier.start.min(planes.start),
-                end: earlier.end.max(planes.end),
+        // A second step before ddgi/window_enter ran (it runs every frame, so never in
+        // practice) would leave the first's planes in old coordinates: start them all over.
+        self.window.entering = Some(match self.window.entering {
+            Some(_) => EnteringPlanes {
+                start: glam::UVec3::ZERO,
+                end: self.grid.counts,
             },
             None => planes,
         });
