@@ -94,8 +94,10 @@ pub fn probes(ui: &mut egui::Ui, viewer: &mut Viewer) {
         ui.selectable_value(&mut view, Some(ProbeView::Light), "light")
             .on_hover_text("each probe a sphere lit by what it stores");
         ui.selectable_value(&mut view, Some(ProbeView::States), "states").on_hover_text(
-            "vigilant green, awake orange, sleeping blue, off red, tied magenta; a white line from the grid point to where relocation moved the probe",
+            "vigilant green, awake orange, sleeping blue, off red, newly vigilant pale green, newly awake yellow, tied magenta; a white line from the grid point to where relocation moved the probe",
         );
+        ui.selectable_value(&mut view, Some(ProbeView::Volumes), "volumes")
+            .on_hover_text("each pixel coloured by the volumes that light it: the finest red, then green, blue; mixed where they blend");
     });
     if view != viewer.probe_view {
         viewer.set_probe_view(view);
@@ -113,8 +115,10 @@ pub fn probes(ui: &mut egui::Ui, viewer: &mut Viewer) {
         counter("probes_sleeping"),
         counter("probes_off"),
     ) {
+        let newly = counter("probes_newly_vigilant").unwrap_or(0)
+            + counter("probes_newly_awake").unwrap_or(0);
         ui.label(format!(
-            "probes: {v} vigilant, {a} awake, {s} sleeping, {o} off"
+            "probes: {v} vigilant, {a} awake, {newly} newly, {s} sleeping, {o} off"
         ));
     }
 }

@@ -282,7 +282,8 @@ impl Viewer {
                 let next = match self.probe_view {
                     None => Some(ProbeView::Light),
                     Some(ProbeView::Light) => Some(ProbeView::States),
-                    Some(ProbeView::States) => None,
+                    Some(ProbeView::States) => Some(ProbeView::Volumes),
+                    Some(ProbeView::Volumes) => None,
                 };
                 self.set_probe_view(next);
             }

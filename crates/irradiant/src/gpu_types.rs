@@ -221,7 +221,12 @@ pub fn all_layouts() -> Vec<Expected> {
             phase_y,
             phase_z,
             entering_start,
-            entering_end
+            entering_end,
+            blend_centre,
+            convergence_rounds,
+            padding0,
+            padding1,
+            padding2
         }),
         gpu_layout!(GpuDdgiRayHit {
             t,

@@ -132,6 +132,10 @@ pub enum ProbeView {
     /// Each probe coloured by its state (vigilant, awake, sleeping, off; tied), with a line
     /// from its grid point to where relocation moved it.
     States,
+    /// Each pixel coloured by the probe volumes that light it and their weights (DDGI's
+    /// cascades and volumes, finest red, then green, blue): where they blend, and whether a
+    /// border shows.
+    Volumes,
 }
 
 /// A built technique, bound to the frame it was built for.

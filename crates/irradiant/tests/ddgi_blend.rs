@@ -137,6 +137,7 @@ const SLEEPING: usize = 1;
 const RESTARTED: usize = 4;
 
 fn blend_matches_the_oracle(rays_per_probe: u32) {
+    use irradiant::ddgi::constants::{PROBE_AGE_SHIFT, PROBE_SLEEPING, PROBE_VIGILANT};
     let Some(ctx) = common::gpu() else { return };
     let mut settings = DdgiSettings::balanced();
     settings.volume.rays_per_probe = rays_per_probe;
@@ -163,14 +164,14 @@ fn blend_matches_the_oracle(rays_per_probe: u32) {
             bytemuck::cast_slice(&rays.samples),
         );
         ddgi.frame = frame;
-        // Every probe vigilant (state 0), having blended `frame` times (ddgi/states.wgsl) —
+        // Every probe vigilant, having blended `frame` times (ddgi/states.wgsl) —
         // but in frame 1, SLEEPING keeps its texels and RESTARTED starts over (age 0), so
         // that a blend workgroup's probes (several a workgroup) differ in state and age.
         let states: Vec<u32> = (0..probes)
             .map(|p| match (frame, p) {
-                (1, SLEEPING) => 2 | frame << 8,
-                (1, RESTARTED) => 0,
-                _ => frame << 8,
+                (1, SLEEPING) => PROBE_SLEEPING | frame << PROBE_AGE_SHIFT,
+                (1, RESTARTED) => PROBE_VIGILANT,
+                _ => PROBE_VIGILANT | frame << PROBE_AGE_SHIFT,
             })
             .collect();
         ctx.queue

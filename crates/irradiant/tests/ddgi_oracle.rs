@@ -184,8 +184,10 @@ fn multi_bounce_light_converges_in_a_hundred_frames_with_the_bounce_copy() {
         ],
     );
     assert!(copy.abs() < 0.08, "with the bounce copy: {copy:+.4}");
+    // -0.113 since newly vigilant probes start their mean over after classification
+    // (-0.13 before: the classification frames' darker light stayed in the mean).
     assert!(
-        single < -0.12,
+        single < -0.09,
         "the paper's single atlas should still be dark: {single:+.4}"
     );
 }

@@ -86,7 +86,12 @@ fn probes_no_surface_reads_stop_without_changing_the_image() {
     assert_eq!(all_updating, 343, "with states off every probe updates");
     assert_eq!(all, counts, "states off classifies the probes alike");
     assert_eq!(
-        counts.vigilant + counts.off + counts.sleeping + counts.awake,
+        counts.vigilant
+            + counts.off
+            + counts.sleeping
+            + counts.awake
+            + counts.newly_vigilant
+            + counts.newly_awake,
         343
     );
     assert!(counts.sleeping > 0, "mid-air probes should sleep");

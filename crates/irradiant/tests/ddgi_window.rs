@@ -321,3 +321,63 @@ fn cascades_light_an_open_floor_without_a_seam() {
         "a row {worst_off} from the mean {mean}"
     );
 }
+
+/// Each pixel's volume weights (finest, middle, coarsest) from the volumes view
+/// (ProbeView::Volumes leaves them in `indirect` as red, green and blue), None on the sky.
+fn volume_weights(s: &mut irradiant::Session) -> Vec<Option<[f32; 3]>> {
+    s.render().unwrap();
+    let gbuffer = s.gbuffer().unwrap();
+    let weights = s.indirect().unwrap().pixels;
+    weights
+        .into_iter()
+        .zip(gbuffer)
+        .map(|(w, g)| (g.depth > 0.0).then_some(w))
+        .collect()
+}
+
+/// Three cascades seen from 0.8 m above the open floor, looking down with a wide lens, the
+/// camera moving 5 cm a frame along x over 3 m: at every pixel of the floor the weights sum
+/// to 1, the view passes through all three cascades, and no pixel's weights jump between two
+/// frames — not at the finest cascade's window steps either (six, 0.5 m apart), since the
+/// blend is tightened by a cell and centred on the camera (003 §7.4).
+#[test]
+fn cascade_weights_sum_to_one_and_follow_the_camera_without_a_jump() {
+    let Some(ctx) = gpu() else { return };
+    let mut settings = settings();
+    settings.volume.cascades = 3;
+    settings.volume.cascade_spacing = 0.5;
+    settings.volume.cascade_probes = [8, 8, 8];
+    let scene = open_floor();
+    let look = |x: f32| Camera::looking_at(Vec3::new(x, 0.8, 0.0), Vec3::new(x, 0.0, -0.3), 150.0);
+    let mut s = session(&ctx, &scene, (64, 64), spec(Some(&settings)));
+    s.set_probe_view(Some(irradiant::technique::ProbeView::Volumes));
+    s.set_camera(look(0.0));
+    let mut before = volume_weights(&mut s);
+    let mut origins = vec![s.technique_as::<Ddgi>().unwrap().volume().grid.origin];
+    let (mut worst_jump, mut worst_sum) = (0.0f32, 0.0f32);
+    let mut most = [0.0f32; 3];
+    for step in 1..=60 {
+        s.set_camera(look(0.05 * step as f32));
+        let after = volume_weights(&mut s);
+        origins.push(s.technique_as::<Ddgi>().unwrap().volume().grid.origin);
+        for (a, b) in before.iter().zip(&after) {
+            let (Some(a), Some(b)) = (a, b) else { continue };
+            worst_sum = worst_sum.max((b[0] + b[1] + b[2] - 1.0).abs());
+            for c in 0..3 {
+                worst_jump = worst_jump.max((a[c] - b[c]).abs());
+                most[c] = most[c].max(b[c]);
+            }
+        }
+        before = after;
+    }
+    let steps = origins.windows(2).filter(|o| o[0] != o[1]).count();
+    eprintln!(
+        "{steps} window steps; largest change of a weight between frames {worst_jump:.3}, of a sum from 1 {worst_sum:.2e}; largest weights {most:?}"
+    );
+    assert!(steps >= 4, "the finest window stepped only {steps} times");
+    assert!(most.iter().all(|&w| w > 0.5), "the view does not pass through all three cascades: {most:?}");
+    assert!(worst_sum < 1e-4, "the weights sum to 1 ± {worst_sum}");
+    // 5 cm against a fade of 0.5 m: a tenth; a step that moved the blend by a cell would
+    // change a weight by up to 1.
+    assert!(worst_jump < 0.25, "a weight changed by {worst_jump} in one frame");
+}

@@ -1,8 +1,10 @@
 // ddgi: which probe, and which of its rays, a thread of the passes that work per updating probe
 // takes — ddgi/trace, ddgi/shade and the blends, dispatched indirectly over the list of probes
-// that update (DdgiActiveProbes, built by ddgi/probe_states the frame before).
+// that update (DdgiActiveProbes, built by ddgi/probe_states the frame before); in the
+// convergence rounds only newly probes take part (ddgi_convergence's takes_part).
 #import ddgi_states
 #import ddgi_rays
+#import ddgi_convergence
 
 @group(2) @binding(21) var<storage, read> active_probes: DdgiActiveProbes;
 

@@ -34,7 +34,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         return;
     }
     let state = probe_states[probe];
-    if !probe_traces(state, volume.every_probe_updates) {
+    if !probe_traces(state, volume.every_probe_updates) || !takes_part(state) {
         return;
     }
     let texels = volume.distance_texels;
@@ -97,9 +97,9 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
             let old = distance_atlas[index];
             var blended = old;
             // A texel no ray came near this frame keeps its old value.
-            if header.weight > 0.0 || probe_blends(state) == 0u {
+            if header.weight > 0.0 || samples_held(state) == 0u {
                 let value = select(vec2<f32>(volume.max_ray_distance, volume.max_ray_distance * volume.max_ray_distance), sum / header.weight, header.weight > 0.0);
-                let hysteresis = startup_hysteresis(volume.distance_hysteresis, probe_blends(state));
+                let hysteresis = startup_hysteresis(volume.distance_hysteresis, samples_held(state));
                 blended = mix(value, old, hysteresis);
                 distance_atlas[index] = blended;
             }

@@ -71,7 +71,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         return;
     }
     let state = probe_states[probe];
-    if !probe_traces(state, volume.every_probe_updates) {
+    if !probe_traces(state, volume.every_probe_updates) || !takes_part(state) {
         return;
     }
     let texels = volume.irradiance_texels;
@@ -133,7 +133,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
             let index = (origin.y + y) * width + origin.x + x;
             let old = irradiance_history[history_index].rgb;
             let bounce_old = decode(irradiance_bounce_atlas[index]);
-            let startup = probe_blends(state);
+            let startup = samples_held(state);
             var hysteresis = startup_hysteresis(volume.irradiance_hysteresis, startup);
             if volume.convergence_heuristics != 0u && hysteresis > 0.0 {
                 if encoded_change(value, old) > 0.8 {

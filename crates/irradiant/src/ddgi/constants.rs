@@ -16,28 +16,33 @@ irradiant_gpu::wgsl_constants! {
     /// atlas stores (`irradiance_gamma`).
     CHANGE_GAMMA: f32 = 5.0;
 
-    /// Probe state (the low bits of a probe's state word, 003 §6): near static geometry;
-    /// traces and updates every frame. Every probe starts so.
+    /// Probe state (the low bits of a probe's state word, 003 §6, Figure 7): near static
+    /// geometry; traces and updates every frame. Every probe starts so.
     PROBE_VIGILANT: u32 = 0;
     /// Stuck inside static geometry even after relocation: never traces, never shades.
     PROBE_OFF: u32 = 1;
     /// No static geometry within one grid cell, so no surface reads it: never traces.
     PROBE_SLEEPING: u32 = 2;
-    /// Sleeping, but an animated instance's box reaches it: traces and updates from scratch.
+    /// Sleeping, but an animated instance's box reaches it: traces and updates until it leaves.
     PROBE_AWAKE: u32 = 3;
+    /// Classified vigilant this frame (a volume's or an entered plane's classification): its
+    /// frame converges it (`update.convergence_rounds`), then it is vigilant.
+    PROBE_NEWLY_VIGILANT: u32 = 4;
+    /// Woken from sleep this frame: starts from scratch, converges in its frame, then awake.
+    PROBE_NEWLY_AWAKE: u32 = 5;
     /// The state's bits in the state word.
-    PROBE_STATE_MASK: u32 = 3;
+    PROBE_STATE_MASK: u32 = 7;
     /// State word bit: a classification frame saw static geometry near the probe.
-    PROBE_NEAR_GEOMETRY: u32 = 4;
-    /// State word bits 3 to 7: the frames left in which a probe that entered a tracking window
-    /// is relocated and classified on its own (as a volume's probes are in its first
+    PROBE_NEAR_GEOMETRY: u32 = 8;
+    /// State word bits 4 to 8: the frames left in which a probe that entered a tracking
+    /// window is relocated and classified on its own (as a volume's probes are in its first
     /// frames); 0 for every other probe.
-    PROBE_FRESH_SHIFT: u32 = 3;
+    PROBE_FRESH_SHIFT: u32 = 4;
     /// The fresh count's bits, shifted down.
     PROBE_FRESH_MASK: u32 = 31;
     /// The state word's bits from here up count the frames blended since the probe last
-    /// started updating.
-    PROBE_AGE_SHIFT: u32 = 8;
+    /// started updating (a convergence round counts as one; a newly probe starts over).
+    PROBE_AGE_SHIFT: u32 = 9;
 
     /// `GpuDdgiVolume::relocating`: only the probes that entered a tracking window (a fresh
     /// count above 0) are relocated; 1 relocates every probe, 0 none.

@@ -279,6 +279,8 @@ impl Ddgi {
             total.off += c.off;
             total.sleeping += c.sleeping;
             total.awake += c.awake;
+            total.newly_vigilant += c.newly_vigilant;
+            total.newly_awake += c.newly_awake;
         }
         Ok(total)
     }
@@ -416,6 +418,8 @@ impl Technique for Ddgi {
         let counters = [
             ("probes_vigilant", states.vigilant as f64),
             ("probes_awake", states.awake as f64),
+            ("probes_newly_vigilant", states.newly_vigilant as f64),
+            ("probes_newly_awake", states.newly_awake as f64),
             ("probes_sleeping", states.sleeping as f64),
             ("probes_off", states.off as f64),
             ("probes", probes as f64),

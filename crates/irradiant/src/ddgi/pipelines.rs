@@ -23,6 +23,8 @@ pub struct DdgiPipelines {
     pub relocate: Arc<ComputePass>,
     pub window_enter: Arc<ComputePass>,
     pub probe_states: Arc<ComputePass>,
+    /// Starts, counts and ends the convergence rounds (ddgi_convergence).
+    pub converge_step: Arc<ComputePass>,
     pub blend_weights: Arc<ComputePass>,
     pub blend_irradiance: Arc<ComputePass>,
     pub blend_distance: Arc<ComputePass>,
@@ -32,6 +34,8 @@ pub struct DdgiPipelines {
     pub visualize: Arc<ComputePass>,
     /// The probes coloured by state, with their relocation offsets (ProbeView::States).
     pub visualize_states: Arc<ComputePass>,
+    /// Each pixel coloured by the volumes that light it (ProbeView::Volumes).
+    pub visualize_volumes: Arc<ComputePass>,
 }
 
 impl DdgiPipelines {
@@ -123,6 +127,11 @@ impl DdgiPipelines {
                 include_str!("probe_states.wgsl"),
                 vec![],
             )?,
+            converge_step: compile_plain(
+                "ddgi/converge_step",
+                include_str!("converge_step.wgsl"),
+                vec![],
+            )?,
             blend_weights: compile_plain(
                 "ddgi/blend_weights",
                 include_str!("blend_weights.wgsl"),
@@ -157,6 +166,11 @@ impl DdgiPipelines {
                 "ddgi/visualize_states",
                 include_str!("visualize.wgsl"),
                 vec![("COLOUR_BY_STATE", "1u".into())],
+            )?,
+            visualize_volumes: compile_plain(
+                "ddgi/visualize_volumes",
+                include_str!("visualize_volumes.wgsl"),
+                vec![],
             )?,
         })
     }

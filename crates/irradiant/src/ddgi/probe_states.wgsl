@@ -1,5 +1,5 @@
 // ddgi/probe_states: after the blends, each probe's state for the next frame (003 §6,
-// Listing 5). During the volume's first frames (while relocation runs) it notes whether any
+// Figure 7, Listing 5; ddgi_states lists the six). During the volume's first frames (while relocation runs) it notes whether any
 // front face lies where surfaces read the probe: within one grid cell of it along every axis
 // (one of the eight cells it is a corner of), widened by the self-shadow bias (the query
 // looks up the cell of the biased point) and, for the grid's outermost probes, without limit
@@ -7,9 +7,11 @@
 // walls stood more than a cell past its outer probes went black, docs/ddgi.md). On the last
 // of those frames a
 // probe still seeing more than 25 % backfaces turns off (or, with shade_probes_in_geometry,
-// stays vigilant), one near geometry stays vigilant, and
-// the rest sleep. From then on, sleeping probes inside a wake box (an animated instance's
-// bounds grown by a cell and the self-shadow bias) wake, and sleep again when it leaves. With
+// stays vigilant), one near geometry turns newly vigilant, and the rest sleep. From then on,
+// sleeping probes inside a wake box (an animated instance's bounds grown by a cell and the
+// self-shadow bias) turn newly awake, and sleep again when it leaves; a newly probe, having
+// converged in its frame, turns vigilant or awake. Listing a newly probe raises
+// convergence.newly, which starts the next frame's convergence rounds (ddgi_convergence). With
 // `every_probe_updates` (probe states off) the states are the same and decide what the query
 // reads, but every probe is listed to trace and blend.
 #import ddgi_volume
@@ -24,6 +26,7 @@
 @group(2) @binding(16) var<storage, read_write> probe_states: array<u32>;
 // min, max corners, two vec4 a box
 @group(2) @binding(17) var<storage, read> wake_boxes: array<vec4<f32>>;
+@group(2) @binding(22) var<storage, read_write> convergence: DdgiConvergenceWrite;
 
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
@@ -33,9 +36,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         let word = next_state(probe);
         probe_states[probe] = word;
         updates = probe_traces(word, volume.every_probe_updates);
+        if probe_is_newly(word) {
+            atomicStore(&convergence.newly, 1u);
+        }
     }
     list_if_updating(probe, updates, li);
 }
+
+// The most blends the state word counts.
+const MAX_BLENDS: u32 = (1u << (32u - PROBE_AGE_SHIFT)) - 1u;
 
 // The probe's state word for the next frame.
 fn next_state(probe: u32) -> u32 {
@@ -44,8 +53,19 @@ fn next_state(probe: u32) -> u32 {
     var near = (word & PROBE_NEAR_GEOMETRY) != 0u;
     var blends = probe_blends(word);
     if probe_traces(word, volume.every_probe_updates) {
-        // It traced and blended this frame.
-        blends = min(blends + 1u, 0xffffffu);
+        // It traced and blended this frame; a newly probe started over in its convergence
+        // rounds, each of which counts as a frame.
+        if probe_is_newly(word) {
+            blends = 1u + volume.convergence_rounds;
+        } else {
+            blends = min(blends + 1u, MAX_BLENDS);
+        }
+    }
+    // Converged in its frame (003 Listing 5): newly vigilant turns vigilant, newly awake awake.
+    if state == PROBE_NEWLY_VIGILANT {
+        state = PROBE_VIGILANT;
+    } else if state == PROBE_NEWLY_AWAKE {
+        state = PROBE_AWAKE;
     }
     // A probe that entered a tracking window is classified on its own frames.
     var fresh = probe_fresh(word);
@@ -79,8 +99,10 @@ fn next_state(probe: u32) -> u32 {
             let in_geometry = f32(backfaces) > 0.25 * f32(m);
             if in_geometry && volume.shade_probes_in_geometry == 0u {
                 state = PROBE_OFF;
-            } else if near || in_geometry {
+            } else if in_geometry {
                 state = PROBE_VIGILANT;
+            } else if near {
+                state = PROBE_NEWLY_VIGILANT;
             } else {
                 state = PROBE_SLEEPING;
             }
@@ -91,11 +113,16 @@ fn next_state(probe: u32) -> u32 {
         for (var b = 0u; b < volume.wake_box_count; b++) {
             woken = woken || (all(position >= wake_boxes[2u * b].xyz) && all(position <= wake_boxes[2u * b + 1u].xyz));
         }
-        if woken && state == PROBE_SLEEPING && volume.every_probe_updates == 0u {
-            // Whatever it held is stale: its first blend starts it from scratch.
-            blends = 0u;
+        if woken && state == PROBE_SLEEPING {
+            // Whatever it held is stale (unless every probe kept updating): its first blend
+            // starts it from scratch.
+            if volume.every_probe_updates == 0u {
+                blends = 0u;
+            }
+            state = PROBE_NEWLY_AWAKE;
+        } else {
+            state = select(PROBE_SLEEPING, PROBE_AWAKE, woken);
         }
-        state = select(PROBE_SLEEPING, PROBE_AWAKE, woken);
     }
     return state | select(0u, PROBE_NEAR_GEOMETRY, near) | (fresh << PROBE_FRESH_SHIFT) | (blends << PROBE_AGE_SHIFT);
 }

@@ -1,7 +1,8 @@
 // ddgi/ray_directions: the probe ray set (spherical Fibonacci, in trace order: see
 // octahedral::probe_ray_set), rotated by this frame's random rotation so that over frames the
-// probes see every direction.
+// probes see every direction; in a convergence round also turned by the round's angle.
 #import ddgi_volume
+#import ddgi_convergence
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(3) var<storage, read_write> directions: array<vec4<f32>>;
@@ -12,5 +13,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= volume.rays_per_probe {
         return;
     }
-    directions[id.x] = vec4<f32>(normalize(rotate_ray(ray_set[id.x].xyz)), 0.0);
+    directions[id.x] = vec4<f32>(normalize(rotate_ray(round_turn(ray_set[id.x].xyz))), 0.0);
 }

@@ -1,8 +1,7 @@
 // ddgi/resolve: indirect diffuse light at each G-buffer pixel from this probe volume, blended
-// into `indirect` (rgb: weighted sum, a: weight so far). Volumes run finest first; each takes
-// the weight the finer ones left where the point lies inside it (fading out over the last
-// grid cell before its outermost probes), and the coarsest takes all that is left, so that one
-// volume alone lights everything, as it always did. The light at a pixel, `pixel_light`, comes
+// into `indirect` (rgb: weighted sum, a: weight so far). Volumes run finest first, each taking
+// its share of the weight (volume_share in ddgi_volume), so that one volume alone lights
+// everything, as it always did. The light at a pixel, `pixel_light`, comes
 // from one of two files compiled after this one (DdgiPipelines): resolve_query.wgsl, the
 // query; or with the final gather, resolve_gather.wgsl. The query's resolve thus carries no
 // tracing code.
@@ -10,15 +9,6 @@
 #import brdf
 
 @group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
-
-// 1 inside the volume's probe box by more than a cell, falling to 0 at its outermost probes.
-fn volume_weight(p: vec3<f32>) -> f32 {
-    let last = volume.origin + vec3<f32>(volume.counts - 1u) * volume.spacing;
-    let inside = min(p - volume.origin, last - p) / volume.spacing;
-    // Axes with one probe have no extent to fade over.
-    let fade = select(saturate(inside), vec3<f32>(1.0), volume.counts == vec3<u32>(1u));
-    return fade.x * fade.y * fade.z;
-}
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) tile: vec3<u32>) {
@@ -34,10 +24,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         return;
     }
     let s = gbuffer_surface(id.xy);
-    var weight = 1.0 - sum.a;
-    if volume.volume_is_last == 0u {
-        weight *= volume_weight(s.position);
-    }
+    let weight = volume_share(s.position, sum.a);
     if weight <= 0.0 {
         textureStore(indirect, id.xy, sum);
         return;

@@ -24,6 +24,14 @@ pub const ACTIVE_RAY_GROUPS: u64 = 4;
 /// Where `active_probes` holds the indirect dispatch of the blends.
 pub const ACTIVE_BLEND_GROUPS: u64 = 16;
 
+/// Bytes of `convergence` (DdgiConvergence): the round, the newly flag, then the indirect
+/// dispatches of the convergence rounds' trace and shade (at byte 16) and blends (at byte 32).
+pub const CONVERGENCE_BYTES: u64 = 48;
+/// Where `convergence` holds the rounds' indirect dispatch of ddgi/trace and ddgi/shade.
+pub const CONVERGENCE_RAY_GROUPS: u64 = 16;
+/// Where `convergence` holds the rounds' indirect dispatch of the blends.
+pub const CONVERGENCE_BLEND_GROUPS: u64 = 32;
+
 /// Wake boxes the buffer holds; further animated instances merge into the last box.
 pub const MAX_WAKE_BOXES: usize = 64;
 
@@ -127,6 +135,7 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
             ACTIVE_PROBES_HEADER + probes * 4,
             PROBE_SETTING,
         ),
+        Allocation::storage("ddgi/convergence", CONVERGENCE_BYTES, PROBE_SETTING),
         Allocation::storage(
             "ddgi/every_probe",
             ACTIVE_PROBES_HEADER + probes * 4,
@@ -188,6 +197,8 @@ pub struct DdgiResources {
     /// shadow pass's indirect dispatch) and a GpuDdgiShadowRay a probe ray. Header only when
     /// no shadow ray is queued (DdgiSettings::queues_shadow_rays).
     pub shadow_queue: wgpu::Buffer,
+    /// The convergence pass's round and indirect dispatches (DdgiConvergence in states.wgsl).
+    pub convergence: wgpu::Buffer,
 }
 
 impl DdgiResources {
@@ -290,6 +301,12 @@ impl DdgiResources {
                 wgpu::BufferUsages::INDIRECT,
             ),
             blend_weights: storage("ddgi/blend_weights", size("ddgi/blend_weights")),
+            convergence: storage_buffer(
+                device,
+                "ddgi/convergence",
+                CONVERGENCE_BYTES,
+                wgpu::BufferUsages::INDIRECT,
+            ),
         })
     }
 
@@ -320,6 +337,7 @@ impl DdgiResources {
             .buffer("active_probes", &self.active_probes)
             .buffer("blend_weights", &self.blend_weights)
             .buffer("shadow_queue", &self.shadow_queue)
+            .buffer("convergence", &self.convergence)
             .texture("irradiance_texture", irradiance)
             .texture("distance_texture", &self.distance_view)
             .sampler("atlas_bilinear", &self.bilinear)

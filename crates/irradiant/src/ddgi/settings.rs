@@ -100,6 +100,10 @@ fn default_cascade_probes() -> [u32; 3] {
     [16, 8, 16]
 }
 
+/// Most convergence rounds (`update.convergence_rounds`) a frame: past 8 the running mean of
+/// a round's 1/9 share changes little, and each round is a dispatch of every updating probe.
+pub const MAX_CONVERGENCE_ROUNDS: u32 = 8;
+
 /// The probe update and the query (`[technique.update]`): most apply from the next frame.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, DocumentedFields)]
 pub struct DdgiUpdateSettings {
@@ -148,6 +152,14 @@ pub struct DdgiUpdateSettings {
     /// by more than 25 % / 80 %, and scene-level drops for some frames after a light or an
     /// object changes. Faster response to changes, slightly more flicker.
     pub convergence_heuristics: bool,
+    /// The convergence pass (003 §6.3): in the frame a probe wakes (newly awake) or is
+    /// classified near geometry (newly vigilant: a volume's start, a plane a tracking window
+    /// brings in), it traces this many more rounds of its rays before the normal update, as a
+    /// running mean, each round reading the light the last one gathered. Higher: such probes
+    /// reach their light in their first frame instead of over the next ones, and a plane that
+    /// enters gathers the bounces among its own probes; costs that many more traces of those
+    /// probes in that frame, and nothing in frames without one. 0: the running mean alone.
+    pub convergence_rounds: u32,
     /// Probe relocation (003 §5): during the volume's first frames, probes inside geometry
     /// move out through the nearest backface, and probes hugging a surface step away from it
     /// (never more than 45 % of the spacing, nor past the grid's outer layers). Without it,
@@ -255,6 +267,7 @@ pub const RELOCATION_FRAMES: u32 = 5;
 /// spacing, and updates every 64 frames.
 pub const MAX_CASCADES: u32 = 8;
 
+
 impl Default for DdgiSettings {
     fn default() -> Self {
         Self::balanced()
@@ -279,6 +292,7 @@ impl DdgiSettings {
         let mut s = Self::balanced();
         s.volume.rays_per_probe = 64;
         s.update.hysteresis = 0.95;
+        s.update.convergence_rounds = 1;
         s
     }
 
@@ -308,6 +322,7 @@ impl DdgiSettings {
                 distance_exponent: 50.0,
                 weights: ProbeWeights::Full,
                 convergence_heuristics: true,
+                convergence_rounds: 3,
                 relocation: true,
                 shade_probes_in_geometry: false,
                 traced_bounce: false,
@@ -412,6 +427,12 @@ impl DdgiSettings {
             ));
         }
         check_range("technique.volume.cascades", v.cascades, 0, MAX_CASCADES)?;
+        check_range(
+            "technique.update.convergence_rounds",
+            u.convergence_rounds,
+            0,
+            MAX_CONVERGENCE_ROUNDS,
+        )?;
         if v.cascades > 0 {
             check_range(
                 "technique.volume.cascade_spacing",

@@ -36,13 +36,13 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
     let slot = ray_slot(group, local_index);
     var shadow: GpuDdgiShadowRay;
     var queued = false;
-    if slot.valid {
+    if slot.valid && takes_part(probe_states[slot.probe]) {
         // LIGHT_PER_WARP: one random light for each 32 neighbouring threads (a warp) instead
         // of each ray, so that a warp's shadow rays walk to one light together rather than
         // taking turns for each light; every ray still sees each light with equal probability.
         var light_rng = ray_rng(slot.index);
         if LIGHT_PER_WARP == 1u {
-            light_rng = rng_seed(slot.group_key * 2u + local_index / 32u, volume.frame, 0x2c1b3c6du);
+            light_rng = rng_seed(slot.group_key * 2u + local_index / 32u, ray_frame(), 0x2c1b3c6du);
         }
         queued = shade_ray(slot, rand(&light_rng), &shadow);
     }
@@ -54,7 +54,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
 // Probe ray `index`'s random numbers this frame (its light choice takes the first unless
 // LIGHT_PER_WARP; emitter_light starts over from the seed).
 fn ray_rng(index: u32) -> u32 {
-    return rng_seed(index, volume.frame, 0x68bc21ebu);
+    return rng_seed(index, ray_frame(), 0x68bc21ebu);
 }
 
 // Shades one probe ray into samples[slot.index]; with SHADOW_QUEUE, leaves out the chosen

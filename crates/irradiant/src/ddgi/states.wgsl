@@ -1,17 +1,23 @@
-// ddgi: probe states (003 §6). Every probe has one u32: its state (low 2 bits), whether a
-// classification frame saw static geometry near it (bit 2), and how many frames it has blended
-// since it last started updating (bits 8 and up).
+// ddgi: probe states (003 §6, Figure 7). Every probe has one u32: its state (low 3 bits),
+// whether a classification frame saw static geometry near it (PROBE_NEAR_GEOMETRY), a fresh
+// count (PROBE_FRESH_*) and how many frames it has blended since it last started updating
+// (from PROBE_AGE_SHIFT up).
 //
-// - VIGILANT: near static geometry; traces and updates every frame. Every probe starts so.
+// - VIGILANT: near static geometry; traces and updates every frame. Every probe starts so,
+//   while the volume's first frames classify it.
 // - OFF: stuck inside static geometry even after relocation; never traces, never shades.
 // - SLEEPING: no static geometry within one grid cell, so no surface reads it; never traces,
 //   never shades.
-// - AWAKE: sleeping, but an animated instance's box (grown by a cell and the self-shadow bias)
-//   reaches it: traces and updates, starting from scratch, until the box leaves.
+// - NEWLY VIGILANT: classified near geometry this frame (the end of a volume's or an entered
+//   plane's classification); NEWLY AWAKE: sleeping, and an animated instance's box (grown by a
+//   cell and the self-shadow bias) reached it this frame, so it starts from scratch. Either
+//   traces its normal rays and, first, `convergence_rounds` more rounds of them (ddgi's
+//   convergence pass, a running mean over the rounds), then turns VIGILANT or AWAKE.
+// - AWAKE: traces and updates until the box leaves; then SLEEPING.
 //
 // A probe that enters a tracking window (ddgi/window_enter) starts vigilant with nothing
-// blended and a fresh count (bits 3–7): for that many frames it is relocated and classified on
-// its own, as every probe is in a volume's first frames.
+// blended and a fresh count: for that many frames it is relocated and classified on its own,
+// as every probe is in a volume's first frames.
 
 // PROBE_* (the state word's fields) and STATES_* (volume.state_phase) come from
 // ddgi::constants.
@@ -24,7 +30,14 @@ fn probe_state(word: u32) -> u32 {
 // Whether the probe traces rays and blends this frame.
 fn probe_updates(word: u32) -> bool {
     let state = probe_state(word);
-    return state == PROBE_VIGILANT || state == PROBE_AWAKE;
+    return state == PROBE_VIGILANT || state == PROBE_AWAKE || probe_is_newly(word);
+}
+
+// Whether the probe woke or was classified vigilant this frame: the convergence pass's rounds
+// update it.
+fn probe_is_newly(word: u32) -> bool {
+    let state = probe_state(word);
+    return state == PROBE_NEWLY_VIGILANT || state == PROBE_NEWLY_AWAKE;
 }
 
 // Whether the probe traces and blends this frame: the vigilant and awake ones, or every probe
@@ -87,4 +100,27 @@ fn folded_groups(workgroups: u32) -> vec2<u32> {
 // dispatches it does not check.
 fn folded_index(group: vec3<u32>) -> u32 {
     return group.x + group.y * WORKGROUP_FOLD;
+}
+
+// The convergence pass's state (DdgiResources::convergence): ddgi/probe_states raises `newly`
+// when it lists a newly awake or vigilant probe for the next frame; ddgi/converge_step starts
+// the rounds from it (the indirect dispatches: the updating probes' when any probe is newly,
+// else none) and counts them. Outside the rounds `round` is 0. ddgi_convergence reads it.
+struct DdgiConvergence {
+    round: u32,
+    newly: u32,
+    padding0: u32,
+    padding1: u32,
+    rays: vec4<u32>,
+    blends: vec4<u32>,
+}
+
+// ddgi/probe_states' view: many threads raise the flag.
+struct DdgiConvergenceWrite {
+    round: u32,
+    newly: atomic<u32>,
+    padding0: u32,
+    padding1: u32,
+    rays: vec4<u32>,
+    blends: vec4<u32>,
 }

@@ -91,8 +91,20 @@ pub struct GpuDdgiVolume {
     /// One past the last entering coordinate along each axis; w: the frames a probe that
     /// entered keeps being relocated and classified on its own (PROBE_FRESH_*).
     pub entering_end: [u32; 4],
+    /// A volume that follows the camera or an instance: xyz the point its blend weights centre
+    /// on (ddgi/resolve, 003 §7.4), w 1; w 0 for a volume that stays.
+    pub blend_centre: [f32; 4],
+    /// Convergence rounds recorded this frame (`update.convergence_rounds`, ddgi_convergence);
+    /// 0 in frames without them.
+    pub convergence_rounds: u32,
+    /// Pads the struct to a multiple of 16 bytes.
+    pub padding0: u32,
+    /// Padding.
+    pub padding1: u32,
+    /// Padding.
+    pub padding2: u32,
 }
-const _: () = assert!(size_of::<GpuDdgiVolume>() == 240);
+const _: () = assert!(size_of::<GpuDdgiVolume>() == 272);
 
 /// A probe ray's closest hit; `t` < 0 for a miss; `bary` is `pack2x16unorm`.
 #[repr(C)]

@@ -1,8 +1,9 @@
 // ddgi/visualize: draws every probe as a small sphere over the composed radiance. With
 // COLOUR_BY_STATE = 0 a sphere shows the irradiance it stores in the direction of its normal
 // (--show-probes); with 1 it is coloured by its state (003 §6: vigilant green, awake orange,
-// sleeping blue, off red; a tied probe magenta) and a thin line joins its grid point to where
-// relocation (003 §5) moved it (ddgi/visualize_states, the viewer's probe view).
+// sleeping blue, off red, newly vigilant pale green, newly awake yellow; a tied probe
+// magenta) and a thin line joins its grid point to where relocation (003 §5) moved it
+// (ddgi/visualize_states, the viewer's probe view).
 #import ddgi_query
 #import gbuffer
 
@@ -18,6 +19,8 @@ fn state_colour(probe: u32) -> vec3<f32> {
         case PROBE_VIGILANT: { return vec3<f32>(0.1, 0.85, 0.2); }
         case PROBE_AWAKE: { return vec3<f32>(1.0, 0.55, 0.05); }
         case PROBE_SLEEPING: { return vec3<f32>(0.15, 0.35, 1.0); }
+        case PROBE_NEWLY_VIGILANT: { return vec3<f32>(0.7, 1.0, 0.7); }
+        case PROBE_NEWLY_AWAKE: { return vec3<f32>(1.0, 0.95, 0.2); }
         default: { return vec3<f32>(0.95, 0.1, 0.1); }
     }
 }

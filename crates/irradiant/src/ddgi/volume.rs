@@ -10,8 +10,9 @@ use irradiant_scene::ProbeVolumeDesc;
 use super::constants::*;
 use super::pipelines::DdgiPipelines;
 use super::resources::{
-    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES, DdgiResources,
-    MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER, tile_sides,
+    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES,
+    CONVERGENCE_BLEND_GROUPS, CONVERGENCE_RAY_GROUPS, DdgiResources, MAX_WAKE_BOXES,
+    SHADOW_QUEUE_HEADER, tile_sides,
 };
 use super::settings::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
 use super::types::GpuDdgiVolume;
@@ -57,6 +58,14 @@ impl Boost {
     fn expired(&self) -> bool {
         self.age >= 2 * self.hold
     }
+}
+
+/// Which pass of the update a dispatch belongs to: a convergence round (only newly probes take
+/// part, dispatched from ddgi/converge_step's counts) or the normal update.
+#[derive(Clone, Copy)]
+enum Round {
+    Convergence,
+    Update,
 }
 
 /// The workgroups of each of a volume's dispatches: one function, used to record them and by
@@ -126,12 +135,14 @@ struct VolumePasses {
     relocate: BoundPass,
     window_enter: BoundPass,
     probe_states: BoundPass,
+    converge_step: BoundPass,
     blend_weights: BoundPass,
     blend_irradiance: BoundPass,
     blend_distance: BoundPass,
     resolve: BoundPass,
     visualize: BoundPass,
     visualize_states: BoundPass,
+    visualize_volumes: BoundPass,
 }
 
 /// One DDGI probe volume: its grid, atlases and buffers, the passes bound to them, and its
@@ -165,6 +176,9 @@ pub struct DdgiVolume {
     wake_box_count: u32,
     /// Whether it follows the camera, and its last step.
     window: window::Window,
+    /// Whether last frame's states pass may have made a probe newly awake or vigilant: this
+    /// frame then records the convergence rounds (`converging`).
+    newly_possible: bool,
 }
 
 /// The final gather's history this frame: `history_frames`, shortened after a scene change as
@@ -222,12 +236,14 @@ impl DdgiVolume {
                 relocate: bind(&pipelines.relocate)?,
                 window_enter: bind(&pipelines.window_enter)?,
                 probe_states: bind(&pipelines.probe_states)?,
+                converge_step: bind(&pipelines.converge_step)?,
                 blend_weights: bind(&pipelines.blend_weights)?,
                 blend_irradiance: bind(&pipelines.blend_irradiance)?,
                 blend_distance: bind(&pipelines.blend_distance)?,
                 resolve: bind(&pipelines.resolve)?,
                 visualize: bind(&pipelines.visualize)?,
                 visualize_states: bind(&pipelines.visualize_states)?,
+                visualize_volumes: bind(&pipelines.visualize_volumes)?,
             }
         };
         let diagonal = (desc.max - desc.min).length().max(1e-3);
@@ -249,6 +265,7 @@ impl DdgiVolume {
             wake_boxes: Some(dynamic_bounds),
             wake_box_count: 0,
             window: window::Window::new(desc.follow.clone()),
+            newly_possible: false,
         };
         volume.set_settings(settings);
         Ok(volume)
@@ -306,6 +323,18 @@ impl DdgiVolume {
             STATES_CLASSIFY_LAST
         } else {
             STATES_CLASSIFIED
+        }
+    }
+
+    /// Convergence rounds this frame records: `update.convergence_rounds` where last frame
+    /// may have made a probe newly awake or vigilant, else none. Newly probes come only from
+    /// the end of a classification (the volume's, or an entered plane's) and from wake boxes,
+    /// so a still scene pays nothing.
+    fn convergence_rounds(&self) -> u32 {
+        if self.newly_possible {
+            self.settings.update.convergence_rounds
+        } else {
+            0
         }
     }
 
@@ -413,6 +442,11 @@ impl DdgiVolume {
             phase_z: g.phase.z,
             entering_start: self.window.entering_start(),
             entering_end: self.window.entering_end(),
+            blend_centre: self.window.blend_centre(),
+            convergence_rounds: self.convergence_rounds(),
+            padding0: 0,
+            padding1: 0,
+            padding2: 0,
         }
     }
 
@@ -469,42 +503,29 @@ impl DdgiVolume {
             self.states_pending = false;
         }
         self.record_window_enter(encoder, profiler.as_deref_mut());
-        let r = &self.resources;
-        let (p, d) = (&self.passes, &self.dispatches);
-        p.ray_directions
-            .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
-        if let Some(trace) = &p.trace {
-            trace.dispatch_indirect(
-                encoder,
-                profiler.as_deref_mut(),
-                &r.active_probes,
-                ACTIVE_RAY_GROUPS,
-            );
+        let rounds = self.convergence_rounds();
+        for _ in 0..rounds {
+            self.passes
+                .converge_step
+                .dispatch(encoder, profiler.as_deref_mut(), Workgroups::linear(1));
+            self.record_rays(encoder, profiler.as_deref_mut(), Round::Convergence);
+            self.record_blend_of(encoder, profiler.as_deref_mut(), Round::Convergence);
         }
-        if p.shadow.is_some() {
-            encoder.clear_buffer(&r.shadow_queue, 0, Some(SHADOW_QUEUE_HEADER));
+        if rounds > 0 {
+            // Back to round 0 for the normal update.
+            self.passes
+                .converge_step
+                .dispatch(encoder, profiler.as_deref_mut(), Workgroups::linear(1));
         }
-        p.shade.dispatch_indirect(
-            encoder,
-            profiler.as_deref_mut(),
-            &r.active_probes,
-            ACTIVE_RAY_GROUPS,
-        );
-        if let Some(shadow) = &p.shadow {
-            shadow.dispatch_indirect(
-                encoder,
-                profiler.as_deref_mut(),
-                &self.resources.shadow_queue,
-                4,
-            );
-        }
+        self.record_rays(encoder, profiler.as_deref_mut(), Round::Update);
         if self.relocation_mode() != 0 {
             if self.relocating() && self.relocation_pending {
                 encoder.clear_buffer(&self.resources.offsets, 0, None);
                 self.relocation_pending = false;
             }
-            p.relocate
-                .dispatch(encoder, profiler.as_deref_mut(), d.probes);
+            self.passes
+                .relocate
+                .dispatch(encoder, profiler.as_deref_mut(), self.dispatches.probes);
         }
         self.record_blend(encoder, profiler.as_deref_mut());
         // The states pass lists the next frame's updating probes afresh.
@@ -512,6 +533,11 @@ impl DdgiVolume {
         self.passes
             .probe_states
             .dispatch(encoder, profiler, self.dispatches.probes);
+        // This frame's states pass ends a classification on its last frame (the volume's, or
+        // an entered plane's), and wakes probes while a wake box stands.
+        self.newly_possible = self.state_phase() == STATES_CLASSIFY_LAST
+            || self.window.fresh_frames > 0
+            || self.wake_box_count > 0;
         self.frame += 1;
         self.window.fresh_frames = self.window.fresh_frames.saturating_sub(1);
         for boost in &mut self.boosts {
@@ -520,28 +546,71 @@ impl DdgiVolume {
         self.boosts.retain(|b| !b.expired());
     }
 
-    /// Records only the blend passes, borders included, and the atlases' copies into the
-    /// textures the query samples (tests feed the rays themselves).
-    pub fn record_blend(
+    /// Records a round's rays: directions, trace, shade, (shadow).
+    fn record_rays(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         mut profiler: Option<&mut Profiler>,
+        round: Round,
     ) {
         let (p, d, r) = (&self.passes, &self.dispatches, &self.resources);
+        let (groups, offset) = self.indirect_rays(round);
+        p.ray_directions
+            .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
+        if let Some(trace) = &p.trace {
+            trace.dispatch_indirect(encoder, profiler.as_deref_mut(), groups, offset);
+        }
+        if p.shadow.is_some() {
+            encoder.clear_buffer(&r.shadow_queue, 0, Some(SHADOW_QUEUE_HEADER));
+        }
+        p.shade
+            .dispatch_indirect(encoder, profiler.as_deref_mut(), groups, offset);
+        if let Some(shadow) = &p.shadow {
+            shadow.dispatch_indirect(encoder, profiler, &r.shadow_queue, 4);
+        }
+    }
+
+    /// The indirect dispatch of a round's trace and shade: the list of updating probes', or
+    /// in a convergence round the one ddgi/converge_step wrote.
+    fn indirect_rays(&self, round: Round) -> (&wgpu::Buffer, u64) {
+        match round {
+            Round::Update => (&self.resources.active_probes, ACTIVE_RAY_GROUPS),
+            Round::Convergence => (&self.resources.convergence, CONVERGENCE_RAY_GROUPS),
+        }
+    }
+
+    /// Records only ddgi/probe_states (tests write the states and rays it reads): each probe's
+    /// next state, and the next frame's list of updating probes.
+    pub fn record_probe_states(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.clear_buffer(&self.resources.active_probes, 0, Some(ACTIVE_PROBES_HEADER));
+        self.passes
+            .probe_states
+            .dispatch(encoder, None, self.dispatches.probes);
+    }
+
+    /// Records only the blend passes, borders included, and the atlases' copies into the
+    /// textures the query samples (tests feed the rays themselves).
+    pub fn record_blend(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
+        self.record_blend_of(encoder, profiler, Round::Update);
+    }
+
+    fn record_blend_of(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+        round: Round,
+    ) {
+        let (p, d, r) = (&self.passes, &self.dispatches, &self.resources);
+        let (groups, offset) = match round {
+            Round::Update => (&r.active_probes, ACTIVE_BLEND_GROUPS),
+            Round::Convergence => (&r.convergence, CONVERGENCE_BLEND_GROUPS),
+        };
         p.blend_weights
             .dispatch(encoder, profiler.as_deref_mut(), d.blend_weights);
-        p.blend_irradiance.dispatch_indirect(
-            encoder,
-            profiler.as_deref_mut(),
-            &r.active_probes,
-            ACTIVE_BLEND_GROUPS,
-        );
-        p.blend_distance.dispatch_indirect(
-            encoder,
-            profiler,
-            &r.active_probes,
-            ACTIVE_BLEND_GROUPS,
-        );
+        p.blend_irradiance
+            .dispatch_indirect(encoder, profiler.as_deref_mut(), groups, offset);
+        p.blend_distance
+            .dispatch_indirect(encoder, profiler, groups, offset);
         copy_atlas_to_texture(
             encoder,
             &r.irradiance,
@@ -569,11 +638,13 @@ impl DdgiVolume {
     }
 
     /// Records ddgi/visualize: probes drawn as spheres into the composed radiance, lit by
-    /// their irradiance or coloured by their state (`view`).
+    /// their irradiance or coloured by their state, or each pixel coloured by the volumes that
+    /// light it (`view`; the technique records its volumes finest first).
     pub fn record_visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {
         let pass = match view {
             ProbeView::Light => &self.passes.visualize,
             ProbeView::States => &self.passes.visualize_states,
+            ProbeView::Volumes => &self.passes.visualize_volumes,
         };
         pass.dispatch(encoder, None, self.dispatches.image);
     }

@@ -74,6 +74,47 @@ struct GpuDdgiVolume {
     // xyz one past the last entering coordinate, w the frames an entered probe is relocated and
     // classified on its own (PROBE_FRESH_*)
     entering_end: vec4<u32>,
+    // a volume that follows the camera or an instance: xyz the point its blend weights centre
+    // on (ddgi/resolve, 003 §7.4), w 1; w 0 for a volume that stays
+    blend_centre: vec4<f32>,
+    // convergence rounds recorded this frame (ddgi_convergence); 0 in frames without them
+    convergence_rounds: u32,
+    padding0: u32,
+    padding1: u32,
+    padding2: u32,
+}
+
+// 1 inside the volume's probe box by more than a cell, falling to 0 at its outermost probes
+// (003 §7.4). For a volume that follows the camera or an instance, the same box tightened by a
+// cell and centred on the target (blend_centre): a plane that leapfrogs ahead of the camera
+// then lights nothing at once, and points pass from a coarser volume to this one gradually
+// as the target comes near them, not when the window steps. The window keeps its centre
+// within ¾ of a cell of the target (ProbeGrid::cells_to_centre), so the tightened box stays
+// inside the probes.
+fn volume_weight(p: vec3<f32>) -> f32 {
+    var inside: vec3<f32>;
+    if volume.blend_centre.w != 0.0 {
+        let half = vec3<f32>(volume.counts - 1u) * volume.spacing * 0.5;
+        inside = (half - volume.spacing - abs(p - volume.blend_centre.xyz)) / volume.spacing;
+    } else {
+        let last = volume.origin + vec3<f32>(volume.counts - 1u) * volume.spacing;
+        inside = min(p - volume.origin, last - p) / volume.spacing;
+    }
+    // Axes with one probe have no extent to fade over.
+    let fade = select(saturate(inside), vec3<f32>(1.0), volume.counts == vec3<u32>(1u));
+    return fade.x * fade.y * fade.z;
+}
+
+// The share of a point's light this volume gives, when the finer volumes gave `taken`: the
+// weight they left where the point lies inside it (volume_weight), and all that is left for
+// the coarsest, so that the shares add up to 1 (003 §7.4: densest first, until the weights
+// reach 1).
+fn volume_share(p: vec3<f32>, taken: f32) -> f32 {
+    var share = max(1.0 - taken, 0.0);
+    if volume.volume_is_last == 0u {
+        share *= volume_weight(p);
+    }
+    return share;
 }
 
 // Whether the pixels of image tile `tile` (IMAGE_TILE pixels a side: one workgroup, so that

@@ -43,6 +43,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))
             .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
             .with("ddgi_states", include_str!("../ddgi/states.wgsl"))
+            .with("ddgi_convergence", include_str!("../ddgi/convergence.wgsl"))
             .with("ddgi_active", include_str!("../ddgi/active.wgsl"))
             .with("ddgi_active_list", include_str!("../ddgi/active_list.wgsl"))
             .with("ssil_common", include_str!("../ssil/common.wgsl"))

@@ -15,13 +15,33 @@ pub struct ProbeStateCounts {
     pub sleeping: u32,
     /// Sleeping probes that an animated instance woke.
     pub awake: u32,
+    /// Classified near geometry in the last frame: converge in the next, then vigilant.
+    pub newly_vigilant: u32,
+    /// Woken in the last frame: converge in the next, then awake.
+    pub newly_awake: u32,
 }
 
 impl ProbeStateCounts {
-    /// Probes whose state updates (vigilant and awake): those the query reads, and with probe
-    /// states on those that trace (with them off every probe traces).
+    /// Probes whose state updates (vigilant and awake, newly or not): those the query reads,
+    /// and with probe states on those that trace (with them off every probe traces).
     pub fn updating(&self) -> u32 {
-        self.vigilant + self.awake
+        self.vigilant + self.awake + self.newly_vigilant + self.newly_awake
+    }
+
+    /// The counts of a list of state words.
+    pub fn of(words: &[u32]) -> Self {
+        let mut counts = Self::default();
+        for word in words {
+            match word & PROBE_STATE_MASK {
+                PROBE_VIGILANT => counts.vigilant += 1,
+                PROBE_OFF => counts.off += 1,
+                PROBE_SLEEPING => counts.sleeping += 1,
+                PROBE_AWAKE => counts.awake += 1,
+                PROBE_NEWLY_VIGILANT => counts.newly_vigilant += 1,
+                _ => counts.newly_awake += 1,
+            }
+        }
+        counts
     }
 }
 
@@ -43,16 +63,7 @@ impl DdgiVolume {
     /// How many probes are in each state (003 §6), read back from the GPU.
     pub fn read_state_counts(&self, ctx: &GpuContext) -> Result<ProbeStateCounts, RenderError> {
         let words: Vec<u32> = read_buffer_as(ctx, &self.resources.states)?;
-        let mut counts = ProbeStateCounts::default();
-        for word in &words[..self.grid.probe_count as usize] {
-            match word & PROBE_STATE_MASK {
-                PROBE_VIGILANT => counts.vigilant += 1,
-                PROBE_OFF => counts.off += 1,
-                PROBE_SLEEPING => counts.sleeping += 1,
-                _ => counts.awake += 1,
-            }
-        }
-        Ok(counts)
+        Ok(ProbeStateCounts::of(&words[..self.grid.probe_count as usize]))
     }
 
     /// The atlases, decoded: irradiance as cosine-weighted mean radiance (rgb), distance as
@@ -83,8 +94,7 @@ impl DdgiVolume {
                 let offset = Vec3::from_slice(&offsets[p as usize][..3]);
                 let state = states[p as usize] & PROBE_STATE_MASK;
                 let updates = !self.settings.speed.probe_states
-                    || state == PROBE_VIGILANT
-                    || state == PROBE_AWAKE;
+                    || !matches!(state, PROBE_OFF | PROBE_SLEEPING);
                 (self.grid.probe_position(p) + offset, updates)
             })
             .collect())

@@ -23,6 +23,8 @@ pub(super) struct Window {
     entering: Option<EnteringPlanes>,
     /// Frames left in which the probes that last entered are relocated on their own.
     pub fresh_frames: u32,
+    /// Where the target stood at the last `follow`: the blend weights centre on it.
+    target: Option<Vec3>,
 }
 
 impl Window {
@@ -39,6 +41,14 @@ impl Window {
         match &self.entering {
             Some(p) => p.start.extend(1).to_array(),
             None => [0; 4],
+        }
+    }
+
+    /// `GpuDdgiVolume::blend_centre`: the target, w 1, for a window that has one.
+    pub fn blend_centre(&self) -> [f32; 4] {
+        match (&self.follow, self.target) {
+            (Some(_), Some(t)) => t.extend(1.0).to_array(),
+            _ => [0.0; 4],
         }
     }
 
@@ -80,6 +90,7 @@ impl DdgiVolume {
                 None => return,
             },
         };
+        self.window.target = Some(target);
         let cells = self.grid.cells_to_centre(target);
         if cells == glam::IVec3::ZERO {
             return;
