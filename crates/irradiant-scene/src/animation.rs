@@ -171,7 +171,7 @@ mod tests {
         let mut scene = crate::builtin::builtin("cornell").unwrap();
         crate::manifest::Manifest::parse(manifest, path, &mut Vec::new())
             .unwrap()
-            .apply(&mut scene, path)
+            .apply(&mut scene, path, Vec::new())
             .unwrap();
         let rest = scene.camera.clone();
         assert_eq!(scene.pose_at(0.0).camera, rest);

@@ -46,7 +46,17 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "dense-cluster",
         "a room with 330 000 tiny triangles packed into 4 cm on a table: the deep-tree bench",
     ),
+    (
+        "terrain",
+        "480 m of ground under a sky, flat within 150 m of the middle, hills around: the large world's floor",
+    ),
+    (
+        "tunnel",
+        "an 80 m tunnel with five lamps and glowing strips: the large world's dark passage",
+    ),
 ];
+
+mod world;
 
 /// The built-in scene called `name` (one of [`BUILTIN_SCENES`]), made anew; `None` for
 /// any other name.
@@ -62,6 +72,8 @@ pub fn builtin(name: &str) -> Option<Scene> {
         "furnace" => Some(furnace()),
         "glowing-box" => Some(glowing_box()),
         "dense-cluster" => Some(dense_cluster()),
+        "terrain" => Some(world::terrain()),
+        "tunnel" => Some(world::tunnel()),
         _ => None,
     }
 }

@@ -15,6 +15,7 @@ mod gltf_load;
 mod manifest;
 mod model;
 mod obj;
+mod place;
 mod textures;
 mod validate;
 
@@ -32,6 +33,7 @@ pub use manifest::{
     ProbeVolumeManifest, RegionDesc,
 };
 pub use model::*;
+pub use place::PlaceDesc;
 pub use textures::{MAX_TEXTURE_SIDE, decode_texture};
 pub use validate::{MAX_PROBES_PER_AXIS, validate};
 
@@ -61,7 +63,13 @@ pub fn load(spec: &str) -> Result<Loaded> {
                 Some(scene) => scene,
                 None => load_mesh_file(&manifest.mesh_path(path), &mut warnings)?,
             };
-            manifest.apply(&mut scene, path)?;
+            let placed = (manifest.places.iter())
+                .map(|place| match builtin(&place.path) {
+                    Some(scene) => Ok(scene),
+                    None => load_mesh_file(&manifest::relative_to(path, &place.path), &mut warnings),
+                })
+                .collect::<Result<Vec<_>>>()?;
+            manifest.apply(&mut scene, path, placed)?;
             scene
         }
         Some(_) => load_mesh_file(path, &mut warnings)?,

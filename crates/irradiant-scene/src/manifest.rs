@@ -37,6 +37,7 @@ use glam::{Mat3, Mat4, UVec3, Vec3};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, SceneError};
+use crate::place::PlaceDesc;
 use crate::model::{
     Animation, AnimationTarget, Camera, Follow, Instance, Light, LightKind, Mesh, ProbeVolumeDesc,
     Region, Scene, Tracks,
@@ -74,6 +75,9 @@ pub struct Manifest {
     /// Changes to the mesh file's materials, by name (glossy and mirror variants of a scene).
     #[serde(default, rename = "material", skip_serializing_if = "Vec::is_empty")]
     pub materials: Vec<MaterialDesc>,
+    /// More meshes placed in the world (`[[place]]` tables): a world made of several files.
+    #[serde(default, rename = "place", skip_serializing_if = "Vec::is_empty")]
+    pub places: Vec<PlaceDesc>,
     /// Keyframed animations (`[[animation]]` tables).
     #[serde(default, rename = "animation", skip_serializing_if = "Vec::is_empty")]
     pub animations: Vec<AnimationDesc>,
@@ -286,8 +290,7 @@ impl Manifest {
 
     /// Where the mesh file lies: relative paths are relative to the manifest's folder.
     pub fn mesh_path(&self, manifest_path: &Path) -> PathBuf {
-        let base = manifest_path.parent().unwrap_or(Path::new("."));
-        base.join(&self.mesh.path)
+        relative_to(manifest_path, &self.mesh.path)
     }
 
     /// Copies the scene's instances on `repeat`'s grid.
@@ -332,8 +335,9 @@ impl Manifest {
         Ok(())
     }
 
-    /// Applies everything but the mesh to a loaded scene.
-    pub fn apply(&self, scene: &mut Scene, path: &Path) -> Result<()> {
+    /// Applies everything but the mesh to a loaded scene; `placed` are the `[[place]]`
+    /// tables' scenes, loaded, in order.
+    pub fn apply(&self, scene: &mut Scene, path: &Path, placed: Vec<Scene>) -> Result<()> {
         if let Some(name) = &self.name {
             scene.name = name.clone();
         }
@@ -348,6 +352,10 @@ impl Manifest {
         if self.mesh.flatten == Some(true) {
             flatten(scene, path)?;
         }
+        for (desc, placed) in self.places.iter().zip(placed) {
+            desc.check(path, &self.places)?;
+            crate::place::merge(scene, placed, desc);
+        }
         if let Some(c) = &self.camera {
             scene.camera = Camera {
                 position: c.position.into(),
@@ -355,7 +363,10 @@ impl Manifest {
                 up: c.up.map(Vec3::from).unwrap_or(Vec3::Y),
                 fov_y_degrees: c.fov_y_degrees.unwrap_or(Camera::default().fov_y_degrees),
             };
-        } else if self.mesh.scale.is_some() || self.mesh.translation.is_some() {
+        } else if self.mesh.scale.is_some()
+            || self.mesh.translation.is_some()
+            || !self.places.is_empty()
+        {
             scene.camera = crate::framing::camera_for_bounds(scene);
         }
         if let Some(sky) = self.sky {
@@ -614,4 +625,9 @@ fn apply_material(scene: &mut Scene, m: &MaterialDesc, path: &Path) -> Result<()
         material.emission = check3("emission", e, 1e6)?;
     }
     Ok(())
+}
+
+/// A path a manifest names, relative to the manifest's folder.
+pub fn relative_to(manifest_path: &Path, path: &str) -> PathBuf {
+    manifest_path.parent().unwrap_or(Path::new(".")).join(path)
 }

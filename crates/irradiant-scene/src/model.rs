@@ -379,6 +379,18 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// Seconds until the last key of any animation: how long the scene plays (0 when still).
+    pub fn animation_length(&self) -> f32 {
+        (self.animations.iter())
+            .flat_map(|a| {
+                let t = &a.tracks;
+                (t.translation.iter().map(|k| k.0))
+                    .chain(t.intensity_scale.iter().map(|k| k.0))
+                    .chain(t.rotation_y_degrees.iter().map(|k| k.0))
+            })
+            .fold(0.0, f32::max)
+    }
+
     /// Feeds everything that shapes what the scene looks like into `h`: geometry, materials,
     /// textures, instances and sky (lights and transforms come with a pose). Caches of
     /// rendered or baked data key on it, so that a changed scene never reads a stale entry.

@@ -188,3 +188,50 @@ fn repeat_copies_instances_and_flatten_merges_them() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `[[place]]` tables merge more scenes into the manifest's: their instances and lights moved
+/// into place and named after the placement, their materials still theirs; a bad placement is
+/// refused by name.
+#[test]
+fn places_merge_scenes_into_one_world() {
+    let dir = std::env::temp_dir().join(format!("irradiant-place-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let load = |places: &str| {
+        let path = dir.join("world.toml");
+        std::fs::write(&path, format!("[mesh]\npath = \"cornell\"\n{places}")).unwrap();
+        irradiant_scene::load(path.to_str().unwrap()).map(|l| l.scene)
+    };
+    let cornell = irradiant_scene::load("cornell").unwrap().scene;
+    let rooms = irradiant_scene::load("two-rooms").unwrap().scene;
+    let world = load(
+        "[[place]]\nname = \"east\"\npath = \"two-rooms\"\nscale = 2.0\nrotation_y_degrees = 90.0\ntranslation = [100.0, 0.0, 0.0]\n",
+    )
+    .unwrap();
+    assert_eq!(world.instances.len(), cornell.instances.len() + rooms.instances.len());
+    assert_eq!(world.triangle_count(), cornell.triangle_count() + rooms.triangle_count());
+    let placed = world.instances.last().unwrap();
+    assert_eq!(placed.name, format!("east/{}", rooms.instances[0].name));
+    // Its triangles keep their own materials, past the Cornell box's.
+    let mesh = &world.meshes[placed.mesh as usize];
+    let names: Vec<&str> = (mesh.triangle_materials.iter())
+        .map(|&m| world.materials[m as usize].name.as_str())
+        .collect();
+    assert!(names.iter().all(|n| ["plaster", "floor"].contains(n)), "{names:?}");
+    // The lamp at (-2, 2.5, 0): doubled, turned 90° about y ((x, z) → (z, −x)), moved 100 m.
+    let lamp = world.lights.iter().find(|l| l.name == "east/lamp").unwrap();
+    assert!(
+        lamp.position.abs_diff_eq(glam::Vec3::new(100.0, 5.0, 4.0), 1e-4),
+        "{}",
+        lamp.position
+    );
+    for (places, says) in [
+        ("[[place]]\nname = \"a\"\npath = \"cornell\"\n[[place]]\nname = \"a\"\npath = \"cornell\"\n", "used twice"),
+        ("[[place]]\nname = \"\"\npath = \"cornell\"\n", "non-empty"),
+        ("[[place]]\nname = \"a\"\npath = \"cornell\"\nscale = 0.0\n", "scale"),
+        ("[[place]]\nname = \"a\"\npath = \"missing.obj\"\n", "missing.obj"),
+    ] {
+        let message = load(places).unwrap_err().to_string();
+        assert!(message.contains(says), "{places}: {message}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
