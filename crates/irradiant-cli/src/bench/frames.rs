@@ -22,7 +22,8 @@ pub struct FrameRecord {
     pub rays_per_probe: u32,
     /// The technique as the command line named it, with the --vary values it took.
     pub variant: String,
-    /// The camera while timed: "still", or "moving" (`--moving-camera`).
+    /// The camera while timed: "still", "moving" (`--moving-camera`) or "path"
+    /// (`--camera-path`).
     pub camera: &'static str,
     /// Every probe's rays a frame (probes × rays per probe): the paper's Table 2 count.
     pub rays: u64,
@@ -42,8 +43,11 @@ pub struct FrameRecord {
     pub update_mrays_per_s: f64,
     /// Rays actually traced ÷ update time (lower than the above when probes sleep).
     pub update_traced_mrays_per_s: f64,
-    /// Update + resolve: all of the frame's GI work.
+    /// Update + resolve: all of the frame's GI work (the sum of the passes' medians).
     pub gi_ms: f64,
+    /// The largest update + resolve of any one timed frame (along a camera path: the frames
+    /// where windows step or probes wake).
+    pub gi_worst_ms: f64,
     /// Every pass of the frame.
     pub frame_ms: f64,
     /// What the technique reports about its last frame.
@@ -59,6 +63,9 @@ pub struct FrameBench<'a> {
     pub taa: bool,
     /// Sway the camera every frame (`bench --moving-camera`).
     pub moving_camera: bool,
+    /// Play the scene's animation over this many seconds, spread over the timed frames
+    /// (`bench --camera-path`).
+    pub path_length: Option<f32>,
     pub iterations: u32,
     /// Which run over the scene list this is (`bench --check-order`).
     pub order: &'static str,
@@ -87,8 +94,19 @@ impl FrameBench<'_> {
         let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
         let (warm_start, mut warm_runs, mut timed) = (Instant::now(), 0, 0);
         let still = session.camera().clone();
+        let labels = session.technique().passes();
+        let gi_labels: Vec<String> = labels.update.iter().chain(&labels.resolve).map(|l| l.to_string()).collect();
+        let mut gi_worst = 0.0f64;
         while timed < self.iterations {
-            if self.moving_camera {
+            if let Some(length) = self.path_length {
+                // Warm-up at the path's start; then each timed frame a step along it.
+                let along = if warmup.done(warm_runs, warm_start) {
+                    (timed as f32 + 0.5) / self.iterations as f32
+                } else {
+                    0.0
+                };
+                session.seek(along * length);
+            } else if self.moving_camera {
                 let turn = if (warm_runs + timed) % 2 == 0 {
                     1e-2_f32
                 } else {
@@ -102,6 +120,11 @@ impl FrameBench<'_> {
                 continue;
             }
             timed += 1;
+            let gi: f64 = (timings.iter())
+                .filter(|t| gi_labels.iter().any(|l| *l == t.label))
+                .map(|t| t.milliseconds)
+                .sum();
+            gi_worst = gi_worst.max(gi);
             // A label recorded several times in a frame (a pass per probe volume or per
             // level) counts once, as the sum of its dispatches.
             let mut frame: Vec<(String, f64)> = Vec::new();
@@ -126,7 +149,6 @@ impl FrameBench<'_> {
             })
             .collect();
         let ms = |label: &str| passes.iter().find(|(l, _)| l == label).map_or(0.0, |p| p.1);
-        let labels = session.technique().passes();
         let update: f64 = labels.update.iter().map(|l| ms(l)).sum();
         let resolve: f64 = labels.resolve.iter().map(|l| ms(l)).sum();
         let counters = session.technique().counters(session.ctx())?;
@@ -168,7 +190,9 @@ impl FrameBench<'_> {
             probes,
             rays_per_probe,
             variant: spec.name.clone(),
-            camera: if self.moving_camera {
+            camera: if self.path_length.is_some() {
+                "path"
+            } else if self.moving_camera {
                 "moving"
             } else {
                 "still"
@@ -182,6 +206,7 @@ impl FrameBench<'_> {
             update_mrays_per_s: rate(rays, update),
             update_traced_mrays_per_s: rate(traced, update),
             gi_ms: update + resolve,
+            gi_worst_ms: gi_worst,
             frame_ms: passes.iter().map(|p| p.1).sum(),
             counters: counters
                 .iter()

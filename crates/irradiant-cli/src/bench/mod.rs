@@ -84,6 +84,11 @@ pub struct BenchArgs {
     /// history, and every running mean restarts, as in a game.
     #[arg(long)]
     pub moving_camera: bool,
+    /// Time frames as the scene's animation plays (a manifest's camera path, moving lights and
+    /// instances), the timed frames spread evenly over its length: the medians are along the
+    /// path, and the worst frame's GI is reported too. Takes precedence over --moving-camera.
+    #[arg(long)]
+    pub camera_path: bool,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -301,6 +306,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 size,
                 taa: !args.no_taa,
                 moving_camera: args.moving_camera,
+                path_length: args.camera_path.then(|| scene.animation_length()),
                 iterations,
                 order,
             };

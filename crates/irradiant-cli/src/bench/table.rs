@@ -74,8 +74,11 @@ fn frame_table(records: &[FrameRecord]) {
         .iter()
         .map(|l| l.split_once('/').map_or(*l, |(_, stage)| stage))
         .collect();
-    if records.iter().any(|r| r.camera != "still") {
+    if records.iter().any(|r| r.camera == "moving") {
         println!("\n(timed with the camera moving every frame)");
+    }
+    if records.iter().any(|r| r.camera == "path") {
+        println!("\n(timed along the scene's camera path; GI ms is the sum of the passes' medians)");
     }
     print!(
         "\n{:<10} {:<14} {:<10} {:>5} {:<28} {:>9}",
@@ -114,6 +117,12 @@ fn frame_table(records: &[FrameRecord]) {
             d.gi_ms,
             d.frame_ms,
             d.updating_probes
+        );
+    }
+    for d in records.iter().filter(|d| d.camera == "path") {
+        println!(
+            "{} {} {}: GI in the worst frame of the path {:.3} ms",
+            d.scene, d.technique, d.variant, d.gi_worst_ms
         );
     }
     // What the techniques reported (bake time and memory, agreement, probe states).
