@@ -169,6 +169,25 @@ pub fn technique_list(lists: &[String]) -> Result<Vec<TechniqueChoice>, CliError
     Ok(choices)
 }
 
+/// `spec` as `scene` runs it: the manifest's `[technique]` table under the spec's own settings
+/// where it names the same technique (as `render` and `compare` lay it), else `spec` as it is.
+pub fn under_scene_table(spec: &TechniqueSpec, scene: &Scene) -> TechniqueSpec {
+    let Some(toml::Value::Table(table)) = scene.settings.get("technique") else {
+        return spec.clone();
+    };
+    if table.get("name").and_then(|n| n.as_str()) != Some(spec.name.as_str()) {
+        return spec.clone();
+    }
+    let mut settings = table.clone();
+    settings.remove("name");
+    settings.remove("preset");
+    merge(&mut settings, &spec.settings);
+    TechniqueSpec {
+        settings,
+        ..spec.clone()
+    }
+}
+
 /// `over` merged into `base`, table by table.
 fn merge(base: &mut toml::Table, over: &toml::Table) {
     for (key, value) in over {
@@ -465,5 +484,24 @@ mod tests {
         );
         assert!(parse_size("big").unwrap_err().contains("WIDTHxHEIGHT"));
         assert!(parse_size("12x-3").is_err());
+    }
+
+    /// A manifest's `[technique]` table lies under a bench spec of the same technique, the
+    /// spec's own keys winning; another technique's spec is left alone.
+    #[test]
+    fn a_scenes_technique_table_lies_under_a_spec_of_its_technique() {
+        let mut scene = Scene::default();
+        scene.settings = toml::from_str(
+            "[technique]\nname = \"ddgi\"\n[technique.volume]\ncascades = 3\nrays_per_probe = 64",
+        )
+        .unwrap();
+        let mut spec = TechniqueSpec::new("ddgi", Preset::Balanced);
+        spec.settings = toml::from_str("[volume]\nrays_per_probe = 128").unwrap();
+        let laid = under_scene_table(&spec, &scene);
+        assert_eq!(laid.settings["volume"]["cascades"].as_integer(), Some(3));
+        assert_eq!(laid.settings["volume"]["rays_per_probe"].as_integer(), Some(128));
+        assert!(!laid.settings.contains_key("name"));
+        let other = TechniqueSpec::new("ssil", Preset::Balanced);
+        assert_eq!(under_scene_table(&other, &scene), other);
     }
 }

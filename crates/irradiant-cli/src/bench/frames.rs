@@ -52,6 +52,8 @@ pub struct FrameRecord {
     pub frame_ms: f64,
     /// What the technique reports about its last frame.
     pub counters: Vec<(String, f64)>,
+    /// GPU memory the technique allocates (its plan: probe atlases, ray buffers, …), MiB.
+    pub technique_mib: f64,
 }
 
 /// What every timed frame shares.
@@ -158,6 +160,8 @@ impl FrameBench<'_> {
                 .find(|c: &&Counter| c.name == name)
                 .map_or(0.0, |c| c.value)
         };
+        let planned = irradiant::registry::find(&spec.name)?.plan(spec, self.scene, self.size)?;
+        let technique_mib = planned.iter().map(|a| a.bytes as f64).sum::<f64>() / (1024.0 * 1024.0);
         let rays = counter("probe_rays");
         let traced = counter("traced_rays");
         let trace_ms: f64 = labels
@@ -207,6 +211,7 @@ impl FrameBench<'_> {
             update_traced_mrays_per_s: rate(traced, update),
             gi_ms: update + resolve,
             gi_worst_ms: gi_worst,
+            technique_mib,
             frame_ms: passes.iter().map(|p| p.1).sum(),
             counters: counters
                 .iter()

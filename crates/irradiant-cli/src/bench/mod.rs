@@ -66,8 +66,9 @@ pub struct BenchArgs {
     #[arg(long)]
     pub stack_in_workgroup: bool,
     /// Also time the real-time frame of each of these techniques, comma-separated (`all`:
-    /// every registered one), each at its balanced preset and the scene's own probe volumes
-    /// unless its braces say otherwise: `ddgi{preset = "quality"}`,
+    /// every registered one), each at its balanced preset and the scene's own probe volumes,
+    /// under the manifest's `[technique]` table where it names the technique, unless its braces
+    /// say otherwise: `ddgi{preset = "quality"}`,
     /// `ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256}`.
     #[arg(long)]
     pub techniques: Vec<String>,
@@ -316,7 +317,8 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 ..warmup
             };
             for (choice, spec) in techniques.iter().zip(&technique_specs) {
-                let mut r = frames.time(spec, frame_warmup)?;
+                let spec = crate::options::under_scene_table(spec, &scene);
+                let mut r = frames.time(&spec, frame_warmup)?;
                 r.variant = choice.label.clone();
                 record.techniques.push(r);
             }

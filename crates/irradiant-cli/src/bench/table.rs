@@ -133,11 +133,12 @@ fn frame_table(records: &[FrameRecord]) {
             .map(|(name, value)| format!("{name} {value:.4}"))
             .collect();
         println!(
-            "{} {} {}: {}",
+            "{} {} {}: {}, memory {:.1} MiB",
             d.scene,
             d.technique,
             d.variant,
-            counters.join(", ")
+            counters.join(", "),
+            d.technique_mib
         );
     }
 }

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Runs on the lent NVIDIA machine: issue 39's large world (scenes/world/world.toml) along its
+# camera path, in one call. `bench`: GI at 1920×1080 along the path for three cascades (the
+# scene's default), one dense and one sparse volume over the world, the convergence rounds and
+# the probe states on and off, and Sibenik's sleeping savings; `quality`: FLIP along the path
+# against path-traced frames, cascades against the dense volume. Expects .dev/ as
+# tools/device/pack.sh lays it out; writes into $OUT.
+set -euo pipefail
+source "$(dirname "$0")/setup.sh"
+cd .dev/repo
+bin=../irradiant
+world=scenes/world/world.toml
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
+dense='ddgi{volume.cascades = 0, volume.probe_counts = [120, 8, 120]}'
+sparse='ddgi{volume.cascades = 0, volume.probe_counts = [60, 4, 60]}'
+case "${1:-bench}" in
+bench)
+    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-300}" --camera-path \
+        --techniques ddgi --techniques "$dense" --techniques "$sparse" \
+        --json "$OUT/world-path.json" 2>&1 | grep -v "^ *$" | tee "$OUT/world-path.txt"
+    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-300}" --camera-path \
+        --techniques ddgi --vary 'update.convergence_rounds = [0, 3]' --vary 'speed.probe_states = [false, true]' \
+        --json "$OUT/world-vary.json" 2>&1 | grep -v "^ *$" | tee "$OUT/world-vary.txt"
+    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-300}" --camera-path \
+        --techniques ddgi --vary 'volume.cascades = [1, 2, 3, 4]' \
+        --json "$OUT/world-cascades.json" 2>&1 | grep -v "^ *$" | tee "$OUT/world-cascades.txt"
+    $bin bench --scene scenes/sibenik/sibenik.toml --size 1920x1080 --iterations 30 \
+        --techniques 'ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256}' \
+        --vary 'speed.probe_states = [false, true]' \
+        --json "$OUT/sibenik-states.json" 2>&1 | grep -v "^ *$" | tee "$OUT/sibenik-states.txt"
+    ;;
+quality)
+    $bin compare --scene "$world" --techniques "none,ddgi,$dense" --size 320x240 \
+        --over-time "${FRAMES:-1620}" --every "${EVERY:-135}" --sequence-spp "${SPP:-1024}" \
+        --cache "$OUT/cache" --out "$OUT/world-path" 2>&1 | tail -40 | tee "$OUT/world-quality.txt"
+    rm -rf "$OUT/cache"
+    ;;
+esac
