@@ -15,13 +15,13 @@ dense='ddgi{volume.cascades = 0, volume.probe_counts = [120, 8, 120]}'
 sparse='ddgi{volume.cascades = 0, volume.probe_counts = [60, 4, 60]}'
 case "${1:-bench}" in
 bench)
-    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-300}" --camera-path \
+    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-1620}" --camera-path \
         --techniques ddgi --techniques "$dense" --techniques "$sparse" \
         --json "$OUT/world-path.json" 2>&1 | grep -v "^ *$" | tee "$OUT/world-path.txt"
-    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-300}" --camera-path \
+    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-1620}" --camera-path \
         --techniques ddgi --vary 'update.convergence_rounds = [0, 3]' --vary 'speed.probe_states = [false, true]' \
         --json "$OUT/world-vary.json" 2>&1 | grep -v "^ *$" | tee "$OUT/world-vary.txt"
-    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-300}" --camera-path \
+    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-1620}" --camera-path \
         --techniques ddgi --vary 'volume.cascades = [1, 2, 3, 4]' \
         --json "$OUT/world-cascades.json" 2>&1 | grep -v "^ *$" | tee "$OUT/world-cascades.txt"
     $bin bench --scene scenes/sibenik/sibenik.toml --size 1920x1080 --iterations 30 \

@@ -116,13 +116,12 @@ fn probe_states_follow_the_papers_transitions() {
         .write_buffer(&r.states, 0, bytemuck::cast_slice(&words));
     ctx.queue
         .write_buffer(&r.samples, 0, bytemuck::cast_slice(&samples));
-    ctx.queue.write_buffer(&r.convergence, 0, &[0; 48]);
     volume.prepare(&ctx);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
     volume.record_probe_states(&mut encoder);
     ctx.queue.submit([encoder.finish()]);
     let after: Vec<u32> = read_buffer_as(&ctx, &volume.resources.states).unwrap();
-    let convergence: Vec<u32> = read_buffer_as(&ctx, &volume.resources.convergence).unwrap();
+    let lists: Vec<u32> = read_buffer_as(&ctx, &volume.resources.active_probes).unwrap();
     let mut wrong = Vec::new();
     for (i, r) in TRANSITIONS.iter().enumerate() {
         let state = after[i] & PROBE_STATE_MASK;
@@ -140,10 +139,14 @@ fn probe_states_follow_the_papers_transitions() {
         }
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
-    assert_eq!(
-        convergence[1], 1,
-        "listing a newly probe raises the convergence pass's flag"
-    );
+    // The newly probes are listed apart for the convergence rounds, in grid order.
+    let newly: Vec<u32> = (0..n)
+        .filter(|&p| matches!(TRANSITIONS[p as usize].next, PROBE_NEWLY_VIGILANT | PROBE_NEWLY_AWAKE))
+        .collect();
+    let header = irradiant::ddgi::NEWLY_LIST as usize / 4;
+    let start = irradiant::ddgi::ACTIVE_PROBES_HEADER as usize / 4 + n as usize;
+    assert_eq!(lists[header] as usize, newly.len(), "the newly list's count");
+    assert_eq!(&lists[start..start + newly.len()], newly.as_slice());
 }
 
 /// Each probe's mean irradiance (luminance over its tile's interior texels).

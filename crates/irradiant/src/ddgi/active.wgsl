@@ -1,7 +1,7 @@
 // ddgi: which probe, and which of its rays, a thread of the passes that work per updating probe
 // takes — ddgi/trace, ddgi/shade and the blends, dispatched indirectly over the list of probes
-// that update (DdgiActiveProbes, built by ddgi/probe_states the frame before); in the
-// convergence rounds only newly probes take part (ddgi_convergence's takes_part).
+// that update (DdgiActiveProbes, built by ddgi/probe_states the frame before), or in the
+// convergence rounds over the list of newly probes (ddgi_convergence).
 #import ddgi_states
 #import ddgi_rays
 #import ddgi_convergence
@@ -11,10 +11,27 @@
 // Returned for a workgroup past the list's end (the last row of a folded dispatch).
 const NOT_LISTED: u32 = 0xffffffffu;
 
+// The list this dispatch works through: the newly probes' in a convergence round, else every
+// updating probe's.
+fn this_list() -> u32 {
+    return select(LIST_UPDATING, LIST_NEWLY, convergence.round > 0u);
+}
+
+// Probes in this dispatch's list.
+fn listed_count() -> u32 {
+    return active_probes.lists[this_list()].count;
+}
+
+// The `i`th probe of this dispatch's list.
+fn listed_at(i: u32) -> u32 {
+    return active_probes.probes[this_list() * volume.probe_count + i];
+}
+
 // The probe of a blend workgroup (one a listed probe), or NOT_LISTED.
 fn listed_probe(group: vec3<u32>) -> u32 {
     let listed = folded_index(group);
-    return select(NOT_LISTED, active_probes.probes[min(listed, active_probes.count - 1u)], listed < active_probes.count);
+    let count = listed_count();
+    return select(NOT_LISTED, listed_at(min(listed, count - 1u)), listed < count);
 }
 
 // Rays are stored probe-major: ray r of probe p is p × rays_per_probe + r.
@@ -40,12 +57,13 @@ fn ray_slot(group: vec3<u32>, local_index: u32) -> RaySlot {
     let linear = folded_index(group);
     let first = (linear / blocks) * PROBES_PER_GROUP;
     let listed = first + local_index % PROBES_PER_GROUP;
-    let last = active_probes.count - 1u;
+    let count = listed_count();
+    let last = count - 1u;
     var slot: RaySlot;
     slot.ray = (linear % blocks) * rays_per_group + local_index / PROBES_PER_GROUP;
-    slot.valid = listed < active_probes.count && slot.ray < volume.rays_per_probe;
-    slot.probe = active_probes.probes[min(listed, last)];
+    slot.valid = listed < count && slot.ray < volume.rays_per_probe;
+    slot.probe = listed_at(min(listed, last));
     slot.index = slot.probe * volume.rays_per_probe + slot.ray;
-    slot.group_key = active_probes.probes[min(first, last)] * blocks + linear % blocks;
+    slot.group_key = listed_at(min(first, last)) * blocks + linear % blocks;
     return slot;
 }

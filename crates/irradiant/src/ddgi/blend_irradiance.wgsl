@@ -71,7 +71,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         return;
     }
     let state = probe_states[probe];
-    if !probe_traces(state, volume.every_probe_updates) || !takes_part(state) {
+    if !probe_traces(state, volume.every_probe_updates) {
         return;
     }
     let texels = volume.irradiance_texels;

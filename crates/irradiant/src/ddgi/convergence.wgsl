@@ -1,7 +1,7 @@
 // ddgi: the convergence pass (003 §6.3, Listing 5). In the frame a probe is newly awake or
 // newly vigilant, `convergence_rounds` rounds of ray directions, trace, shade and blends run
-// before the normal update over the same list of updating probes, each with the ray set turned
-// by another angle and other random numbers; only newly probes take part. The first round
+// before the normal update over the list of newly probes (ddgi_active's this_list), each with
+// the ray set turned by another angle and other random numbers. The first round
 // blends at hysteresis 0, as the paper's pass does: whatever the probe held (a woken probe's
 // stale light, the mean of a classification's first, darker frames) is dropped, and the rounds
 // and the normal update form a running mean of this frame's light. Each round's atlas copy
@@ -10,12 +10,6 @@
 #import ddgi_states
 
 @group(2) @binding(22) var<storage, read> convergence: DdgiConvergence;
-
-// Whether a probe in the update list traces and blends in this dispatch: every listed probe
-// in the normal update, only newly ones in a convergence round.
-fn takes_part(word: u32) -> bool {
-    return convergence.round == 0u || probe_is_newly(word);
-}
 
 // The samples the probe's value holds before this blend: its blended frames; for a newly
 // probe only the rounds blended before this one (all of this frame's, in the normal update).

@@ -10,8 +10,8 @@
 // stays vigilant), one near geometry turns newly vigilant, and the rest sleep. From then on,
 // sleeping probes inside a wake box (an animated instance's bounds grown by a cell and the
 // self-shadow bias) turn newly awake, and sleep again when it leaves; a newly probe, having
-// converged in its frame, turns vigilant or awake. Listing a newly probe raises
-// convergence.newly, which starts the next frame's convergence rounds (ddgi_convergence). With
+// converged in its frame, turns vigilant or awake. The newly probes are listed apart too, for
+// the next frame's convergence rounds (ddgi_convergence). With
 // `every_probe_updates` (probe states off) the states are the same and decide what the query
 // reads, but every probe is listed to trace and blend.
 #import ddgi_volume
@@ -26,21 +26,20 @@
 @group(2) @binding(16) var<storage, read_write> probe_states: array<u32>;
 // min, max corners, two vec4 a box
 @group(2) @binding(17) var<storage, read> wake_boxes: array<vec4<f32>>;
-@group(2) @binding(22) var<storage, read_write> convergence: DdgiConvergenceWrite;
 
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) li: u32) {
     let probe = id.x + id.y * groups.x * 64u;
     var updates = false;
+    var newly = false;
     if probe < volume.probe_count {
         let word = next_state(probe);
         probe_states[probe] = word;
         updates = probe_traces(word, volume.every_probe_updates);
-        if probe_is_newly(word) {
-            atomicStore(&convergence.newly, 1u);
-        }
+        newly = probe_is_newly(word);
     }
-    list_if_updating(probe, updates, li);
+    list_if(LIST_UPDATING, probe, updates, li);
+    list_if(LIST_NEWLY, probe, newly, li);
 }
 
 // The most blends the state word counts.

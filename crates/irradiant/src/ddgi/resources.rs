@@ -16,21 +16,20 @@ use crate::probes::{AtlasLayout, ProbeGrid, atlas};
 /// at byte 4.
 pub const SHADOW_QUEUE_HEADER: u64 = 16;
 
-/// Bytes before the probe indices in `active_probes`: the count, then the indirect dispatches
-/// of trace and shade (x, y, z at byte 4) and of the blends (at byte 16).
-pub const ACTIVE_PROBES_HEADER: u64 = 32;
+/// Bytes before the probe indices in `active_probes`: two list headers of 32 bytes (every
+/// updating probe, then the newly ones), each the count, the indirect dispatch of trace and
+/// shade (x, y, z at its byte 4) and of the blends (at its byte 16). The lists' probes follow,
+/// each `probe_count` long.
+pub const ACTIVE_PROBES_HEADER: u64 = 64;
 /// Where `active_probes` holds the indirect dispatch of ddgi/trace and ddgi/shade.
 pub const ACTIVE_RAY_GROUPS: u64 = 4;
 /// Where `active_probes` holds the indirect dispatch of the blends.
 pub const ACTIVE_BLEND_GROUPS: u64 = 16;
+/// Where `active_probes` holds the newly probes' list (the convergence rounds').
+pub const NEWLY_LIST: u64 = 32;
 
-/// Bytes of `convergence` (DdgiConvergence): the round, the newly flag, then the indirect
-/// dispatches of the convergence rounds' trace and shade (at byte 16) and blends (at byte 32).
-pub const CONVERGENCE_BYTES: u64 = 48;
-/// Where `convergence` holds the rounds' indirect dispatch of ddgi/trace and ddgi/shade.
-pub const CONVERGENCE_RAY_GROUPS: u64 = 16;
-/// Where `convergence` holds the rounds' indirect dispatch of the blends.
-pub const CONVERGENCE_BLEND_GROUPS: u64 = 32;
+/// Bytes of `convergence` (DdgiConvergence): the round, padded.
+pub const CONVERGENCE_BYTES: u64 = 16;
 
 /// Wake boxes the buffer holds; further animated instances merge into the last box.
 pub const MAX_WAKE_BOXES: usize = 64;
@@ -132,13 +131,13 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
         Allocation::storage("ddgi/probe_states", probes * 4, PROBE_SETTING),
         Allocation::storage(
             "ddgi/active_probes",
-            ACTIVE_PROBES_HEADER + probes * 4,
+            ACTIVE_PROBES_HEADER + 2 * probes * 4,
             PROBE_SETTING,
         ),
         Allocation::storage("ddgi/convergence", CONVERGENCE_BYTES, PROBE_SETTING),
         Allocation::storage(
             "ddgi/every_probe",
-            ACTIVE_PROBES_HEADER + probes * 4,
+            ACTIVE_PROBES_HEADER + 2 * probes * 4,
             PROBE_SETTING,
         ),
     ]
@@ -345,8 +344,8 @@ impl DdgiResources {
     }
 }
 
-/// A list of the active probes (DdgiActiveProbes) that holds every probe of the grid, with
-/// the dispatches that cover them all.
+/// Lists of the active probes (DdgiActiveProbes) whose first holds every probe of the grid,
+/// with the dispatches that cover them all, and whose second (the newly probes) is empty.
 fn every_probe_list(
     ctx: &GpuContext,
     label: &str,
@@ -358,7 +357,9 @@ fn every_probe_list(
     words.extend(dispatches.rays.counts());
     words.extend(dispatches.blends.counts());
     words.push(0);
+    words.extend([0; 8]);
     words.extend(0..grid.probe_count);
+    words.extend(std::iter::repeat_n(0, grid.probe_count as usize));
     let buffer = storage_buffer(&ctx.device, label, words.len() as u64 * 4, extra);
     ctx.queue
         .write_buffer(&buffer, 0, bytemuck::cast_slice(&words));

@@ -36,7 +36,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
     let slot = ray_slot(group, local_index);
     var shadow: GpuDdgiShadowRay;
     var queued = false;
-    if slot.valid && takes_part(probe_states[slot.probe]) {
+    if slot.valid {
         // LIGHT_PER_WARP: one random light for each 32 neighbouring threads (a warp) instead
         // of each ray, so that a warp's shadow rays walk to one light together rather than
         // taking turns for each light; every ray still sees each light with equal probability.

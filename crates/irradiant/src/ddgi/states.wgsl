@@ -59,12 +59,15 @@ fn probe_blends(word: u32) -> u32 {
 }
 
 // The probes that update, listed by ddgi/probe_states at the end of each frame for the next
-// (DdgiResources::active_probes): their count, the indirect dispatch of ddgi/trace and
-// ddgi/shade (a workgroup a ray block of PROBES_PER_GROUP listed probes), that of the blends
-// (a workgroup a listed probe), then the probes in grid order within each 64 of the states
-// pass. Workgroups then start only for probes that update: on Sibenik 43 % of the probes
-// sleep or are off. ddgi_active reads it; this is ddgi/probe_states' view, which builds it.
-struct DdgiActiveProbesWrite {
+// (DdgiResources::active_probes): two lists, each a header — its count, the indirect dispatch
+// of ddgi/trace and ddgi/shade (a workgroup a ray block of PROBES_PER_GROUP listed probes),
+// that of the blends (a workgroup a listed probe) — and its probes in grid order within each
+// 64 of the states pass. List 0 holds every probe that updates; list 1 the newly vigilant and
+// newly awake among them, which the convergence rounds update (ddgi_convergence); list l's
+// probes start at l × probe_count. Workgroups then start only for probes that update: on
+// Sibenik 43 % of the probes sleep or are off. ddgi_active reads them; this is
+// ddgi/probe_states' view, which builds them.
+struct DdgiProbeListWrite {
     count: atomic<u32>,
     rays_x: atomic<u32>,
     rays_y: atomic<u32>,
@@ -73,11 +76,15 @@ struct DdgiActiveProbesWrite {
     blends_y: atomic<u32>,
     blends_z: atomic<u32>,
     padding: u32,
+}
+
+struct DdgiActiveProbesWrite {
+    lists: array<DdgiProbeListWrite, 2>,
     probes: array<u32>,
 }
 
-// The same list, read.
-struct DdgiActiveProbes {
+// The same lists, read.
+struct DdgiProbeList {
     count: u32,
     rays_x: u32,
     rays_y: u32,
@@ -86,8 +93,16 @@ struct DdgiActiveProbes {
     blends_y: u32,
     blends_z: u32,
     padding: u32,
+}
+
+struct DdgiActiveProbes {
+    lists: array<DdgiProbeList, 2>,
     probes: array<u32>,
 }
+
+// The list of every probe that updates, and of the newly vigilant and newly awake ones.
+const LIST_UPDATING: u32 = 0u;
+const LIST_NEWLY: u32 = 1u;
 
 // An indirect dispatch's (x, y) for `workgroups` workgroups in a row, folded as
 // Workgroups::linear folds a direct one.
@@ -102,25 +117,11 @@ fn folded_index(group: vec3<u32>) -> u32 {
     return group.x + group.y * WORKGROUP_FOLD;
 }
 
-// The convergence pass's state (DdgiResources::convergence): ddgi/probe_states raises `newly`
-// when it lists a newly awake or vigilant probe for the next frame; ddgi/converge_step starts
-// the rounds from it (the indirect dispatches: the updating probes' when any probe is newly,
-// else none) and counts them. Outside the rounds `round` is 0. ddgi_convergence reads it.
+// The convergence pass's round (DdgiResources::convergence): ddgi/converge_step counts the
+// rounds, 1 to `convergence_rounds`, and sets it back to 0 for the normal update.
 struct DdgiConvergence {
     round: u32,
-    newly: u32,
     padding0: u32,
     padding1: u32,
-    rays: vec4<u32>,
-    blends: vec4<u32>,
-}
-
-// ddgi/probe_states' view: many threads raise the flag.
-struct DdgiConvergenceWrite {
-    round: u32,
-    newly: atomic<u32>,
-    padding0: u32,
-    padding1: u32,
-    rays: vec4<u32>,
-    blends: vec4<u32>,
+    padding2: u32,
 }

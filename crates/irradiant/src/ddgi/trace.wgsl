@@ -12,7 +12,7 @@
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
     let slot = ray_slot(group, local_index);
-    if !slot.valid || !takes_part(probe_states[slot.probe]) {
+    if !slot.valid {
         return;
     }
     let dir = directions[slot.ray].xyz;

@@ -11,8 +11,7 @@ use super::constants::*;
 use super::pipelines::DdgiPipelines;
 use super::resources::{
     ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES,
-    CONVERGENCE_BLEND_GROUPS, CONVERGENCE_RAY_GROUPS, DdgiResources, MAX_WAKE_BOXES,
-    SHADOW_QUEUE_HEADER, tile_sides,
+    DdgiResources, MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER, tile_sides,
 };
 use super::settings::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
 use super::types::GpuDdgiVolume;
@@ -60,12 +59,22 @@ impl Boost {
     }
 }
 
-/// Which pass of the update a dispatch belongs to: a convergence round (only newly probes take
-/// part, dispatched from ddgi/converge_step's counts) or the normal update.
+/// Which pass of the update a dispatch belongs to: a convergence round (over the list of newly
+/// probes) or the normal update (over every updating probe).
 #[derive(Clone, Copy)]
 enum Round {
     Convergence,
     Update,
+}
+
+impl Round {
+    /// Where its list's header starts in `active_probes`.
+    fn list(self) -> u64 {
+        match self {
+            Round::Update => 0,
+            Round::Convergence => NEWLY_LIST,
+        }
+    }
 }
 
 /// The workgroups of each of a volume's dispatches: one function, used to record them and by
@@ -570,13 +579,10 @@ impl DdgiVolume {
         }
     }
 
-    /// The indirect dispatch of a round's trace and shade: the list of updating probes', or
-    /// in a convergence round the one ddgi/converge_step wrote.
+    /// The indirect dispatch of a round's trace and shade: that of the list of updating
+    /// probes, or in a convergence round of the newly ones.
     fn indirect_rays(&self, round: Round) -> (&wgpu::Buffer, u64) {
-        match round {
-            Round::Update => (&self.resources.active_probes, ACTIVE_RAY_GROUPS),
-            Round::Convergence => (&self.resources.convergence, CONVERGENCE_RAY_GROUPS),
-        }
+        (&self.resources.active_probes, round.list() + ACTIVE_RAY_GROUPS)
     }
 
     /// Records only ddgi/probe_states (tests write the states and rays it reads): each probe's
@@ -601,10 +607,7 @@ impl DdgiVolume {
         round: Round,
     ) {
         let (p, d, r) = (&self.passes, &self.dispatches, &self.resources);
-        let (groups, offset) = match round {
-            Round::Update => (&r.active_probes, ACTIVE_BLEND_GROUPS),
-            Round::Convergence => (&r.convergence, CONVERGENCE_BLEND_GROUPS),
-        };
+        let (groups, offset) = (&r.active_probes, round.list() + ACTIVE_BLEND_GROUPS);
         p.blend_weights
             .dispatch(encoder, profiler.as_deref_mut(), d.blend_weights);
         p.blend_irradiance

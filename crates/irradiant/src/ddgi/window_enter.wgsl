@@ -58,5 +58,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
             probe_states[probe] = PROBE_VIGILANT | fresh | (blends << PROBE_AGE_SHIFT);
         }
     }
-    list_if_updating(probe, unlisted, li);
+    list_if(LIST_UPDATING, probe, unlisted, li);
 }
