@@ -499,7 +499,10 @@ mod tests {
         spec.settings = toml::from_str("[volume]\nrays_per_probe = 128").unwrap();
         let laid = under_scene_table(&spec, &scene);
         assert_eq!(laid.settings["volume"]["cascades"].as_integer(), Some(3));
-        assert_eq!(laid.settings["volume"]["rays_per_probe"].as_integer(), Some(128));
+        assert_eq!(
+            laid.settings["volume"]["rays_per_probe"].as_integer(),
+            Some(128)
+        );
         assert!(!laid.settings.contains_key("name"));
         let other = TechniqueSpec::new("ssil", Preset::Balanced);
         assert_eq!(under_scene_table(&other, &scene), other);

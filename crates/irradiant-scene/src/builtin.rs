@@ -54,6 +54,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "tunnel",
         "an 80 m tunnel with five lamps and glowing strips: the large world's dark passage",
     ),
+    (
+        "many-lights",
+        "a hall lit only by 120 small glowing tiles, partitions and pillars between them: the many-emitter test",
+    ),
 ];
 
 mod world;
@@ -74,6 +78,7 @@ pub fn builtin(name: &str) -> Option<Scene> {
         "dense-cluster" => Some(dense_cluster()),
         "terrain" => Some(world::terrain()),
         "tunnel" => Some(world::tunnel()),
+        "many-lights" => Some(world::many_lights()),
         _ => None,
     }
 }

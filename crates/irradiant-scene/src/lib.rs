@@ -66,7 +66,9 @@ pub fn load(spec: &str) -> Result<Loaded> {
             let placed = (manifest.places.iter())
                 .map(|place| match builtin(&place.path) {
                     Some(scene) => Ok(scene),
-                    None => load_mesh_file(&manifest::relative_to(path, &place.path), &mut warnings),
+                    None => {
+                        load_mesh_file(&manifest::relative_to(path, &place.path), &mut warnings)
+                    }
                 })
                 .collect::<Result<Vec<_>>>()?;
             manifest.apply(&mut scene, path, placed)?;

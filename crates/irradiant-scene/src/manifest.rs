@@ -37,11 +37,11 @@ use glam::{Mat3, Mat4, UVec3, Vec3};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, SceneError};
-use crate::place::PlaceDesc;
 use crate::model::{
     Animation, AnimationTarget, Camera, Follow, Instance, Light, LightKind, Mesh, ProbeVolumeDesc,
     Region, Scene, Tracks,
 };
+use crate::place::PlaceDesc;
 
 /// A scene manifest: a mesh file, and the lights, camera and the rest to add to it. Read
 /// with [`parse`](Self::parse), then [`apply`](Self::apply) to the loaded mesh file.

@@ -58,7 +58,11 @@ impl PlaceDesc {
             )));
         }
         let scale = self.scale.unwrap_or(1.0);
-        let finite = self.translation.unwrap_or([0.0; 3]).iter().all(|v| v.is_finite())
+        let finite = self
+            .translation
+            .unwrap_or([0.0; 3])
+            .iter()
+            .all(|v| v.is_finite())
             && self.rotation_y_degrees.unwrap_or(0.0).is_finite();
         if !(scale.is_finite() && scale > 0.0) || !finite {
             return Err(problem(format!(

@@ -207,8 +207,14 @@ fn places_merge_scenes_into_one_world() {
         "[[place]]\nname = \"east\"\npath = \"two-rooms\"\nscale = 2.0\nrotation_y_degrees = 90.0\ntranslation = [100.0, 0.0, 0.0]\n",
     )
     .unwrap();
-    assert_eq!(world.instances.len(), cornell.instances.len() + rooms.instances.len());
-    assert_eq!(world.triangle_count(), cornell.triangle_count() + rooms.triangle_count());
+    assert_eq!(
+        world.instances.len(),
+        cornell.instances.len() + rooms.instances.len()
+    );
+    assert_eq!(
+        world.triangle_count(),
+        cornell.triangle_count() + rooms.triangle_count()
+    );
     let placed = world.instances.last().unwrap();
     assert_eq!(placed.name, format!("east/{}", rooms.instances[0].name));
     // Its triangles keep their own materials, past the Cornell box's.
@@ -216,19 +222,32 @@ fn places_merge_scenes_into_one_world() {
     let names: Vec<&str> = (mesh.triangle_materials.iter())
         .map(|&m| world.materials[m as usize].name.as_str())
         .collect();
-    assert!(names.iter().all(|n| ["plaster", "floor"].contains(n)), "{names:?}");
+    assert!(
+        names.iter().all(|n| ["plaster", "floor"].contains(n)),
+        "{names:?}"
+    );
     // The lamp at (-2, 2.5, 0): doubled, turned 90° about y ((x, z) → (z, −x)), moved 100 m.
     let lamp = world.lights.iter().find(|l| l.name == "east/lamp").unwrap();
     assert!(
-        lamp.position.abs_diff_eq(glam::Vec3::new(100.0, 5.0, 4.0), 1e-4),
+        lamp.position
+            .abs_diff_eq(glam::Vec3::new(100.0, 5.0, 4.0), 1e-4),
         "{}",
         lamp.position
     );
     for (places, says) in [
-        ("[[place]]\nname = \"a\"\npath = \"cornell\"\n[[place]]\nname = \"a\"\npath = \"cornell\"\n", "used twice"),
+        (
+            "[[place]]\nname = \"a\"\npath = \"cornell\"\n[[place]]\nname = \"a\"\npath = \"cornell\"\n",
+            "used twice",
+        ),
         ("[[place]]\nname = \"\"\npath = \"cornell\"\n", "non-empty"),
-        ("[[place]]\nname = \"a\"\npath = \"cornell\"\nscale = 0.0\n", "scale"),
-        ("[[place]]\nname = \"a\"\npath = \"missing.obj\"\n", "missing.obj"),
+        (
+            "[[place]]\nname = \"a\"\npath = \"cornell\"\nscale = 0.0\n",
+            "scale",
+        ),
+        (
+            "[[place]]\nname = \"a\"\npath = \"missing.obj\"\n",
+            "missing.obj",
+        ),
     ] {
         let message = load(places).unwrap_err().to_string();
         assert!(message.contains(says), "{places}: {message}");

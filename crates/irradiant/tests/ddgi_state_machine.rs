@@ -48,7 +48,13 @@ const TRANSITIONS: &[Row] = &[
     row(PROBE_VIGILANT, 1, Rays::Inside, false, PROBE_OFF),
     row(PROBE_VIGILANT, 1, Rays::Near, false, PROBE_NEWLY_VIGILANT),
     row(PROBE_VIGILANT, 1, Rays::Far, false, PROBE_SLEEPING),
-    row(PROBE_NEWLY_VIGILANT, 1, Rays::Near, false, PROBE_NEWLY_VIGILANT),
+    row(
+        PROBE_NEWLY_VIGILANT,
+        1,
+        Rays::Near,
+        false,
+        PROBE_NEWLY_VIGILANT,
+    ),
     // Earlier classification frames decide nothing yet.
     row(PROBE_VIGILANT, 2, Rays::Far, false, PROBE_VIGILANT),
     row(PROBE_VIGILANT, 2, Rays::Inside, false, PROBE_VIGILANT),
@@ -105,10 +111,7 @@ fn probe_states_follow_the_papers_transitions() {
     assert!(TRANSITIONS[first_in_box..].iter().all(|r| r.in_wake_box));
     let x = volume.grid.probe_position(first_in_box as u32).x + 0.6 * spacing;
     volume.scene_changed(&SceneChange {
-        dynamic_bounds: vec![(
-            glam::Vec3::new(x, -1e3, -1e3),
-            glam::Vec3::splat(1e3),
-        )],
+        dynamic_bounds: vec![(glam::Vec3::new(x, -1e3, -1e3), glam::Vec3::splat(1e3))],
         ..Default::default()
     });
     let r = &volume.resources;
@@ -141,11 +144,20 @@ fn probe_states_follow_the_papers_transitions() {
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
     // The newly probes are listed apart for the convergence rounds, in grid order.
     let newly: Vec<u32> = (0..n)
-        .filter(|&p| matches!(TRANSITIONS[p as usize].next, PROBE_NEWLY_VIGILANT | PROBE_NEWLY_AWAKE))
+        .filter(|&p| {
+            matches!(
+                TRANSITIONS[p as usize].next,
+                PROBE_NEWLY_VIGILANT | PROBE_NEWLY_AWAKE
+            )
+        })
         .collect();
     let header = irradiant::ddgi::NEWLY_LIST as usize / 4;
     let start = irradiant::ddgi::ACTIVE_PROBES_HEADER as usize / 4 + n as usize;
-    assert_eq!(lists[header] as usize, newly.len(), "the newly list's count");
+    assert_eq!(
+        lists[header] as usize,
+        newly.len(),
+        "the newly list's count"
+    );
     assert_eq!(&lists[start..start + newly.len()], newly.as_slice());
 }
 
@@ -225,11 +237,12 @@ fn the_convergence_pass_brings_new_probes_to_their_light_sooner() {
         settings.update.convergence_rounds = rounds;
         // A volume's start: every probe near geometry is newly vigilant after classification.
         let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
-        let (start, start_frames) =
-            convergence_of(&ctx, &mut session, 40, |s| s == PROBE_VIGILANT);
+        let (start, start_frames) = convergence_of(&ctx, &mut session, 40, |s| s == PROBE_VIGILANT);
         // A woken probe: the block moves in after 40 frames.
         let block = *session.instance_ids().last().unwrap();
-        let centre = scene.probe_volumes[0].min.midpoint(scene.probe_volumes[0].max);
+        let centre = scene.probe_volumes[0]
+            .min
+            .midpoint(scene.probe_volumes[0].max);
         session
             .set_instance_transform(block, glam::Mat4::from_translation(centre))
             .unwrap();

@@ -375,9 +375,15 @@ fn cascade_weights_sum_to_one_and_follow_the_camera_without_a_jump() {
         "{steps} window steps; largest change of a weight between frames {worst_jump:.3}, of a sum from 1 {worst_sum:.2e}; largest weights {most:?}"
     );
     assert!(steps >= 4, "the finest window stepped only {steps} times");
-    assert!(most.iter().all(|&w| w > 0.5), "the view does not pass through all three cascades: {most:?}");
+    assert!(
+        most.iter().all(|&w| w > 0.5),
+        "the view does not pass through all three cascades: {most:?}"
+    );
     assert!(worst_sum < 1e-4, "the weights sum to 1 ± {worst_sum}");
     // 5 cm against a fade of 0.5 m: a tenth; a step that moved the blend by a cell would
     // change a weight by up to 1.
-    assert!(worst_jump < 0.25, "a weight changed by {worst_jump} in one frame");
+    assert!(
+        worst_jump < 0.25,
+        "a weight changed by {worst_jump} in one frame"
+    );
 }

@@ -149,6 +149,20 @@ fn runs_too_large_for_the_adapter_are_refused_before_anything_is_allocated() {
         message.contains("probe counts") && message.contains("rays_per_probe"),
         "{message}"
     );
+    // Cascades too large: the message names the cascade settings, not the scene's counts.
+    let mut cascades = TechniqueSpec::new("ddgi", Preset::Balanced);
+    cascades.settings = toml::from_str(
+        "[volume]\ncascades = 2\ncascade_probes = [256, 64, 256]\nrays_per_probe = 1024",
+    )
+    .unwrap();
+    let message = Session::new(ctx.clone(), scene.clone(), settings((64, 64), cascades))
+        .err()
+        .expect("two cascades of 256 × 64 × 256 probes do not fit")
+        .to_string();
+    assert!(
+        message.contains("cascade_probes") && !message.contains("probe_volume"),
+        "{message}"
+    );
     // Nothing reached the device: no validation error is pending, and the device still works.
     ctx.check("the refusals").unwrap();
     // The per-technique budget: what DDGI would allocate is listed before anything is made,

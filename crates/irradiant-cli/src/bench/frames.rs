@@ -97,7 +97,12 @@ impl FrameBench<'_> {
         let (warm_start, mut warm_runs, mut timed) = (Instant::now(), 0, 0);
         let still = session.camera().clone();
         let labels = session.technique().passes();
-        let gi_labels: Vec<String> = labels.update.iter().chain(&labels.resolve).map(|l| l.to_string()).collect();
+        let gi_labels: Vec<String> = labels
+            .update
+            .iter()
+            .chain(&labels.resolve)
+            .map(|l| l.to_string())
+            .collect();
         let mut gi_worst = 0.0f64;
         while timed < self.iterations {
             if let Some(length) = self.path_length {

@@ -78,7 +78,9 @@ fn frame_table(records: &[FrameRecord]) {
         println!("\n(timed with the camera moving every frame)");
     }
     if records.iter().any(|r| r.camera == "path") {
-        println!("\n(timed along the scene's camera path; GI ms is the sum of the passes' medians)");
+        println!(
+            "\n(timed along the scene's camera path; GI ms is the sum of the passes' medians)"
+        );
     }
     print!(
         "\n{:<10} {:<14} {:<10} {:>5} {:<28} {:>9}",

@@ -17,7 +17,8 @@ const FLAT_RADIUS: f32 = 150.0;
 fn terrain_height(x: f32, z: f32) -> f32 {
     let r = (x * x + z * z).sqrt();
     let rise = ((r - FLAT_RADIUS) / 60.0).clamp(0.0, 1.0);
-    let hills = 9.0 + 6.0 * (x * 0.031).sin() * (z * 0.027).cos() + 4.0 * (x * 0.011 + z * 0.017).sin();
+    let hills =
+        9.0 + 6.0 * (x * 0.031).sin() * (z * 0.027).cos() + 4.0 * (x * 0.011 + z * 0.017).sin();
     rise * rise * (3.0 - 2.0 * rise) * hills.max(0.0)
 }
 
@@ -36,7 +37,10 @@ pub fn terrain() -> Scene {
     for j in 0..TERRAIN_QUADS {
         for i in 0..TERRAIN_QUADS {
             // Counter-clockwise seen from above.
-            b.quad([at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)], grass);
+            b.quad(
+                [at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)],
+                grass,
+            );
         }
     }
     let camera = Camera::looking_at(Vec3::new(-60.0, 6.0, 40.0), Vec3::new(0.0, 0.0, 0.0), 60.0);
@@ -59,7 +63,11 @@ pub fn tunnel() -> Scene {
     let t = 0.5;
     let v = Vec3::new;
     b.cuboid(v(0.0, -t, -half - t), v(length, 0.0, half + t), road);
-    b.cuboid(v(0.0, height, -half - t), v(length, height + t, half + t), concrete);
+    b.cuboid(
+        v(0.0, height, -half - t),
+        v(length, height + t, half + t),
+        concrete,
+    );
     b.cuboid(v(0.0, 0.0, -half - t), v(length, height, -half), concrete);
     b.cuboid(v(0.0, 0.0, half), v(length, height, half + t), concrete);
     let mut lights = Vec::new();
@@ -67,11 +75,112 @@ pub fn tunnel() -> Scene {
         let x = 8.0 + 16.0 * k as f32;
         // A strip 2 m × 0.3 m just under the roof, facing down.
         let y = height - 0.01;
-        b.quad([v(x - 1.0, y, -0.15), v(x + 1.0, y, -0.15), v(x + 1.0, y, 0.15), v(x - 1.0, y, 0.15)], strip);
-        lights.push(Light::point(&format!("lamp-{k}"), v(x, height - 0.6, 0.0), Vec3::new(1.0, 0.85, 0.6), 25.0));
+        b.quad(
+            [
+                v(x - 1.0, y, -0.15),
+                v(x + 1.0, y, -0.15),
+                v(x + 1.0, y, 0.15),
+                v(x - 1.0, y, 0.15),
+            ],
+            strip,
+        );
+        lights.push(Light::point(
+            &format!("lamp-{k}"),
+            v(x, height - 0.6, 0.0),
+            Vec3::new(1.0, 0.85, 0.6),
+            25.0,
+        ));
     }
     let camera = Camera::looking_at(v(-6.0, 1.7, 0.0), v(40.0, 1.7, 0.0), 60.0);
     let mut scene = b.into_scene("tunnel", camera);
     scene.lights = lights;
+    scene
+}
+
+/// Small glowing tiles of `many-lights`.
+const MANY_LIGHTS: u32 = 120;
+
+/// A closed hall 20 × 4 × 12 m lit only by 120 small glowing tiles (15 cm square) on its
+/// ceiling and walls, with partitions and pillars between them, so that most tiles are hidden
+/// from most points: the many-emitter test of the direct light (issue 41).
+pub fn many_lights() -> Scene {
+    let mut b = Builder::new("many-lights");
+    let plaster = b.material("plaster", Vec3::splat(0.7), Vec3::ZERO);
+    let floor = b.material("floor", Vec3::new(0.5, 0.42, 0.35), Vec3::ZERO);
+    let brick = b.material("brick", Vec3::new(0.6, 0.3, 0.22), Vec3::ZERO);
+    let tile = b.material("tile-light", Vec3::splat(0.8), Vec3::new(40.0, 34.0, 26.0));
+    let v = Vec3::new;
+    let (lo, hi) = (v(-10.0, 0.0, -6.0), v(10.0, 4.0, 6.0));
+    b.closed_room(lo, hi, 0.2, floor, plaster);
+    // Two partitions across the hall with doorways, and a row of pillars along it.
+    for x in [-3.5f32, 3.5] {
+        b.cuboid(v(x - 0.1, 0.0, -6.0), v(x + 0.1, 4.0, -1.0), brick);
+        b.cuboid(v(x - 0.1, 0.0, 1.0), v(x + 0.1, 4.0, 6.0), brick);
+        b.cuboid(v(x - 0.1, 2.5, -1.0), v(x + 0.1, 4.0, 1.0), brick);
+    }
+    for k in 0..6 {
+        let x = -8.5 + 3.4 * k as f32;
+        b.cuboid(v(x - 0.25, 0.0, 2.75), v(x + 0.25, 4.0, 3.25), plaster);
+    }
+    // Tiles at fixed pseudo-random places (xorshift): on the ceiling, and high on the long
+    // walls, each a 15 cm square facing into the hall.
+    let mut state = 0x2545_f491_u32;
+    let mut random = move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32
+    };
+    let h = 0.075;
+    for k in 0..MANY_LIGHTS {
+        let x = lo.x + 0.5 + random() * (hi.x - lo.x - 1.0);
+        if k % 3 == 0 {
+            // A wall tile, 3 m up, on the north (−z) or south (+z) wall.
+            let y = 2.6 + random() * 1.0;
+            if k % 2 == 0 {
+                let z = lo.z + 0.001;
+                b.quad(
+                    [
+                        v(x - h, y - h, z),
+                        v(x + h, y - h, z),
+                        v(x + h, y + h, z),
+                        v(x - h, y + h, z),
+                    ],
+                    tile,
+                );
+            } else {
+                let z = hi.z - 0.001;
+                b.quad(
+                    [
+                        v(x + h, y - h, z),
+                        v(x - h, y - h, z),
+                        v(x - h, y + h, z),
+                        v(x + h, y + h, z),
+                    ],
+                    tile,
+                );
+            }
+        } else {
+            let z = lo.z + 0.5 + random() * (hi.z - lo.z - 1.0);
+            let y = hi.y - 0.001;
+            b.quad(
+                [
+                    v(x - h, y, z - h),
+                    v(x + h, y, z - h),
+                    v(x + h, y, z + h),
+                    v(x - h, y, z + h),
+                ],
+                tile,
+            );
+        }
+    }
+    let camera = Camera::looking_at(v(-9.0, 1.7, -4.5), v(2.0, 1.2, 1.0), 70.0);
+    let mut scene = b.into_scene("many-lights", camera);
+    scene.probe_volumes.push(crate::model::ProbeVolumeDesc::new(
+        "hall",
+        v(-9.8, 0.2, -5.8),
+        v(9.8, 3.8, 5.8),
+        [20, 4, 12],
+    ));
     scene
 }

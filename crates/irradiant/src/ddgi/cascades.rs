@@ -91,6 +91,32 @@ pub fn window_warnings(scene: &Scene, descs: &[ProbeVolumeDesc], cascades: u32) 
         .collect()
 }
 
+/// A warning for each pair of the scene's volumes that overlap at the same spacing: where they
+/// do, the one listed first lights alone (volumes resolve finest first, 003 §7.4), so the
+/// other's probes there trace for nothing — usually two boxes meant to meet, not overlap.
+pub fn overlap_warnings(descs: &[ProbeVolumeDesc]) -> Vec<String> {
+    let spacing = |d: &ProbeVolumeDesc| {
+        (d.max - d.min) / (glam::UVec3::from(d.counts).as_vec3() - 1.0).max(glam::Vec3::ONE)
+    };
+    let mut warnings = Vec::new();
+    for (i, a) in descs.iter().enumerate() {
+        for b in &descs[i + 1..] {
+            let overlap = a.min.max(b.min).cmplt(a.max.min(b.max)).all();
+            let same = (spacing(a) - spacing(b))
+                .abs()
+                .cmple(spacing(a) * 0.01)
+                .all();
+            if overlap && same && a.follow.is_none() && b.follow.is_none() {
+                warnings.push(format!(
+                    "probe volumes '{}' and '{}' overlap at the same spacing: where they do, '{}' lights alone and the probes of '{}' there trace for nothing; let their boxes meet instead (the manifest's [[probe_volume]] min and max)",
+                    a.name, b.name, a.name, b.name
+                ));
+            }
+        }
+    }
+    warnings
+}
+
 fn extent_text(e: glam::Vec3) -> String {
     format!("{:.1} × {:.1} × {:.1} m", e.x, e.y, e.z)
 }
@@ -177,5 +203,19 @@ mod tests {
         );
         window.follow = None;
         assert!(window_warnings(&scene, &[window], 0).is_empty());
+    }
+
+    /// Two volumes of one spacing that overlap are warned of by name; nested volumes of
+    /// different spacing, and volumes that only meet, are not.
+    #[test]
+    fn volumes_that_overlap_at_one_spacing_are_warned_of() {
+        let v = |name: &str, min: f32, max: f32, counts: u32| {
+            ProbeVolumeDesc::new(name, Vec3::splat(min), Vec3::splat(max), [counts; 3])
+        };
+        let warned = overlap_warnings(&[v("a", 0.0, 4.0, 5), v("b", 2.0, 6.0, 5)]);
+        assert_eq!(warned.len(), 1);
+        assert!(warned[0].contains("'a' and 'b'"), "{warned:?}");
+        assert!(overlap_warnings(&[v("fine", 1.0, 3.0, 9), v("coarse", 0.0, 8.0, 5)]).is_empty());
+        assert!(overlap_warnings(&[v("a", 0.0, 4.0, 5), v("b", 4.0, 8.0, 5)]).is_empty());
     }
 }

@@ -25,8 +25,8 @@ pub mod types;
 mod volume;
 
 pub use resources::{
-    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES, NEWLY_LIST,
-    MAX_WAKE_BOXES, SHADOW_QUEUE_HEADER,
+    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES,
+    MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER,
 };
 pub use settings::{
     DdgiGatherSettings, DdgiSettings, DdgiSpeedSettings, DdgiUpdateSettings, DdgiVolumeSettings,
@@ -136,7 +136,9 @@ impl TechniqueKind for DdgiKind {
             return Vec::new();
         };
         let descs = volume_descs(scene, &settings);
-        cascades::window_warnings(scene, &descs, settings.volume.cascades)
+        let mut warnings = cascades::window_warnings(scene, &descs, settings.volume.cascades);
+        warnings.extend(cascades::overlap_warnings(&descs));
+        warnings
     }
     fn plan(
         &self,

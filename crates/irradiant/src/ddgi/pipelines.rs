@@ -70,7 +70,13 @@ impl DdgiPipelines {
         let (light_source, gather_constants) = if gather_rays > 0 {
             (
                 include_str!("resolve_gather.wgsl"),
-                vec![("GATHER_RAYS", format!("{gather_rays}u"))],
+                vec![
+                    ("GATHER_RAYS", format!("{gather_rays}u")),
+                    (
+                        "GATHER_FIREFLY_CLAMP",
+                        format!("{:?}", settings.gather.firefly_clamp),
+                    ),
+                ],
             )
         } else {
             (include_str!("resolve_query.wgsl"), vec![])

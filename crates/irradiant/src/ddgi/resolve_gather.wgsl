@@ -1,7 +1,9 @@
 // ddgi/resolve's light at a pixel (`pixel_light`) with the final gather (GATHER_RAYS =
 // DdgiGatherSettings::rays_per_pixel): where the pixel's tile gathers this frame
 // (gather_tile_traces), that many cosine-distributed rays, each hit shaded as a probe ray's
-// (ddgi_hit_light); elsewhere the query. ddgi/temporal averages it over frames.
+// (ddgi_hit_light), each bounded by GATHER_FIREFLY_CLAMP (DdgiGatherSettings::firefly_clamp)
+// times the probes' light at the pixel; elsewhere the query. ddgi/temporal averages it over
+// frames.
 #import ddgi_hit_light
 
 fn pixel_light(s: Surface, pixel: vec2<u32>, tile: vec2<u32>, local_index: u32) -> vec3<f32> {
@@ -26,13 +28,21 @@ fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
     let gather = frame.frame_index / max(volume.gather_interval, 1u);
     let origin = offset_ray(s.position, s.geometric_normal);
     let around = basis(s.normal);
+    // The probes' light here: smooth and averaged over thousands of rays, the scale against
+    // which a single ray's light is a firefly.
+    var bound = 3.0e38;
+    if GATHER_FIREFLY_CLAMP > 0.0 {
+        let probes = ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance;
+        bound = GATHER_FIREFLY_CLAMP * max(luminance(probes), 1e-4);
+    }
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < GATHER_RAYS; i++) {
         let dir = normalize(around * cosine_hemisphere(r2_point(gather * GATHER_RAYS + i, start)));
         // The update's blind bounces are not the gather's: at every pixel's ray they took
         // Sibenik's gather from 2.76 to 3.62 ms at 1080p (H100; docs/ddgi.md, "Tracing on
         // where the probes are blind").
-        sum += traced_light(origin, dir, 0u, &rng);
+        let light = traced_light(origin, dir, 0u, &rng);
+        sum += light * min(1.0, bound / max(luminance(light), 1e-12));
     }
     return sum / f32(GATHER_RAYS);
 }

@@ -41,6 +41,9 @@ pub const ATLAS_TEXEL_BYTES: u32 = 8;
 
 /// What sizes the probe buffers, for the messages that refuse too large a volume.
 const PROBE_SETTING: &str = "the probe counts (the manifest's probe_volume counts, --probes) or technique.volume.rays_per_probe";
+/// The same for cascades, whose probes the cascade settings place.
+const CASCADE_SETTING: &str =
+    "technique.volume.cascades / cascade_probes or technique.volume.rays_per_probe";
 
 /// The tile sides (border included) every atlas row must align for.
 pub fn tile_sides(settings: &DdgiSettings) -> [u32; 2] {
@@ -57,17 +60,27 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
     let rays = probes * v.rays_per_probe as u64;
     let atlas = AtlasLayout::new(grid.probe_count, &tile_sides(settings));
     let texel = ATLAS_TEXEL_BYTES as u64;
-    let atlas_setting = "the probe counts or technique.volume.irradiance_texels / distance_texels";
+    let (probe_setting, atlas_setting) = if v.cascades > 0 {
+        (
+            CASCADE_SETTING,
+            "technique.volume.cascade_probes or technique.volume.irradiance_texels / distance_texels",
+        )
+    } else {
+        (
+            PROBE_SETTING,
+            "the probe counts or technique.volume.irradiance_texels / distance_texels",
+        )
+    };
     vec![
         Allocation::storage(
             "ddgi/hits",
             rays * size_of::<GpuDdgiRayHit>() as u64,
-            PROBE_SETTING,
+            probe_setting,
         ),
         Allocation::storage(
             "ddgi/samples",
             rays * size_of::<GpuDdgiRaySample>() as u64,
-            PROBE_SETTING,
+            probe_setting,
         ),
         Allocation::storage(
             "ddgi/shadow_queue",
@@ -77,7 +90,7 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
                 } else {
                     size_of::<GpuDdgiShadowRay>() as u64
                 },
-            PROBE_SETTING,
+            probe_setting,
         ),
         Allocation::storage(
             "ddgi/blend_weights",
@@ -127,18 +140,18 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
             1,
             atlas_setting,
         ),
-        Allocation::storage("ddgi/probe_offsets", probes * 16, PROBE_SETTING),
-        Allocation::storage("ddgi/probe_states", probes * 4, PROBE_SETTING),
+        Allocation::storage("ddgi/probe_offsets", probes * 16, probe_setting),
+        Allocation::storage("ddgi/probe_states", probes * 4, probe_setting),
         Allocation::storage(
             "ddgi/active_probes",
             ACTIVE_PROBES_HEADER + 2 * probes * 4,
-            PROBE_SETTING,
+            probe_setting,
         ),
-        Allocation::storage("ddgi/convergence", CONVERGENCE_BYTES, PROBE_SETTING),
+        Allocation::storage("ddgi/convergence", CONVERGENCE_BYTES, probe_setting),
         Allocation::storage(
             "ddgi/every_probe",
             ACTIVE_PROBES_HEADER + 2 * probes * 4,
-            PROBE_SETTING,
+            probe_setting,
         ),
     ]
 }

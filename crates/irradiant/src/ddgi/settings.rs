@@ -257,6 +257,13 @@ pub struct DdgiGatherSettings {
     /// 32 on most scenes); disoccluded pixels start over. After a scene change it shortens as
     /// the probes' hysteresis does (`convergence_heuristics`).
     pub history_frames: u32,
+    /// The most a gather ray may bring back, as a multiple of the probes' light at the pixel
+    /// (luminance; 0: no bound). A ray whose hit takes its emitter sample from a small bright
+    /// emitter close by returns hundreds of times the mean, and one such ray in a mean of a few
+    /// dozen is a firefly that stays for `history_frames` (many small emitters: `quality` read
+    /// worse than `balanced`, docs/ddgi.md). Lower removes more of them, and with them the
+    /// energy of rare bright paths (the bias, measured in docs/ddgi.md); compiled in.
+    pub firefly_clamp: f32,
 }
 
 /// Frames of probe relocation at the start (003 §5 uses five: enough for almost every probe,
@@ -266,7 +273,6 @@ pub const RELOCATION_FRAMES: u32 = 5;
 /// Most cascades `technique.volume.cascades` takes: the eighth has 128 times the finest
 /// spacing, and updates every 64 frames.
 pub const MAX_CASCADES: u32 = 8;
-
 
 impl Default for DdgiSettings {
     fn default() -> Self {
@@ -342,6 +348,7 @@ impl DdgiSettings {
                 rays_per_pixel: 0,
                 pixel_interval: 1,
                 history_frames: 32,
+                firefly_clamp: 8.0,
             },
         }
     }
@@ -501,6 +508,7 @@ impl DdgiSettings {
         check_range("technique.gather.rays_per_pixel", g.rays_per_pixel, 0, 64)?;
         check_range("technique.gather.pixel_interval", g.pixel_interval, 1, 16)?;
         check_range("technique.gather.history_frames", g.history_frames, 1, 1024)?;
+        check_range("technique.gather.firefly_clamp", g.firefly_clamp, 0.0, 1e6)?;
         if !(s.probes_per_group.is_power_of_two() && s.probes_per_group <= 64) {
             return Err(SettingsError::invalid(
                 "technique.speed.probes_per_group",

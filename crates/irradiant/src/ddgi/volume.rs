@@ -10,8 +10,8 @@ use irradiant_scene::ProbeVolumeDesc;
 use super::constants::*;
 use super::pipelines::DdgiPipelines;
 use super::resources::{
-    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES,
-    DdgiResources, MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER, tile_sides,
+    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES, DdgiResources,
+    MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER, tile_sides,
 };
 use super::settings::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
 use super::types::GpuDdgiVolume;
@@ -514,17 +514,21 @@ impl DdgiVolume {
         self.record_window_enter(encoder, profiler.as_deref_mut());
         let rounds = self.convergence_rounds();
         for _ in 0..rounds {
-            self.passes
-                .converge_step
-                .dispatch(encoder, profiler.as_deref_mut(), Workgroups::linear(1));
+            self.passes.converge_step.dispatch(
+                encoder,
+                profiler.as_deref_mut(),
+                Workgroups::linear(1),
+            );
             self.record_rays(encoder, profiler.as_deref_mut(), Round::Convergence);
             self.record_blend_of(encoder, profiler.as_deref_mut(), Round::Convergence);
         }
         if rounds > 0 {
             // Back to round 0 for the normal update.
-            self.passes
-                .converge_step
-                .dispatch(encoder, profiler.as_deref_mut(), Workgroups::linear(1));
+            self.passes.converge_step.dispatch(
+                encoder,
+                profiler.as_deref_mut(),
+                Workgroups::linear(1),
+            );
         }
         self.record_rays(encoder, profiler.as_deref_mut(), Round::Update);
         if self.relocation_mode() != 0 {
@@ -582,7 +586,10 @@ impl DdgiVolume {
     /// The indirect dispatch of a round's trace and shade: that of the list of updating
     /// probes, or in a convergence round of the newly ones.
     fn indirect_rays(&self, round: Round) -> (&wgpu::Buffer, u64) {
-        (&self.resources.active_probes, round.list() + ACTIVE_RAY_GROUPS)
+        (
+            &self.resources.active_probes,
+            round.list() + ACTIVE_RAY_GROUPS,
+        )
     }
 
     /// Records only ddgi/probe_states (tests write the states and rays it reads): each probe's
@@ -596,7 +603,11 @@ impl DdgiVolume {
 
     /// Records only the blend passes, borders included, and the atlases' copies into the
     /// textures the query samples (tests feed the rays themselves).
-    pub fn record_blend(&self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
+    pub fn record_blend(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: Option<&mut Profiler>,
+    ) {
         self.record_blend_of(encoder, profiler, Round::Update);
     }
 

@@ -63,7 +63,9 @@ impl DdgiVolume {
     /// How many probes are in each state (003 §6), read back from the GPU.
     pub fn read_state_counts(&self, ctx: &GpuContext) -> Result<ProbeStateCounts, RenderError> {
         let words: Vec<u32> = read_buffer_as(ctx, &self.resources.states)?;
-        Ok(ProbeStateCounts::of(&words[..self.grid.probe_count as usize]))
+        Ok(ProbeStateCounts::of(
+            &words[..self.grid.probe_count as usize],
+        ))
     }
 
     /// The atlases, decoded: irradiance as cosine-weighted mean radiance (rgb), distance as
