@@ -262,7 +262,8 @@ pub struct DdgiGatherSettings {
     /// emitter close by returns hundreds of times the mean, and one such ray in a mean of a few
     /// dozen is a firefly that stays for `history_frames` (many small emitters: `quality` read
     /// worse than `balanced`, docs/ddgi.md). Lower removes more of them, and with them the
-    /// energy of rare bright paths (the bias, measured in docs/ddgi.md); compiled in.
+    /// energy of rare bright paths: at 8 the relative MSE fell on six scenes and FLIP rose on
+    /// four (H200, docs/notes/light-quality.md), so every preset leaves it off; compiled in.
     pub firefly_clamp: f32,
 }
 
@@ -348,7 +349,7 @@ impl DdgiSettings {
                 rays_per_pixel: 0,
                 pixel_interval: 1,
                 history_frames: 32,
-                firefly_clamp: 8.0,
+                firefly_clamp: 0.0,
             },
         }
     }
