@@ -490,11 +490,13 @@ mod tests {
     /// spec's own keys winning; another technique's spec is left alone.
     #[test]
     fn a_scenes_technique_table_lies_under_a_spec_of_its_technique() {
-        let mut scene = Scene::default();
-        scene.settings = toml::from_str(
-            "[technique]\nname = \"ddgi\"\n[technique.volume]\ncascades = 3\nrays_per_probe = 64",
-        )
-        .unwrap();
+        let scene = Scene {
+            settings: toml::from_str(
+                "[technique]\nname = \"ddgi\"\n[technique.volume]\ncascades = 3\nrays_per_probe = 64",
+            )
+            .unwrap(),
+            ..Default::default()
+        };
         let mut spec = TechniqueSpec::new("ddgi", Preset::Balanced);
         spec.settings = toml::from_str("[volume]\nrays_per_probe = 128").unwrap();
         let laid = under_scene_table(&spec, &scene);

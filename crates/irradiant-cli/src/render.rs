@@ -23,8 +23,8 @@ pub const PATH: &str = "path";
 #[derive(Args)]
 pub struct RenderArgs {
     /// A built-in scene (cornell, two-rooms, box-cylinders, empty-box, thin-frames, table,
-    /// slit-corridor, furnace, glowing-box, dense-cluster), a manifest (.toml) or a mesh (.obj,
-    /// .gltf, .glb).
+    /// slit-corridor, furnace, glowing-box, dense-cluster, many-lights, terrain, tunnel), a
+    /// manifest (.toml) or a mesh (.obj, .gltf, .glb).
     #[arg(long, default_value = "cornell")]
     pub scene: String,
     /// `path` (the reference path tracer) or a registered real-time technique, with settings

@@ -83,6 +83,18 @@ pub fn builtin(name: &str) -> Option<Scene> {
     }
 }
 
+/// A fixed sequence of numbers in [0, 1] (xorshift32 from `seed`): built-ins placed at random
+/// are the same on every run.
+fn xorshift(seed: u32) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state as f32 / u32::MAX as f32
+    }
+}
+
 /// Appends quads, boxes and cylinders to one mesh.
 struct Builder {
     mesh: Mesh,
@@ -553,15 +565,9 @@ pub fn dense_cluster() -> Scene {
     b.cuboid(v(-0.6, 0.7, -0.4), v(0.6, 0.75, 0.4), wood);
     b.cuboid(v(-0.55, 0.0, -0.35), v(-0.5, 0.7, -0.3), wood);
     b.cuboid(v(0.5, 0.0, 0.3), v(0.55, 0.7, 0.35), wood);
-    // Triangles of about 0.3 mm, uniformly in a 4 cm cube: a fixed sequence (xorshift), so
-    // every run builds the same scene.
-    let mut state = 0x9e37_79b9_u32;
-    let mut random = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state as f32 / u32::MAX as f32
-    };
+    // Triangles of about 0.3 mm, uniformly in a 4 cm cube: a fixed sequence, so every run
+    // builds the same scene.
+    let mut random = xorshift(0x9e37_79b9);
     let centre = v(0.0, 0.77, 0.0);
     for _ in 0..CLUSTER_TRIANGLES {
         let p = centre + (v(random(), random(), random()) - 0.5) * 0.04;

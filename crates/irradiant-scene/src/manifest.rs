@@ -341,10 +341,11 @@ impl Manifest {
         if let Some(name) = &self.name {
             scene.name = name.clone();
         }
-        let placement =
-            Mat4::from_translation(self.mesh.translation.map(Vec3::from).unwrap_or(Vec3::ZERO))
-                * Mat4::from_rotation_y(self.mesh.rotation_y_degrees.unwrap_or(0.0).to_radians())
-                * Mat4::from_scale(Vec3::splat(self.mesh.scale.unwrap_or(1.0)));
+        let placement = crate::place::placement(
+            self.mesh.scale,
+            self.mesh.rotation_y_degrees,
+            self.mesh.translation,
+        );
         for instance in &mut scene.instances {
             instance.transform = placement * instance.transform;
         }

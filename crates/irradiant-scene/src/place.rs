@@ -34,9 +34,7 @@ pub struct PlaceDesc {
 impl PlaceDesc {
     /// Scale, then rotation about y, then translation.
     pub fn transform(&self) -> Mat4 {
-        Mat4::from_translation(self.translation.map(Vec3::from).unwrap_or(Vec3::ZERO))
-            * Mat4::from_rotation_y(self.rotation_y_degrees.unwrap_or(0.0).to_radians())
-            * Mat4::from_scale(Vec3::splat(self.scale.unwrap_or(1.0)))
+        placement(self.scale, self.rotation_y_degrees, self.translation)
     }
 
     /// Refuses a placement that cannot work, naming the manifest and the table.
@@ -64,7 +62,7 @@ impl PlaceDesc {
             .iter()
             .all(|v| v.is_finite())
             && self.rotation_y_degrees.unwrap_or(0.0).is_finite();
-        if !(scale.is_finite() && scale > 0.0) || !finite {
+        if !(scale.is_finite() && scale > 0.0 && finite) {
             return Err(problem(format!(
                 "[[place]] '{}': scale must be positive and the translation and rotation finite",
                 self.name
@@ -72,6 +70,18 @@ impl PlaceDesc {
         }
         Ok(())
     }
+}
+
+/// A placement's transform: uniform scale, then rotation about y (degrees), then translation;
+/// what is left out is the identity. `[mesh]` and `[[place]]` tables both place this way.
+pub fn placement(
+    scale: Option<f32>,
+    rotation_y_degrees: Option<f32>,
+    translation: Option<[f32; 3]>,
+) -> Mat4 {
+    Mat4::from_translation(translation.map(Vec3::from).unwrap_or(Vec3::ZERO))
+        * Mat4::from_rotation_y(rotation_y_degrees.unwrap_or(0.0).to_radians())
+        * Mat4::from_scale(Vec3::splat(scale.unwrap_or(1.0)))
 }
 
 /// Merges `placed` into `scene` at `desc`'s placement: its meshes, materials and textures are

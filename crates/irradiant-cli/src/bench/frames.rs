@@ -128,7 +128,7 @@ impl FrameBench<'_> {
             }
             timed += 1;
             let gi: f64 = (timings.iter())
-                .filter(|t| gi_labels.iter().any(|l| *l == t.label))
+                .filter(|t| gi_labels.contains(&t.label))
                 .map(|t| t.milliseconds)
                 .sum();
             gi_worst = gi_worst.max(gi);

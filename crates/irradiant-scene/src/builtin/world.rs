@@ -122,15 +122,9 @@ pub fn many_lights() -> Scene {
         let x = -8.5 + 3.4 * k as f32;
         b.cuboid(v(x - 0.25, 0.0, 2.75), v(x + 0.25, 4.0, 3.25), plaster);
     }
-    // Tiles at fixed pseudo-random places (xorshift): on the ceiling, and high on the long
-    // walls, each a 15 cm square facing into the hall.
-    let mut state = 0x2545_f491_u32;
-    let mut random = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state as f32 / u32::MAX as f32
-    };
+    // Tiles at fixed pseudo-random places: on the ceiling, and high on the long walls, each a
+    // 15 cm square facing into the hall.
+    let mut random = super::xorshift(0x2545_f491);
     let h = 0.075;
     for k in 0..MANY_LIGHTS {
         let x = lo.x + 0.5 + random() * (hi.x - lo.x - 1.0);
