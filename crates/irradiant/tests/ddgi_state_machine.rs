@@ -121,7 +121,7 @@ fn probe_states_follow_the_papers_transitions() {
         .write_buffer(&r.samples, 0, bytemuck::cast_slice(&samples));
     volume.prepare(&ctx);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    volume.record_probe_states(&mut encoder);
+    volume.record_probe_states(&mut encoder, None);
     ctx.queue.submit([encoder.finish()]);
     let after: Vec<u32> = read_buffer_as(&ctx, &volume.resources.states).unwrap();
     let lists: Vec<u32> = read_buffer_as(&ctx, &volume.resources.active_probes).unwrap();

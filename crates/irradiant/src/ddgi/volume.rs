@@ -186,7 +186,7 @@ pub struct DdgiVolume {
     /// Whether it follows the camera, and its last step.
     window: window::Window,
     /// Whether last frame's states pass may have made a probe newly awake or vigilant: this
-    /// frame then records the convergence rounds (`converging`).
+    /// frame then records the convergence rounds (`convergence_rounds`).
     newly_possible: bool,
 }
 
@@ -541,11 +541,7 @@ impl DdgiVolume {
                 .dispatch(encoder, profiler.as_deref_mut(), self.dispatches.probes);
         }
         self.record_blend(encoder, profiler.as_deref_mut());
-        // The states pass lists the next frame's updating probes afresh.
-        encoder.clear_buffer(&self.resources.active_probes, 0, Some(ACTIVE_PROBES_HEADER));
-        self.passes
-            .probe_states
-            .dispatch(encoder, profiler, self.dispatches.probes);
+        self.record_probe_states(encoder, profiler);
         // This frame's states pass ends a classification on its last frame (the volume's, or
         // an entered plane's), and wakes probes while a wake box stands.
         self.newly_possible = self.state_phase() == STATES_CLASSIFY_LAST
@@ -567,7 +563,8 @@ impl DdgiVolume {
         round: Round,
     ) {
         let (p, d, r) = (&self.passes, &self.dispatches, &self.resources);
-        let (groups, offset) = self.indirect_rays(round);
+        // The list of updating probes' dispatch, or in a convergence round the newly ones'.
+        let (groups, offset) = (&r.active_probes, round.list() + ACTIVE_RAY_GROUPS);
         p.ray_directions
             .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
         if let Some(trace) = &p.trace {
@@ -583,22 +580,18 @@ impl DdgiVolume {
         }
     }
 
-    /// The indirect dispatch of a round's trace and shade: that of the list of updating
-    /// probes, or in a convergence round of the newly ones.
-    fn indirect_rays(&self, round: Round) -> (&wgpu::Buffer, u64) {
-        (
-            &self.resources.active_probes,
-            round.list() + ACTIVE_RAY_GROUPS,
-        )
-    }
-
-    /// Records only ddgi/probe_states (tests write the states and rays it reads): each probe's
-    /// next state, and the next frame's list of updating probes.
-    pub fn record_probe_states(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Records ddgi/probe_states (the end of every update; tests also record it alone, over
+    /// states and rays they wrote): each probe's next state, and the next frame's lists of
+    /// updating and newly probes, made afresh.
+    pub fn record_probe_states(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: Option<&mut Profiler>,
+    ) {
         encoder.clear_buffer(&self.resources.active_probes, 0, Some(ACTIVE_PROBES_HEADER));
         self.passes
             .probe_states
-            .dispatch(encoder, None, self.dispatches.probes);
+            .dispatch(encoder, profiler, self.dispatches.probes);
     }
 
     /// Records only the blend passes, borders included, and the atlases' copies into the
