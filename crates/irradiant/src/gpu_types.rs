@@ -91,10 +91,16 @@ pub fn all_layouts() -> Vec<Expected> {
             cos_outer
         }),
         gpu_layout!(GpuEmitter {
+            v0,
             triangle,
+            e1,
             instance,
-            cdf,
-            _pad
+            e2,
+            alias_entry,
+            normal,
+            alias_probability,
+            radiance,
+            pdf_area
         }),
         gpu_layout!(GpuSceneInfo {
             sky,
@@ -180,7 +186,15 @@ pub fn all_layouts() -> Vec<Expected> {
             tone_curve,
             pyramid_pixel_sigma,
             pyramid_normal_sigma,
-            pyramid_depth_sigma
+            pyramid_depth_sigma,
+            emitter_candidates,
+            reservoir_history,
+            reuse_neighbours,
+            reuse_radius,
+            reuse_visibility,
+            pad0,
+            pad1,
+            pad2
         }),
         gpu_layout!(GpuDdgiVolume {
             origin,

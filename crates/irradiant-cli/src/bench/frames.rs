@@ -62,6 +62,8 @@ pub struct FrameBench<'a> {
     pub scene: &'a irradiant_scene::Scene,
     pub scene_settings: &'a GpuSceneSettings,
     pub size: (u32, u32),
+    /// The frame's settings (balanced, or `bench --settings`), before `taa`.
+    pub frame: irradiant::frame::FrameSettings,
     pub taa: bool,
     /// Sway the camera every frame (`bench --moving-camera`).
     pub moving_camera: bool,
@@ -77,7 +79,7 @@ impl FrameBench<'_> {
     /// Times `iterations` frames of a technique after `warmup` and keeps the median of each
     /// pass.
     pub fn time(&self, spec: &TechniqueSpec, warmup: Warmup) -> Result<FrameRecord, CliError> {
-        let mut frame = irradiant::frame::FrameSettings::balanced();
+        let mut frame = self.frame.clone();
         frame.taa.enabled = self.taa;
         let mut session = Session::new(
             self.ctx.clone(),

@@ -80,6 +80,11 @@ pub struct BenchArgs {
     /// Time frames without TAA (the frame/taa pass then only copies), as frames were before it.
     #[arg(long)]
     pub no_taa: bool,
+    /// A settings file whose `[frame]` table the timed frames use over the balanced preset
+    /// (its `[technique]` table is not read: techniques take their settings in braces), e.g.
+    /// to time `[frame.resampling]` variants.
+    #[arg(long)]
+    pub settings: Option<std::path::PathBuf>,
     /// Time frames while the camera sways (a hundredth of a degree about the vertical, back
     /// and forth every frame) instead of standing still: TAA then reprojects and clips its
     /// history, and every running mean restarts, as in a game.
@@ -214,6 +219,18 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
         ));
     }
     let techniques = vary::expand(&crate::options::technique_list(&args.techniques)?, &varies)?;
+    let frame_settings = match &args.settings {
+        Some(path) => {
+            let mut warnings = Vec::new();
+            let file = irradiant::settings::SettingsFile::read(path, &mut warnings)?;
+            let frame = file.frame_settings(irradiant::Preset::Balanced, &mut warnings)?;
+            for w in warnings {
+                eprintln!("warning: {w}");
+            }
+            frame
+        }
+        None => irradiant::frame::FrameSettings::balanced(),
+    };
     // Each technique's preset (balanced unless its braces name one) with its own settings over
     // it, checked (and its unknown keys warned of) before the GPU is touched.
     let technique_specs: Vec<TechniqueSpec> = techniques
@@ -305,6 +322,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 scene: &scene,
                 scene_settings: &scene_settings,
                 size,
+                frame: frame_settings.clone(),
                 taa: !args.no_taa,
                 moving_camera: args.moving_camera,
                 path_length: args.camera_path.then(|| scene.animation_length()),

@@ -4,7 +4,7 @@
 // (`traced_light`), and traced on past hits the probes are blind to (`probes_blind_to`).
 // Emission is left out: the frame's direct pass samples every emitter already.
 #import ddgi_query
-#import lights
+#import resampling
 
 // The punctual lights' share: every light with `all_lights`, else the one `u` picks, weighted
 // by the light count.

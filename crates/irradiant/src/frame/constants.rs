@@ -7,4 +7,7 @@ irradiant_gpu::wgsl_constants! {
     /// `GpuFrameParams::tone_curve`: a plain clamp, for side-by-side checks with renderers
     /// that clamp.
     TONE_CLAMP: u32 = 1;
+    /// The most neighbours `frame.resampling.neighbours` may name: frame/direct_reuse keeps
+    /// each one it merges, to count which could have drawn the winner.
+    MAX_REUSE_NEIGHBOURS: u32 = 16;
 }

@@ -1,12 +1,20 @@
-// frame/direct: direct light at each G-buffer pixel — punctual lights with shadow rays, and
-// `area_light_samples` samples of the emissive triangles — kept as a running mean while the
-// view and the scene stay still (restarted by the frame's one reset mechanism). With TAA's
-// jitter the mean also averages over the pixel's footprint.
+// frame/direct: direct light at each G-buffer pixel. Without emitter resampling: punctual lights
+// with shadow rays and `area_light_samples` samples of the emissive triangles, kept as a running
+// mean while the view and the scene stay still (restarted by the frame's one reset mechanism;
+// with TAA's jitter the mean also averages over the pixel's footprint). With resampling
+// (frame.emitter_candidates > 0, a scene with emitters) this pass only makes each pixel's
+// reservoir: RIS over the candidates, a shadow ray for the one kept, then last frame's reservoir
+// where the motion vectors find the same surface; frame/direct_reuse takes the neighbours',
+// shades and keeps the mean.
 #import gbuffer
-#import lights
+#import history
+#import resampling
 #import random
 
 @group(2) @binding(0) var direct: texture_storage_2d<rgba32float, read_write>;
+@group(2) @binding(1) var direct_reservoirs: texture_storage_2d<rgba32uint, write>;
+@group(2) @binding(2) var direct_reservoirs_final: texture_2d<u32>;
+@group(2) @binding(3) var direct_reservoir_geometry: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
@@ -15,8 +23,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         return;
     }
     let index = id.y * frame.width + id.x;
+    let resampling = scene_info.emitter_count > 0u && frame.emitter_candidates > 0u;
+    let surface = gbuffer_depth_at(id.xy) >= 0.0;
+    if resampling {
+        var r = empty_reservoir();
+        if surface {
+            r = temporal_reservoir(id.xy, index);
+        }
+        textureStore(direct_reservoirs, id.xy, pack_reservoir(r));
+        return;
+    }
     var light = vec3<f32>(0.0);
-    if gbuffer_depth_at(id.xy) >= 0.0 {
+    if surface {
         let s = gbuffer_surface(id.xy);
         let wo = view_dir(s.position);
         light = direct_punctual(s, wo);
@@ -32,4 +50,35 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     let n = f32(frame.accumulated_frames);
     let previous = textureLoad(direct, id.xy).rgb;
     textureStore(direct, id.xy, vec4<f32>(select(light, mix(previous, light, 1.0 / (n + 1.0)), frame.accumulated_frames > 0u), 1.0));
+}
+
+// This frame's candidates, their winner tested for visibility, merged with the reservoir last
+// frame kept for this surface.
+fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
+    let s = gbuffer_surface(pixel);
+    let origin = shadow_origin(s);
+    var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x2545f491u);
+    var fresh = resample_emitters(s, origin, frame.emitter_candidates, &rng);
+    if !reservoir_visible(origin, fresh) {
+        fresh.w = 0.0;
+    }
+    if frame.reservoir_history == 0u {
+        return fresh;
+    }
+    let old_pixel = vec2<i32>(floor(history_position(pixel)));
+    let size = vec2<i32>(i32(frame.width), i32(frame.height));
+    if any(old_pixel < vec2<i32>(0)) || any(old_pixel >= size) {
+        return fresh;
+    }
+    let old_geometry = textureLoad(direct_reservoir_geometry, old_pixel, 0);
+    if !same_surface(old_geometry, s.position, s.normal, REUSE_DEPTH_TOLERANCE, REUSE_NORMAL_TOLERANCE) {
+        return fresh;
+    }
+    var old = unpack_reservoir(textureLoad(direct_reservoirs_final, old_pixel, 0));
+    old.m = min(old.m, f32(frame.reservoir_history));
+    var r = empty_reservoir();
+    reservoir_add(&r, fresh.emitter, fresh.bary, fresh.target_value, fresh.target_value * fresh.w * fresh.m, fresh.m, rand(&rng));
+    reservoir_merge(&r, s, origin, old, rand(&rng));
+    reservoir_finish(&r);
+    return r;
 }

@@ -29,6 +29,18 @@ struct GpuFrameParams {
     pyramid_pixel_sigma: f32,
     pyramid_normal_sigma: f32,
     pyramid_depth_sigma: f32,
+    // emitter candidates a pixel draws (0: resampling off), the most candidates last frame's
+    // reservoir counts for (0: no temporal reuse), neighbours and their radius in pixels
+    emitter_candidates: u32,
+    reservoir_history: u32,
+    reuse_neighbours: u32,
+    reuse_radius: f32,
+    // 1: a shadow ray from each neighbour tells whether it could have drawn the winner
+    // (unbiased); 0: facing it is enough
+    reuse_visibility: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 // Pixel coordinates (y down, continuous: pixel centres at .5) of a world point seen by a camera.

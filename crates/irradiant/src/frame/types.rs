@@ -44,5 +44,23 @@ pub struct GpuFrameParams {
     pub pyramid_normal_sigma: f32,
     /// Gaussian width of the relative depth difference in the pyramid's voting filter.
     pub pyramid_depth_sigma: f32,
+    /// Emitter candidates a pixel draws (0: resampling off).
+    pub emitter_candidates: u32,
+    /// The most candidates last frame's reservoir may count for (0: no temporal reuse, or
+    /// nothing to reuse).
+    pub reservoir_history: u32,
+    /// Neighbours a pixel takes reservoirs from.
+    pub reuse_neighbours: u32,
+    /// How far those neighbours lie, in pixels.
+    pub reuse_radius: f32,
+    /// 1: a shadow ray from each neighbour tells whether it could have drawn the winner
+    /// (unbiased); 0: facing it is enough.
+    pub reuse_visibility: u32,
+    /// Padding to a 16-byte multiple; 0.
+    pub pad0: u32,
+    /// Padding; 0.
+    pub pad1: u32,
+    /// Padding; 0.
+    pub pad2: u32,
 }
-const _: () = assert!(size_of::<GpuFrameParams>() == 192);
+const _: () = assert!(size_of::<GpuFrameParams>() == 224);

@@ -9,7 +9,7 @@
 #import ddgi_query
 #import bvh
 #import scene
-#import lights
+#import resampling
 #import random
 
 @group(2) @binding(26) var target_radiance: texture_storage_2d_array<r32uint, write>;

@@ -24,8 +24,8 @@ pub(super) struct SceneBuild {
     pub slot_triangles: Vec<[Vec3; 3]>,
     /// Per mesh: root node and object-space bounds.
     pub blas_roots: Vec<(u32, (Vec3, Vec3))>,
-    /// Per mesh: emissive triangle slots with their emission luminance.
-    pub mesh_emitters: Vec<Vec<(u32, f32)>>,
+    /// Per mesh: emissive triangle slots with their emitted radiance.
+    pub mesh_emitters: Vec<Vec<(u32, glam::Vec3)>>,
     pub max_depth: u32,
     /// First node of the top level, after every mesh's nodes.
     pub tlas_base: u32,
@@ -110,7 +110,7 @@ impl SceneBuild {
                 let material = mesh.triangle_materials[t as usize];
                 let emission = scene.materials[material as usize].emission;
                 if emission.max_element() > 0.0 {
-                    emissive.push((triangles.len() as u32, luminance(emission)));
+                    emissive.push((triangles.len() as u32, emission));
                 }
                 triangles.push(GpuTriangle {
                     v0: a.into(),

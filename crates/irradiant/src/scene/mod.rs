@@ -3,6 +3,7 @@
 
 mod build;
 pub mod constants;
+mod emitter_alias;
 mod textures;
 pub mod types;
 
@@ -15,7 +16,7 @@ use irradiant_scene::{AlphaMode, LightKind, Pose, Scene};
 use wgpu::util::DeviceExt;
 
 use crate::RenderError;
-use build::SceneBuild;
+use build::{SceneBuild, luminance};
 use constants::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
 use types::*;
 
@@ -111,8 +112,8 @@ pub struct GpuScene {
     /// Per mesh: root node and object-space bounds.
     blas_roots: Vec<(u32, (Vec3, Vec3))>,
     tlas_base: u32,
-    /// Per mesh: emissive triangle slots with their emission luminance.
-    mesh_emitters: Vec<Vec<(u32, f32)>>,
+    /// Per mesh: emissive triangle slots with their emitted radiance.
+    mesh_emitters: Vec<Vec<(u32, Vec3)>>,
     /// Object-space triangles of each slot, for emitter areas.
     slot_triangles: Vec<[Vec3; 3]>,
     instance_meshes: Vec<u32>,
@@ -357,7 +358,7 @@ impl GpuScene {
     /// Whether the scene can hold an emissive triangle: an instance's mesh has one, or room
     /// was left for a host to add one (shaders compiled without emitters skip them; animation
     /// moves emitters but never makes one).
-    fn has_emitters(&self) -> bool {
+    pub(crate) fn has_emitters(&self) -> bool {
         self.emitter_capacity > 0
     }
 
@@ -402,33 +403,40 @@ impl GpuScene {
             queue.write_buffer(&self.lights, 0, bytemuck::cast_slice(&lights));
         }
 
-        // Emitters, chosen in proportion to luminance × world area.
+        // Emitters in world space, picked in proportion to luminance × world area through an
+        // alias table.
         let mut emitters = Vec::new();
         let mut powers = Vec::new();
         for (ordered_index, &source) in tlas.instance_order.iter().enumerate() {
             let transform = &pose.instance_transforms[source as usize];
-            for &(slot, lum) in &self.mesh_emitters[self.instance_meshes[source as usize] as usize]
+            let normal_matrix = transform.inverse().transpose();
+            for &(slot, radiance) in
+                &self.mesh_emitters[self.instance_meshes[source as usize] as usize]
             {
-                let [a, b, c] =
-                    self.slot_triangles[slot as usize].map(|p| transform.transform_point3(p));
+                let object = self.slot_triangles[slot as usize];
+                let [a, b, c] = object.map(|p| transform.transform_point3(p));
                 let area = 0.5 * (b - a).cross(c - a).length();
+                let face = (object[1] - object[0]).cross(object[2] - object[0]);
                 emitters.push(GpuEmitter {
+                    v0: a.into(),
                     triangle: slot,
+                    e1: (b - a).into(),
                     instance: ordered_index as u32,
-                    cdf: 0.0,
-                    _pad: 0,
+                    e2: (c - a).into(),
+                    alias_entry: 0,
+                    normal: normal_matrix.transform_vector3(face).normalize_or_zero().into(),
+                    alias_probability: 1.0,
+                    radiance: radiance.into(),
+                    pdf_area: luminance(radiance),
                 });
-                powers.push(lum * area);
+                powers.push(luminance(radiance) * area);
             }
         }
         let total: f32 = powers.iter().sum();
-        let mut running = 0.0;
-        for (e, p) in emitters.iter_mut().zip(&powers) {
-            running += p;
-            e.cdf = running / total;
-        }
-        if let Some(last) = emitters.last_mut() {
-            last.cdf = 1.0;
+        for (e, (probability, alias)) in emitters.iter_mut().zip(emitter_alias::table(&powers)) {
+            e.alias_probability = probability;
+            e.alias_entry = alias;
+            e.pdf_area /= total.max(1e-30);
         }
         if !emitters.is_empty() {
             queue.write_buffer(&self.emitters, 0, bytemuck::cast_slice(&emitters));

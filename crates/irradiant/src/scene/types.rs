@@ -133,16 +133,30 @@ const _: () = assert!(size_of::<GpuLight>() == 48);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuEmitter {
+    /// Its first vertex in world space (at the last uploaded pose).
+    pub v0: [f32; 3],
     /// Its triangle slot.
     pub triangle: u32,
+    /// Its first edge (v1 − v0) in world space.
+    pub e1: [f32; 3],
     /// Its instance, in instance-buffer (top-level leaf) order.
     pub instance: u32,
-    /// Cumulative selection probability up to and including this emitter.
-    pub cdf: f32,
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad: u32,
+    /// Its second edge (v2 − v0) in world space.
+    pub e2: [f32; 3],
+    /// The alias table's other emitter for this entry (Vose's method): a pick that lands here
+    /// and draws above `alias_probability` takes that one (`alias` is a WGSL keyword). O(1) a pick, where a search of the
+    /// cumulative distribution costs a load per halving.
+    pub alias_entry: u32,
+    /// Its front face's world normal (unit length).
+    pub normal: [f32; 3],
+    /// The chance that a pick landing on this entry keeps it.
+    pub alias_probability: f32,
+    /// Emitted radiance (front face).
+    pub radiance: [f32; 3],
+    /// The area pdf of a point picked on it: luminance(radiance) / Σ luminance × area.
+    pub pdf_area: f32,
 }
-const _: () = assert!(size_of::<GpuEmitter>() == 16);
+const _: () = assert!(size_of::<GpuEmitter>() == 80);
 
 /// Scene-wide figures, uploaded with each pose (the `scene_info` uniform).
 #[repr(C)]

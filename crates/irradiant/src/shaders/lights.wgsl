@@ -128,8 +128,3 @@ fn emitter_visible(origin: vec3<f32>, wi: vec3<f32>, distance: f32, e: EmitterSa
     let hit = trace_ray(origin, wi, distance * (1.0 + 1e-3), false);
     return hit.triangle == e.triangle && hit.instance == e.instance;
 }
-
-// An unbiased estimate of the direct light from every emitter: one sample_emitter_light.
-fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
-    return sample_emitter_light(s, wo, rng).radiance;
-}

@@ -23,6 +23,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("bvh", include_str!("bvh.wgsl"))
             .with("brdf", include_str!("brdf.wgsl"))
             .with("lights", include_str!("lights.wgsl"))
+            .with("resampling", include_str!("resampling.wgsl"))
             .with("camera", include_str!("camera.wgsl"))
             .with("path", include_str!("../pathtrace/path.wgsl"))
             .with("surface", include_str!("surface.wgsl"))

@@ -101,27 +101,28 @@ struct EmitterSample {
 }
 
 fn sample_emitter(u_select: f32, u: vec2<f32>) -> EmitterSample {
-    // Binary search of the cumulative distribution.
-    var lo = 0u;
-    var hi = scene_info.emitter_count - 1u;
-    while lo < hi {
-        let mid = (lo + hi) / 2u;
-        if emitters[mid].cdf < u_select {
-            lo = mid + 1u;
-        } else {
-            hi = mid;
-        }
-    }
-    let e = emitters[lo];
-    let tri = triangles[e.triangle];
-    let inst = instances[e.instance];
-    let b = uniform_triangle(u);
+    return emitter_point(pick_emitter(u_select), uniform_triangle(u));
+}
+
+// The emitter (an entry of `emitters`) a uniform u_select picks, in proportion to its power:
+// the alias table's entry where u_select lands, or its alias.
+fn pick_emitter(u_select: f32) -> u32 {
+    let n = scene_info.emitter_count;
+    let scaled = u_select * f32(n);
+    let entry = min(u32(scaled), n - 1u);
+    let e = emitters[entry];
+    return select(e.alias_entry, entry, scaled - f32(entry) < e.alias_probability);
+}
+
+// The point of emitter `index` at barycentrics b (along its triangle's e1 and e2), with the
+// area pdf sample_emitter gives it: how a reservoir's sample is found again in later frames.
+fn emitter_point(index: u32, b: vec2<f32>) -> EmitterSample {
+    let e = emitters[index];
     var s: EmitterSample;
-    s.position = to_world_point(inst, tri.v0 + tri.e1 * b.x + tri.e2 * b.y);
-    s.normal = to_world_normal(inst, cross(tri.e1, tri.e2));
-    let m = materials[tri.material];
-    s.radiance = m.emission;
-    s.pdf_area = emitter_pdf_area(m.emission);
+    s.position = e.v0 + e.e1 * b.x + e.e2 * b.y;
+    s.normal = e.normal;
+    s.radiance = e.radiance;
+    s.pdf_area = e.pdf_area;
     s.triangle = e.triangle;
     s.instance = e.instance;
     return s;

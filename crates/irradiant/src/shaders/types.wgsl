@@ -103,12 +103,19 @@ struct GpuLight {
 }
 
 // One emissive triangle for next-event estimation, chosen with probability ∝ its power.
+// An emissive triangle in world space at the last uploaded pose, with its alias-table entry
+// (scene::types::GpuEmitter).
 struct GpuEmitter {
+    v0: vec3<f32>,
     triangle: u32,
+    e1: vec3<f32>,
     instance: u32,
-    // cumulative selection probability up to and including this emitter
-    cdf: f32,
-    _pad: u32,
+    e2: vec3<f32>,
+    alias_entry: u32,
+    normal: vec3<f32>,
+    alias_probability: f32,
+    radiance: vec3<f32>,
+    pdf_area: f32,
 }
 
 struct GpuSceneInfo {

@@ -1,0 +1,176 @@
+// Emitter samples chosen by resampled importance sampling (RIS, Talbot et al. 2005) and held in
+// reservoirs that later frames and neighbouring pixels reuse (ReSTIR DI, Bitterli et al. 2020,
+// Algorithms 3-5). Candidates come from the power-proportional pick of every emitter
+// (sample_emitter); RIS keeps one in proportion to what it sends to the surface unshadowed
+// (Le · brdf · both cosines / d²), so that near, facing emitters win over far ones of the same
+// power. One shadow ray then tests the one kept. Shared by frame/direct and every ray hit's
+// emitter sample (emitter_light); the path tracer keeps sample_emitter_light, whose pdf its MIS
+// weights need.
+#import lights
+
+// Candidates a ray hit's one emitter sample is chosen from (emitter_light): enough that the
+// nearest of a hall's emitters win most of the time; each costs a pick and a few loads, no ray.
+const HIT_EMITTER_CANDIDATES: u32 = 8u;
+
+// How far a reused reservoir's surface may lie from the pixel's, as a share of the view depth,
+// and the smallest cosine between their normals (ReSTIR DI's 10 % and 25°).
+const REUSE_DEPTH_TOLERANCE: f32 = 0.1;
+const REUSE_NORMAL_TOLERANCE: f32 = 0.9;
+
+// A reservoir: the sample it holds (an emitter and barycentrics on its triangle), its target
+// value p̂ at the pixel that holds it, the sum of the candidates' resampling weights, M (how
+// many candidates it stands for), and W, the unbiased contribution weight that makes
+// f(y) · W an estimate of the light from every emitter.
+struct Reservoir {
+    emitter: u32,
+    bary: vec2<f32>,
+    target_value: f32,
+    weight_sum: f32,
+    m: f32,
+    w: f32,
+}
+
+fn empty_reservoir() -> Reservoir {
+    return Reservoir(INVALID, vec2<f32>(0.0), 0.0, 0.0, 0.0, 0.0);
+}
+
+// What an emitter point sends to a surface, shadows aside, in the area measure
+// (brdf · Le · cos at the surface · cos at the emitter / d²), and the shadow ray that decides
+// whether it arrives.
+struct EmitterReach {
+    light: vec3<f32>,
+    wi: vec3<f32>,
+    distance: f32,
+}
+
+fn emitter_reach(s: Surface, wo: vec3<f32>, origin: vec3<f32>, e: EmitterSample) -> EmitterReach {
+    var out: EmitterReach;
+    let to_light = e.position - origin;
+    let d2 = dot(to_light, to_light);
+    out.distance = sqrt(d2);
+    out.wi = to_light / max(out.distance, 1e-20);
+    let cos_light = -dot(e.normal, out.wi);
+    let cos_surface = dot(s.normal, out.wi);
+    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, out.wi) <= 0.0 || d2 <= 0.0 {
+        return out;
+    }
+    out.light = brdf_eval(s, wo, out.wi) * e.radiance * (cos_surface * cos_light / d2);
+    return out;
+}
+
+// The target function p̂ the reservoirs resample towards at a surface: the emitter point's
+// luminance × both cosines / d², what it sends unshadowed to a white Lambertian surface. The
+// BRDF is left out (a candidate costs no BRDF evaluation); p̂ is positive wherever the light
+// f(y) is, so the estimate stays unbiased, with a little more noise on glossy surfaces.
+fn target_value(s: Surface, origin: vec3<f32>, e: EmitterSample) -> f32 {
+    let to_light = e.position - origin;
+    let d2 = dot(to_light, to_light);
+    let cos_light = -dot(e.normal, to_light);
+    let cos_surface = dot(s.normal, to_light);
+    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, to_light) <= 0.0 || d2 <= 0.0 {
+        return 0.0;
+    }
+    // The cosines of unnormalised vectors: d² twice over.
+    return luminance(e.radiance) * cos_surface * cos_light / (d2 * d2);
+}
+
+// Streams one candidate of resampling weight `weight` into r (Algorithm 2's update); `m` is
+// how many candidates it stands for.
+fn reservoir_add(r: ptr<function, Reservoir>, emitter: u32, bary: vec2<f32>, target_value: f32, weight: f32, m: f32, u: f32) {
+    (*r).m += m;
+    if weight <= 0.0 {
+        return;
+    }
+    (*r).weight_sum += weight;
+    if u * (*r).weight_sum < weight {
+        (*r).emitter = emitter;
+        (*r).bary = bary;
+        (*r).target_value = target_value;
+    }
+}
+
+// Sets W = (Σ weights) / (M · p̂(y)) once every candidate is in.
+fn reservoir_finish(r: ptr<function, Reservoir>) {
+    let denominator = (*r).m * (*r).target_value;
+    (*r).w = select(0.0, (*r).weight_sum / denominator, denominator > 0.0);
+}
+
+// Merges the reservoir `other` (held at another pixel or frame) into r: its sample at the
+// target value it has here, weighted by p̂ · W · M (Algorithm 4).
+fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, other: Reservoir, u: f32) {
+    if other.emitter >= scene_info.emitter_count || other.w <= 0.0 {
+        (*r).m += other.m;
+        return;
+    }
+    let here = target_value(s, origin, emitter_point(other.emitter, other.bary));
+    reservoir_add(r, other.emitter, other.bary, here, here * other.w * other.m, other.m, u);
+}
+
+// RIS over `candidates` emitter points picked in proportion to power: the reservoir that keeps
+// one, its W set (no shadow ray yet).
+fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> Reservoir {
+    var r = empty_reservoir();
+    for (var i = 0u; i < candidates; i++) {
+        let emitter = pick_emitter(rand(rng));
+        let bary = uniform_triangle(rand2(rng));
+        let e = emitter_point(emitter, bary);
+        let value = target_value(s, origin, e);
+        reservoir_add(&r, emitter, bary, value, value / e.pdf_area, 1.0, rand(rng));
+    }
+    reservoir_finish(&r);
+    return r;
+}
+
+// The light r's sample brings, f(y) · W, where it reaches the surface unblocked (one shadow
+// ray); zero otherwise.
+fn reservoir_light(s: Surface, wo: vec3<f32>, origin: vec3<f32>, r: Reservoir) -> vec3<f32> {
+    if r.emitter >= scene_info.emitter_count || r.w <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let e = emitter_point(r.emitter, r.bary);
+    let reach = emitter_reach(s, wo, origin, e);
+    if all(reach.light == vec3<f32>(0.0)) || !emitter_visible(origin, reach.wi, reach.distance, e) {
+        return vec3<f32>(0.0);
+    }
+    return reach.light * r.w;
+}
+
+// Whether r's sample reaches the surface unblocked (visibility reuse: a reservoir whose sample
+// is shadowed keeps its M and loses its weight, so its neighbours stop taking it).
+fn reservoir_visible(origin: vec3<f32>, r: Reservoir) -> bool {
+    if r.emitter >= scene_info.emitter_count || r.w <= 0.0 {
+        return false;
+    }
+    return point_visible(origin, emitter_point(r.emitter, r.bary));
+}
+
+// Whether the emitter point e is the first thing a ray from `origin` towards it meets.
+fn point_visible(origin: vec3<f32>, e: EmitterSample) -> bool {
+    let to_light = e.position - origin;
+    let distance = length(to_light);
+    return emitter_visible(origin, to_light / max(distance, 1e-20), distance, e);
+}
+
+// Reservoirs in an rgba32uint texel: the emitter, the barycentrics as two 16-bit unorms, W and M.
+fn pack_reservoir(r: Reservoir) -> vec4<u32> {
+    return vec4<u32>(r.emitter, pack2x16unorm(r.bary), bitcast<u32>(r.w), bitcast<u32>(r.m));
+}
+
+fn unpack_reservoir(texel: vec4<u32>) -> Reservoir {
+    var r = empty_reservoir();
+    r.emitter = texel.x;
+    r.bary = unpack2x16unorm(texel.y);
+    r.w = bitcast<f32>(texel.z);
+    r.m = bitcast<f32>(texel.w);
+    return r;
+}
+
+// An unbiased estimate of the direct light from every emitter at a ray's hit: RIS over
+// HIT_EMITTER_CANDIDATES candidates and one shadow ray.
+fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
+    if SCENE_HAS_EMITTERS == 0u {
+        return vec3<f32>(0.0);
+    }
+    let origin = offset_ray(s.position, s.geometric_normal);
+    return reservoir_light(s, wo, origin, resample_emitters(s, origin, HIT_EMITTER_CANDIDATES, rng));
+}

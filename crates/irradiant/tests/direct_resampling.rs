@@ -1,0 +1,186 @@
+//! Direct light from many small emitters by reservoir resampling (frame/direct,
+//! frame/direct_reuse, shaders/resampling.wgsl) on the many-lights hall (120 glowing tiles,
+//! walls between them): the mean over frames is the path tracer's direct light, and reuse
+//! across pixels lowers a single frame's error.
+
+mod common;
+
+use common::*;
+use irradiant::frame::{FrameSettings, Image, ResamplingSettings};
+use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+use irradiant_scene::{Camera, Scene};
+
+const SIZE: (u32, u32) = (48, 36);
+
+/// The path tracer limited to direct light (emission seen, and one bounce off it).
+fn direct_reference(ctx: &irradiant::GpuContext, scene: &Scene, camera: &Camera, spp: u32) -> Image {
+    let gpu_scene = irradiant::GpuScene::new(ctx, scene, &Default::default()).unwrap();
+    let mut tracer = PathTracer::new(ctx, &gpu_scene, SIZE.0, SIZE.1).unwrap();
+    let settings = PathTraceSettings {
+        samples_per_pixel: spp,
+        samples_per_dispatch: 64,
+        max_bounces: 1,
+        seed: 11,
+        light_sampling: Default::default(),
+    };
+    tracer
+        .render(ctx, &gpu_scene, camera, &settings, |_, _| {})
+        .unwrap()
+}
+
+/// Direct light only along `path` (a frame a camera), pixel centres (no TAA), as the path
+/// tracer's pixels are compared one by one: the last frame, and which of its pixels are lit
+/// surfaces away from any emitter. The reference averages a pixel's footprint, which catches
+/// far tiles smaller than a pixel that a pixel centre misses: a G-buffer of eight times the
+/// resolution finds them, and a pixel within one of a glowing subpixel is left out.
+fn direct_light(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &Scene,
+    resampling: ResamplingSettings,
+    path: &[Camera],
+) -> (Image, Vec<bool>) {
+    let frame = FrameSettings {
+        resampling,
+        ..FrameSettings::default().without_taa()
+    };
+    let mut session = session_with(ctx, scene, SIZE, spec(None), frame.clone());
+    for camera in path {
+        session.set_camera(camera.clone());
+        session.render().unwrap();
+    }
+    const FINE: u32 = 8;
+    let mut fine = session_with(ctx, scene, (SIZE.0 * FINE, SIZE.1 * FINE), spec(None), frame);
+    fine.set_camera(path.last().unwrap().clone());
+    fine.render().unwrap();
+    let fine = fine.gbuffer().unwrap();
+    let mut glows = vec![false; (SIZE.0 * SIZE.1) as usize];
+    for (i, g) in fine.iter().enumerate() {
+        let (x, y) = (i as u32 % (SIZE.0 * FINE) / FINE, i as u32 / (SIZE.0 * FINE) / FINE);
+        glows[(y * SIZE.0 + x) as usize] |= g.emission != [0.0; 3];
+    }
+    let gbuffer = session.gbuffer().unwrap();
+    let near_glow = |x: i64, y: i64| {
+        (-1..=1).any(|dy| {
+            (-1..=1).any(|dx| {
+                let (x, y) = (x + dx, y + dy);
+                (0..SIZE.0 as i64).contains(&x)
+                    && (0..SIZE.1 as i64).contains(&y)
+                    && glows[(y * SIZE.0 as i64 + x) as usize]
+            })
+        })
+    };
+    let lit_surface = (0..SIZE.1 as i64)
+        .flat_map(|y| (0..SIZE.0 as i64).map(move |x| (x, y)))
+        .map(|(x, y)| gbuffer[(y * SIZE.0 as i64 + x) as usize].depth >= 0.0 && !near_glow(x, y))
+        .collect();
+    (session.image().unwrap(), lit_surface)
+}
+
+fn luminance_sum(image: &Image) -> f64 {
+    let [r, g, b] = image.mean();
+    0.2126 * r + 0.7152 * g + 0.0722 * b
+}
+
+/// Relative MSE over the pixels of `mask`.
+fn relative_mse(reference: &Image, (test, mask): &(Image, Vec<bool>)) -> f64 {
+    let keep = |image: &Image| -> Vec<[f32; 3]> {
+        (image.pixels.iter().zip(mask))
+            .filter(|(_, m)| **m)
+            .map(|(p, _)| *p)
+            .collect()
+    };
+    irradiant_eval::relative_mse(&keep(reference), &keep(test)).unwrap()
+}
+
+/// The running mean of resampled frames (reservoirs, neighbours' reuse with its shadow rays)
+/// has the path tracer's mean, over the image and block by block: reuse across pixels adds no
+/// bias that a 6×6 block of a hall's walls and floor would show (blocks by the tiles' edges
+/// left out).
+#[test]
+fn resampled_direct_light_converges_to_the_path_tracers() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("many-lights").unwrap().scene;
+    let reference = direct_reference(&ctx, &scene, &scene.camera, 1024);
+    let still = vec![scene.camera.clone(); 64];
+    let (resampled, mask) = direct_light(&ctx, &scene, ResamplingSettings::default(), &still);
+    let (m_ref, m_res) = (luminance_sum(&reference), luminance_sum(&resampled));
+    // Blocks of 6×6 lit pixels that the reference sees at a tenth of the image's mean or more
+    // (darker ones are a few noisy samples of light through a gap).
+    let mut blocks = Vec::new();
+    for by in 0..SIZE.1 / 6 {
+        for bx in 0..SIZE.0 / 6 {
+            let (mut t, mut r, mut n) = (0.0, 0.0, 0);
+            for y in by * 6..by * 6 + 6 {
+                for x in bx * 6..bx * 6 + 6 {
+                    let i = (y * SIZE.0 + x) as usize;
+                    if mask[i] {
+                        t += pixel_luminance(&resampled.pixels[i]);
+                        r += pixel_luminance(&reference.pixels[i]);
+                        n += 1;
+                    }
+                }
+            }
+            if n == 36 && r / 36.0 > 0.1 * m_ref {
+                blocks.push(t / r);
+            }
+        }
+    }
+    let worst = blocks
+        .iter()
+        .map(|r| (r - 1.0).abs())
+        .fold(0.0f64, f64::max);
+    let median = {
+        let mut sorted = blocks.clone();
+        sorted.sort_by(f64::total_cmp);
+        sorted[sorted.len() / 2]
+    };
+    eprintln!(
+        "resampled direct light over 64 frames: mean {m_res:.5} against the path tracer's {m_ref:.5} ({:+.2} %); {} 6×6 blocks: median ratio {median:.3}, worst {worst:.3} off",
+        100.0 * (m_res / m_ref - 1.0),
+        blocks.len()
+    );
+    assert!(
+        (m_res / m_ref - 1.0).abs() < 0.03,
+        "resampled mean {m_res} against the path tracer's {m_ref}"
+    );
+    assert!(
+        (median - 1.0).abs() < 0.03,
+        "the median block reads {median} of the path tracer's"
+    );
+    assert!(worst < 0.15, "a block reads {worst} off the path tracer's");
+}
+
+/// While the view moves (here a slow sideways drift, every frame a new camera, so no running
+/// mean), last frame's reservoir where the surface was seen carries its candidates on: the
+/// error of the drift's last frame falls well below the same frame without temporal reuse.
+#[test]
+fn reservoirs_carried_through_a_moving_view_lower_its_error() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("many-lights").unwrap().scene;
+    let path: Vec<Camera> = (0..12)
+        .map(|i| {
+            let mut camera = scene.camera.clone();
+            let step = glam::Vec3::new(0.01 * i as f32, 0.0, 0.0);
+            camera.position += step;
+            camera.target += step;
+            camera
+        })
+        .collect();
+    let reference = direct_reference(&ctx, &scene, path.last().unwrap(), 1024);
+    let without = ResamplingSettings {
+        history: 0,
+        ..ResamplingSettings::default()
+    };
+    let fresh = relative_mse(&reference, &direct_light(&ctx, &scene, without, &path));
+    let carried = relative_mse(
+        &reference,
+        &direct_light(&ctx, &scene, ResamplingSettings::default(), &path),
+    );
+    eprintln!(
+        "the drift's last frame, relative MSE: without temporal reuse {fresh:.4}, with {carried:.4}"
+    );
+    assert!(
+        carried < 0.4 * fresh,
+        "temporal reuse {carried} against none {fresh}"
+    );
+}
