@@ -16,10 +16,6 @@ few=(cornell scenes/sibenik/sibenik.toml)
 # Variants of the current binary: name and [frame.resampling] table.
 variants=(
     "balanced|"
-    "c16n2|candidates = 16
-neighbours = 2"
-    "c8n1|candidates = 8
-neighbours = 1"
     "unbiased|unbiased = true"
     "quality|candidates = 64
 neighbours = 6

@@ -3,9 +3,9 @@
 // mean while the view and the scene stay still (restarted by the frame's one reset mechanism;
 // with TAA's jitter the mean also averages over the pixel's footprint). With resampling
 // (frame.emitter_candidates > 0, a scene with emitters) this pass only makes each pixel's
-// reservoir: RIS over the candidates, a shadow ray for the one kept, then last frame's reservoir
-// where the motion vectors find the same surface; frame/direct_reuse takes the neighbours',
-// shades and keeps the mean.
+// reservoir: RIS over the candidates, a shadow ray for the one kept (where it will be reused),
+// then last frame's reservoir where the motion vectors find the same surface;
+// frame/direct_reuse takes the neighbours', shades and keeps the mean.
 #import gbuffer
 #import history
 #import resampling
@@ -59,7 +59,11 @@ fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     let origin = shadow_origin(s);
     var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x2545f491u);
     var fresh = resample_emitters(s, origin, frame.emitter_candidates, &rng);
-    if !reservoir_visible(origin, fresh) {
+    // Visibility reuse: a winner shadowed here loses its weight before it meets last frame's
+    // or the neighbours take it. Where neither happens (a still view's later frames),
+    // frame/direct_reuse tests the same sample when it shades it: this ray would be that one.
+    let reused = frame.reuse_neighbours > 0u || frame.reservoir_history > 0u;
+    if reused && !reservoir_visible(origin, fresh) {
         fresh.w = 0.0;
     }
     if frame.reservoir_history == 0u {
