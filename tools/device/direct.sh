@@ -16,7 +16,8 @@ few=(cornell scenes/sibenik/sibenik.toml)
 # Variants of the current binary: name and [frame.resampling] table.
 variants=(
     "balanced|"
-    "unbiased|unbiased = true"
+    "c16|candidates = 16"
+    "c8|candidates = 8"
     "quality|candidates = 64
 neighbours = 6
 unbiased = true"

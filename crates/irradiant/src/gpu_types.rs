@@ -90,14 +90,6 @@ pub fn all_layouts() -> Vec<Expected> {
             power,
             cos_outer
         }),
-        gpu_layout!(GpuLightNode {
-            bounds_min,
-            power,
-            bounds_max,
-            cos_spread,
-            axis,
-            child_or_emitter
-        }),
         gpu_layout!(GpuEmitter {
             v0,
             triangle,

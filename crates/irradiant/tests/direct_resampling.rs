@@ -153,7 +153,7 @@ fn resampled_direct_light_converges_to_the_path_tracers() {
 /// While the view moves (here a slow sideways drift, every frame a new camera, so no running
 /// mean), last frame's reservoir where the surface was seen carries its candidates on: the
 /// error of the drift's last frame falls well below the same frame without temporal reuse.
-/// Seen on lavapipe: 0.0095 against 0.043 (neighbours' radius scaled to the image as below).
+/// Seen on lavapipe: 0.017 against 0.058 (neighbours' radius scaled to the image as below).
 #[test]
 fn reservoirs_carried_through_a_moving_view_lower_its_error() {
     let Some(ctx) = gpu() else { return };
@@ -190,8 +190,7 @@ fn reservoirs_carried_through_a_moving_view_lower_its_error() {
 /// In a single frame (the first after a cut: nothing to reuse from earlier frames) the
 /// neighbours' reservoirs lower the error against the path tracer below the pixel's own
 /// candidates alone. The radius is scaled to this small image (4 of its 36 rows, as 24 pixels
-/// are of 240). Seen on lavapipe: 0.056 against 0.0625; the light tree's candidates leave
-/// neighbours less to add than power-picked ones did.
+/// are of 240). Seen on lavapipe: 0.057 against 0.125.
 #[test]
 fn reuse_across_pixels_lowers_a_single_frames_error() {
     let Some(ctx) = gpu() else { return };
@@ -210,7 +209,7 @@ fn reuse_across_pixels_lowers_a_single_frames_error() {
     let shared = relative_mse(&reference, &direct_light(&ctx, &scene, reused, &first));
     eprintln!("one frame's relative MSE: own candidates {alone:.4}, with neighbours {shared:.4}");
     assert!(
-        shared < 0.95 * alone,
+        shared < 0.7 * alone,
         "neighbours' reuse {shared} against own candidates {alone}"
     );
 }

@@ -35,13 +35,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         var taken: array<vec2<u32>, MAX_REUSE_NEIGHBOURS>;
         var taken_m: array<f32, MAX_REUSE_NEIGHBOURS>;
         var count = 0u;
-        // Only a pixel with no history of its own takes its neighbours' (the first frame after
-        // a cut, a surface just uncovered): where last frame's reservoir carried on, theirs
-        // only spread samples that are often shadowed here. On a 12-frame drift over the
-        // many-lights hall (48×36, lavapipe) temporal reuse alone read relative MSE 0.009,
-        // with every pixel also taking four neighbours 0.028.
-        let neighbours = select(0u, min(frame.reuse_neighbours, MAX_REUSE_NEIGHBOURS), own.m <= f32(frame.emitter_candidates));
-        for (var k = 0u; k < neighbours; k++) {
+        for (var k = 0u; k < min(frame.reuse_neighbours, MAX_REUSE_NEIGHBOURS); k++) {
             let q = neighbour(id.xy, &rng);
             if all(q == id.xy) {
                 continue;

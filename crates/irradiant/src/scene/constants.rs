@@ -17,10 +17,4 @@ irradiant_gpu::wgsl_constants! {
     /// Box exit distances are widened by this factor so that rounding never culls a tiny box
     /// whose triangle the ray hits (defined with the CPU traversal, in irradiant-bvh).
     SLAB_FAR_SCALE: f32 = irradiant_bvh::SLAB_FAR_SCALE;
-    /// `GpuLightNode::child_or_emitter` with this bit names an emitter (a leaf of the light
-    /// tree); without it, the first of the node's two children.
-    LIGHT_LEAF: u32 = 1 << 31;
-    /// The light tree's deepest level (its median splits halve the emitters each level): a
-    /// bound for the shader's walk down it.
-    LIGHT_TREE_MAX_DEPTH: u32 = 40;
 }

@@ -4,7 +4,6 @@
 mod build;
 pub mod constants;
 mod emitter_alias;
-mod light_tree;
 mod textures;
 pub mod types;
 
@@ -109,8 +108,6 @@ pub struct GpuScene {
     instances: wgpu::Buffer,
     lights: wgpu::Buffer,
     emitters: wgpu::Buffer,
-    /// The light tree over the emitters (light_tree.rs), rebuilt with each pose.
-    light_tree: wgpu::Buffer,
     info: wgpu::Buffer,
     /// Per mesh: root node and object-space bounds.
     blas_roots: Vec<(u32, (Vec3, Vec3))>,
@@ -200,7 +197,6 @@ impl GpuScene {
         let instance_bytes = size_of::<GpuInstance>() * instance_capacity.max(1);
         let light_bytes = size_of::<GpuLight>() * scene.lights.len().max(1);
         let emitter_bytes = size_of::<GpuEmitter>() * emitter_capacity.max(1);
-        let light_tree_bytes = size_of::<GpuLightNode>() * (2 * emitter_capacity).max(1);
         let setting = "the scene (fewer or smaller meshes)";
         let sizes = [
             ("scene/bvh_nodes", size_of_val(built.nodes.as_slice())),
@@ -217,7 +213,6 @@ impl GpuScene {
             ("scene/materials", size_of_val(materials.as_slice())),
             ("scene/lights", light_bytes),
             ("scene/emitters", emitter_bytes),
-            ("scene/light_tree", light_tree_bytes),
         ];
         let mut plan: Vec<Allocation> = sizes
             .iter()
@@ -250,7 +245,6 @@ impl GpuScene {
         let materials_buffer = buffer("scene/materials", bytemuck::cast_slice(&materials));
         let lights = buffer("scene/lights", &vec![0u8; light_bytes]);
         let emitters = buffer("scene/emitters", &vec![0u8; emitter_bytes]);
-        let light_tree = buffer("scene/light_tree", &vec![0u8; light_tree_bytes]);
         let info = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("scene/info"),
             size: size_of::<GpuSceneInfo>() as u64,
@@ -280,7 +274,6 @@ impl GpuScene {
             instances,
             lights,
             emitters,
-            light_tree,
             info,
             blas_roots: built.blas_roots,
             tlas_base: built.tlas_base,
@@ -331,7 +324,6 @@ impl GpuScene {
             .buffer("materials", &self.materials)
             .buffer("lights", &self.lights)
             .buffer("emitters", &self.emitters)
-            .buffer("light_tree", &self.light_tree)
             .buffer("scene_info", &self.info)
             .texture("scene_textures", &self.textures)
             .sampler("scene_sampler", &self.sampler)
@@ -415,7 +407,6 @@ impl GpuScene {
         // alias table.
         let mut emitters = Vec::new();
         let mut powers = Vec::new();
-        let mut tree_emitters = Vec::new();
         for (ordered_index, &source) in tlas.instance_order.iter().enumerate() {
             let transform = &pose.instance_transforms[source as usize];
             let normal_matrix = transform.inverse().transpose();
@@ -426,7 +417,6 @@ impl GpuScene {
                 let [a, b, c] = object.map(|p| transform.transform_point3(p));
                 let area = 0.5 * (b - a).cross(c - a).length();
                 let face = (object[1] - object[0]).cross(object[2] - object[0]);
-                let normal = normal_matrix.transform_vector3(face).normalize_or_zero();
                 emitters.push(GpuEmitter {
                     v0: a.into(),
                     triangle: slot,
@@ -434,17 +424,12 @@ impl GpuScene {
                     instance: ordered_index as u32,
                     e2: (c - a).into(),
                     alias_entry: 0,
-                    normal: normal.into(),
+                    normal: normal_matrix.transform_vector3(face).normalize_or_zero().into(),
                     alias_probability: 1.0,
                     radiance: radiance.into(),
                     pdf_area: luminance(radiance),
                 });
                 powers.push(luminance(radiance) * area);
-                tree_emitters.push(light_tree::TreeEmitter {
-                    corners: [a, b, c],
-                    normal,
-                    power: luminance(radiance) * area,
-                });
             }
         }
         let total: f32 = powers.iter().sum();
@@ -455,8 +440,6 @@ impl GpuScene {
         }
         if !emitters.is_empty() {
             queue.write_buffer(&self.emitters, 0, bytemuck::cast_slice(&emitters));
-            let tree = light_tree::build(&tree_emitters);
-            queue.write_buffer(&self.light_tree, 0, bytemuck::cast_slice(&tree));
         }
         let info = GpuSceneInfo {
             sky: self.sky.into(),

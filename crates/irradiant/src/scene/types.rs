@@ -158,25 +158,6 @@ pub struct GpuEmitter {
 }
 const _: () = assert!(size_of::<GpuEmitter>() == 80);
 
-/// A node of the light tree (scene/light_tree.rs): what the emitters under it share.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct GpuLightNode {
-    /// The box around its emitters' triangles, low corner.
-    pub bounds_min: [f32; 3],
-    /// Σ luminance × area of its emitters.
-    pub power: f32,
-    /// The box's high corner.
-    pub bounds_max: [f32; 3],
-    /// The cosine of the widest angle between `axis` and any of its emitters' normals.
-    pub cos_spread: f32,
-    /// Its emitters' mean normal (unit length; zero where they cancel).
-    pub axis: [f32; 3],
-    /// With `LIGHT_LEAF` set, an emitter; otherwise the first of its two children.
-    pub child_or_emitter: u32,
-}
-const _: () = assert!(size_of::<GpuLightNode>() == 48);
-
 /// Scene-wide figures, uploaded with each pose (the `scene_info` uniform).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]

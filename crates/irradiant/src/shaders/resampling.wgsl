@@ -17,76 +17,6 @@ const HIT_EMITTER_CANDIDATES: u32 = 8u;
 const REUSE_DEPTH_TOLERANCE: f32 = 0.1;
 const REUSE_NORMAL_TOLERANCE: f32 = 0.9;
 
-// cos(max(θ − α − β, 0)) from the cosines of θ, α and β (scene/light_tree.rs).
-fn cos_sub_clamped(cos_theta: f32, cos_alpha: f32, cos_beta: f32) -> f32 {
-    let sin_alpha = sqrt(max(1.0 - cos_alpha * cos_alpha, 0.0));
-    let sin_beta = sqrt(max(1.0 - cos_beta * cos_beta, 0.0));
-    let cos_sum = cos_alpha * cos_beta - sin_alpha * sin_beta;
-    let sin_sum = sin_alpha * cos_beta + cos_alpha * sin_beta;
-    if sin_sum < 0.0 || cos_theta >= cos_sum {
-        return 1.0;
-    }
-    return cos_theta * cos_sum + sqrt(max(1.0 - cos_theta * cos_theta, 0.0)) * sin_sum;
-}
-
-// A light-tree node's importance seen from p with normal n: power / d², where the box could
-// face p and p the box; 0 only where nothing under it can light p (scene/light_tree.rs,
-// `importance`, which the tests hold this to).
-fn light_node_importance(node: GpuLightNode, p: vec3<f32>, n: vec3<f32>) -> f32 {
-    let centre = 0.5 * (node.bounds_min + node.bounds_max);
-    let radius = 0.5 * length(node.bounds_max - node.bounds_min);
-    let to_point = p - centre;
-    let d2 = dot(to_point, to_point);
-    if d2 <= radius * radius * 1.0001 {
-        return node.power / max(radius * radius, 1e-8);
-    }
-    let d = sqrt(d2);
-    let dir = to_point / d;
-    let sin_u = min(radius / d, 1.0);
-    let cos_u = sqrt(max(1.0 - sin_u * sin_u, 0.0));
-    let emitter_side = cos_sub_clamped(dot(node.axis, dir), node.cos_spread, cos_u);
-    let receiver_side = cos_sub_clamped(dot(n, -dir), 1.0, cos_u);
-    if emitter_side <= 0.0 || receiver_side <= 0.0 {
-        return 0.0;
-    }
-    return node.power * emitter_side * receiver_side / max(d2, radius * radius);
-}
-
-// An emitter picked from p with normal n down the light tree, each child in proportion to its
-// importance (to power where neither can light p), and the probability of that pick.
-struct LightPick {
-    emitter: u32,
-    probability: f32,
-}
-
-fn pick_emitter_near(p: vec3<f32>, n: vec3<f32>, rng: ptr<function, u32>) -> LightPick {
-    var at = 0u;
-    var probability = 1.0;
-    for (var depth = 0u; depth < LIGHT_TREE_MAX_DEPTH; depth++) {
-        let node = light_tree[at];
-        if (node.child_or_emitter & LIGHT_LEAF) != 0u {
-            break;
-        }
-        let first = node.child_or_emitter;
-        let left = light_tree[first];
-        let right = light_tree[first + 1u];
-        let a = light_node_importance(left, p, n);
-        let b = light_node_importance(right, p, n);
-        var take_left = a / max(a + b, 1e-30);
-        if a + b <= 0.0 {
-            take_left = left.power / max(left.power + right.power, 1e-30);
-        }
-        if rand(rng) < take_left {
-            at = first;
-            probability *= take_left;
-        } else {
-            at = first + 1u;
-            probability *= 1.0 - take_left;
-        }
-    }
-    return LightPick(light_tree[at].child_or_emitter & ~LIGHT_LEAF, probability);
-}
-
 // A reservoir: the sample it holds (an emitter and barycentrics on its triangle), its target
 // value p̂ at the pixel that holds it, the sum of the candidates' resampling weights, M (how
 // many candidates it stands for), and W, the unbiased contribution weight that makes
@@ -176,18 +106,16 @@ fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, o
     reservoir_add(r, other.emitter, other.bary, here, here * other.w * other.m, other.m, u);
 }
 
-// RIS over `candidates` emitter points picked down the light tree: the reservoir that keeps
+// RIS over `candidates` emitter points picked in proportion to power: the reservoir that keeps
 // one, its W set (no shadow ray yet).
 fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> Reservoir {
     var r = empty_reservoir();
     for (var i = 0u; i < candidates; i++) {
-        let pick = pick_emitter_near(origin, s.normal, rng);
+        let emitter = pick_emitter(rand(rng));
         let bary = uniform_triangle(rand2(rng));
-        let e = emitter_point(pick.emitter, bary);
+        let e = emitter_point(emitter, bary);
         let value = target_value(s, origin, e);
-        // The candidate's pdf over area: the pick's probability spread over the triangle.
-        let pdf = pick.probability / emitter_area(pick.emitter);
-        reservoir_add(&r, pick.emitter, bary, value, value / max(pdf, 1e-30), 1.0, rand(rng));
+        reservoir_add(&r, emitter, bary, value, value / e.pdf_area, 1.0, rand(rng));
     }
     reservoir_finish(&r);
     return r;

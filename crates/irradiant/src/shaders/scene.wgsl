@@ -16,8 +16,6 @@
 @group(0) @binding(9) var scene_sampler: sampler;
 // Bottom-level trees in the wide layout (BLAS_WIDE == 1); one unused node otherwise.
 @group(0) @binding(10) var<storage, read> wide_nodes: array<GpuWideBvhNode>;
-// The light tree over the emitters (scene/light_tree.rs), root first.
-@group(0) @binding(11) var<storage, read> light_tree: array<GpuLightNode>;
 
 fn to_object_point(inst: GpuInstance, p: vec3<f32>) -> vec3<f32> {
     let q = vec4<f32>(p, 1.0);
@@ -128,12 +126,6 @@ fn emitter_point(index: u32, b: vec2<f32>) -> EmitterSample {
     s.triangle = e.triangle;
     s.instance = e.instance;
     return s;
-}
-
-// The area of emitter `index`'s triangle in world space.
-fn emitter_area(index: u32) -> f32 {
-    let e = emitters[index];
-    return 0.5 * length(cross(e.e1, e.e2));
 }
 
 // The area pdf with which sample_emitter picks a point of an emitter of this radiance.

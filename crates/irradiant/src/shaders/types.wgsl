@@ -118,16 +118,6 @@ struct GpuEmitter {
     pdf_area: f32,
 }
 
-// A node of the light tree (scene::types::GpuLightNode).
-struct GpuLightNode {
-    bounds_min: vec3<f32>,
-    power: f32,
-    bounds_max: vec3<f32>,
-    cos_spread: f32,
-    axis: vec3<f32>,
-    child_or_emitter: u32,
-}
-
 struct GpuSceneInfo {
     sky: vec3<f32>,
     light_count: u32,
