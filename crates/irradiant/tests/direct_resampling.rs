@@ -7,25 +7,18 @@ mod common;
 
 use common::*;
 use irradiant::frame::{FrameSettings, Image, ResamplingSettings};
-use irradiant::pathtrace::{PathTraceSettings, PathTracer};
 use irradiant_scene::{Camera, Scene};
 
 const SIZE: (u32, u32) = (48, 36);
 
 /// The path tracer limited to direct light (emission seen, and one bounce off it).
-fn direct_reference(ctx: &irradiant::GpuContext, scene: &Scene, camera: &Camera, spp: u32) -> Image {
-    let gpu_scene = irradiant::GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut tracer = PathTracer::new(ctx, &gpu_scene, SIZE.0, SIZE.1).unwrap();
-    let settings = PathTraceSettings {
-        samples_per_pixel: spp,
-        samples_per_dispatch: 64,
-        max_bounces: 1,
-        seed: 11,
-        light_sampling: Default::default(),
-    };
-    tracer
-        .render(ctx, &gpu_scene, camera, &settings, |_, _| {})
-        .unwrap()
+fn direct_reference(
+    ctx: &irradiant::GpuContext,
+    scene: &Scene,
+    camera: &Camera,
+    spp: u32,
+) -> Image {
+    path_trace_view(ctx, scene, camera, SIZE, spp, 1)
 }
 
 /// Direct light only along `path` (a frame a camera), pixel centres (no TAA), as the path
@@ -49,13 +42,22 @@ fn direct_light(
         session.render().unwrap();
     }
     const FINE: u32 = 8;
-    let mut fine = session_with(ctx, scene, (SIZE.0 * FINE, SIZE.1 * FINE), spec(None), frame);
+    let mut fine = session_with(
+        ctx,
+        scene,
+        (SIZE.0 * FINE, SIZE.1 * FINE),
+        spec(None),
+        frame,
+    );
     fine.set_camera(path.last().unwrap().clone());
     fine.render().unwrap();
     let fine = fine.gbuffer().unwrap();
     let mut glows = vec![false; (SIZE.0 * SIZE.1) as usize];
     for (i, g) in fine.iter().enumerate() {
-        let (x, y) = (i as u32 % (SIZE.0 * FINE) / FINE, i as u32 / (SIZE.0 * FINE) / FINE);
+        let (x, y) = (
+            i as u32 % (SIZE.0 * FINE) / FINE,
+            i as u32 / (SIZE.0 * FINE) / FINE,
+        );
         glows[(y * SIZE.0 + x) as usize] |= g.emission != [0.0; 3];
     }
     let gbuffer = session.gbuffer().unwrap();

@@ -13,9 +13,7 @@ pub mod types;
 pub use change::{LightingChange, SceneChange};
 pub use image_io::{Image, write_atomically, write_png};
 pub use resources::{FrameNeeds, FrameResources};
-pub use settings::{
-    FrameSettings, PyramidSettings, ResamplingSettings, TaaSettings, ToneSettings,
-};
+pub use settings::{FrameSettings, PyramidSettings, ResamplingSettings, TaaSettings, ToneSettings};
 
 use glam::Vec2;
 use irradiant_gpu::{

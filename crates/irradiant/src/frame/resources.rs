@@ -33,8 +33,16 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64)] = &[
     // frame's), and the one frame/direct_reuse keeps for the next frame with the geometry it
     // was kept for (normal, view depth)
     ("direct_reservoirs", wgpu::TextureFormat::Rgba32Uint, 16),
-    ("direct_reservoirs_final", wgpu::TextureFormat::Rgba32Uint, 16),
-    ("direct_reservoir_geometry", wgpu::TextureFormat::Rgba16Float, 8),
+    (
+        "direct_reservoirs_final",
+        wgpu::TextureFormat::Rgba32Uint,
+        16,
+    ),
+    (
+        "direct_reservoir_geometry",
+        wgpu::TextureFormat::Rgba16Float,
+        8,
+    ),
     // the technique's indirect light: rgb a weighted sum, a its weight (probe volumes blend
     // into it one after another)
     ("indirect", wgpu::TextureFormat::Rgba32Float, 16),

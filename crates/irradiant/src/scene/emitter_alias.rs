@@ -62,7 +62,13 @@ mod tests {
             state as f32 / u32::MAX as f32
         };
         let spread: Vec<f32> = (0..1000)
-            .map(|i| if i % 97 == 0 { 0.0 } else { 10f32.powf(7.0 * random() - 3.0) })
+            .map(|i| {
+                if i % 97 == 0 {
+                    0.0
+                } else {
+                    10f32.powf(7.0 * random() - 3.0)
+                }
+            })
             .collect();
         for weights in [spread, vec![2.5; 960], vec![7.0]] {
             let p = pick_probabilities(&table(&weights));
@@ -74,7 +80,11 @@ mod tests {
                     (pi - expected).abs() <= 1e-6 * expected.max(1.0 / weights.len() as f64),
                     "emitter {i}: picked with {pi}, its power's share is {expected}"
                 );
-                assert_eq!(pi > 0.0, w > 0.0, "emitter {i} of weight {w}: probability {pi}");
+                assert_eq!(
+                    pi > 0.0,
+                    w > 0.0,
+                    "emitter {i} of weight {w}: probability {pi}"
+                );
             }
         }
     }

@@ -424,7 +424,10 @@ impl GpuScene {
                     instance: ordered_index as u32,
                     e2: (c - a).into(),
                     alias_entry: 0,
-                    normal: normal_matrix.transform_vector3(face).normalize_or_zero().into(),
+                    normal: normal_matrix
+                        .transform_vector3(face)
+                        .normalize_or_zero()
+                        .into(),
                     alias_probability: 1.0,
                     radiance: radiance.into(),
                     pdf_area: luminance(radiance),

@@ -118,17 +118,30 @@ pub fn frame_result(session: &Session) -> FrameResult {
 }
 
 pub fn path_trace(ctx: &GpuContext, scene: &Scene, size: (u32, u32), spp: u32) -> Image {
+    path_trace_view(ctx, scene, &scene.camera, size, spp, 64)
+}
+
+/// The path tracer's image of `scene` from `camera`, following at most `max_bounces` bounces
+/// (1: direct light only).
+pub fn path_trace_view(
+    ctx: &GpuContext,
+    scene: &Scene,
+    camera: &irradiant_scene::Camera,
+    size: (u32, u32),
+    spp: u32,
+    max_bounces: u32,
+) -> Image {
     let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
     let mut tracer = PathTracer::new(ctx, &gpu_scene, size.0, size.1).unwrap();
     let settings = PathTraceSettings {
         samples_per_pixel: spp,
         samples_per_dispatch: 32,
-        max_bounces: 64,
+        max_bounces,
         seed: 7,
         light_sampling: Default::default(),
     };
     tracer
-        .render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {})
+        .render(ctx, &gpu_scene, camera, &settings, |_, _| {})
         .unwrap()
 }
 
