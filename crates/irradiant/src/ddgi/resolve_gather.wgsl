@@ -41,7 +41,7 @@ fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
         // The update's blind bounces are not the gather's: at every pixel's ray they took
         // Sibenik's gather from 2.76 to 3.62 ms at 1080p (H100; docs/ddgi.md, "Tracing on
         // where the probes are blind").
-        let light = traced_light(origin, dir, 0u, &rng);
+        let light = traced_light(origin, dir, 0u, GATHER_EMITTER_CANDIDATES, &rng);
         sum += light * min(1.0, bound / max(luminance(light), 1e-12));
     }
     return sum / f32(GATHER_RAYS);

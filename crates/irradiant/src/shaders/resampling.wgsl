@@ -11,6 +11,9 @@
 // Candidates a ray hit's one emitter sample is chosen from (emitter_light): enough that the
 // nearest of a hall's emitters win most of the time; each costs a pick and a few loads, no ray.
 const HIT_EMITTER_CANDIDATES: u32 = 8u;
+// The same for DDGI's final gather, whose hits are a pixel's light for up to `history_frames`
+// frames: a hit beside a small emitter that few candidates find is a firefly there.
+const GATHER_EMITTER_CANDIDATES: u32 = 32u;
 
 // How far a reused reservoir's surface may lie from the pixel's, as a share of the view depth,
 // and the smallest cosine between their normals (ReSTIR DI's 10 % and 25°).
@@ -168,9 +171,14 @@ fn unpack_reservoir(texel: vec4<u32>) -> Reservoir {
 // An unbiased estimate of the direct light from every emitter at a ray's hit: RIS over
 // HIT_EMITTER_CANDIDATES candidates and one shadow ray.
 fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
+    return emitter_light_from(s, wo, HIT_EMITTER_CANDIDATES, rng);
+}
+
+// emitter_light with RIS over `candidates`.
+fn emitter_light_from(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
     if SCENE_HAS_EMITTERS == 0u {
         return vec3<f32>(0.0);
     }
     let origin = offset_ray(s.position, s.geometric_normal);
-    return reservoir_light(s, wo, origin, resample_emitters(s, origin, HIT_EMITTER_CANDIDATES, rng));
+    return reservoir_light(s, wo, origin, resample_emitters(s, origin, candidates, rng));
 }

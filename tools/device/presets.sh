@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Runs on the lent NVIDIA machine: which of DDGI's `quality` pieces helps or hurts under many
+# emitters (issue 41, item 3): `balanced`, `quality`, `quality` less each piece, and `balanced`
+# plus each piece, on the many-emitter scenes and the Cornell box, one compare a scene
+# (320×240, 300 frames, 4096-sample references); BINS="before irradiant" compares two binaries,
+# BENCH=1 also times `quality` at 1920×1080, TECHNIQUES replaces the list. Expects .dev/ as tools/device/pack.sh lays it
+# out; writes into $OUT.
+set -euo pipefail
+source "$(dirname "$0")/setup.sh"
+cd .dev/repo
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
+q='preset = "quality"'
+techniques="ddgi,ddgi{$q}"
+techniques+=",ddgi{$q, gather.rays_per_pixel = 0}"
+techniques+=",ddgi{$q, update.traced_bounce = false, update.blind_bounces = 0}"
+techniques+=",ddgi{$q, update.hysteresis = 0.97, update.distance_hysteresis = 0.97}"
+techniques+=",ddgi{gather.rays_per_pixel = 1, gather.pixel_interval = 2, gather.history_frames = 64}"
+techniques+=",ddgi{update.traced_bounce = true}"
+bins=${BINS:-irradiant}
+techniques=${TECHNIQUES:-$techniques}
+for bin in $bins; do
+for scene in ${SCENES:-many-lights scenes/many-lights/four-halls.toml cornell}; do
+    name=$(basename "${scene%.*}")
+    ../$bin compare --scene "$scene" --techniques "$techniques" --size 320x240 --frames 300 \
+        --reference-spp 4096 --cache "$OUT/cache-$bin" --out "$OUT/$bin-$name" 2>&1 | grep -E "FLIP" | sed "s|^|$bin $name |" | tee -a "$OUT/presets.txt"
+    if [ -n "${BENCH:-}" ]; then
+        ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques "ddgi{$q}" 2>&1 \
+            | grep -E "^([a-z-]+ +ddgi |scene +technique)" | sed "s|^|$bin |" | tee -a "$OUT/bench.txt"
+    fi
+done
+done
+rm -rf "$OUT"/cache-*
+find "$OUT" -name "*.png" -delete
