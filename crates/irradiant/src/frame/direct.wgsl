@@ -6,12 +6,11 @@
 // reservoir: RIS over the candidates, a shadow ray for the one kept (where it will be reused),
 // then last frame's reservoir where the motion vectors find the same surface;
 // frame/direct_reuse takes the neighbours', shades and keeps the mean.
-#import gbuffer
+#import direct_mean
 #import history
 #import resampling
 #import random
 
-@group(2) @binding(0) var direct: texture_storage_2d<rgba32float, read_write>;
 @group(2) @binding(1) var direct_reservoirs: texture_storage_2d<rgba32uint, write>;
 @group(2) @binding(2) var direct_reservoirs_final: texture_2d<u32>;
 @group(2) @binding(3) var direct_reservoir_geometry: texture_2d<f32>;
@@ -47,9 +46,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
             light += sum / f32(frame.area_light_samples);
         }
     }
-    let n = f32(frame.accumulated_frames);
-    let previous = textureLoad(direct, id.xy).rgb;
-    textureStore(direct, id.xy, vec4<f32>(select(light, mix(previous, light, 1.0 / (n + 1.0)), frame.accumulated_frames > 0u), 1.0));
+    keep_direct_mean(id.xy, light);
 }
 
 // This frame's candidates, their winner tested for visibility, merged with the reservoir last

@@ -1,14 +1,13 @@
 // frame/direct_reuse (with emitter resampling only): each pixel merges its reservoir from
 // frame/direct with `reuse_neighbours` neighbours' whose surfaces agree with its own (ReSTIR
-// DI's spatial reuse, unbiased with `reuse_visibility`), shades the
-// winner with one shadow ray, adds the punctual lights and keeps the running mean. The reservoir it keeps, W zeroed where
+// DI's spatial reuse, unbiased with `reuse_visibility`), shades the winner with one shadow ray,
+// adds the punctual lights and keeps the running mean. The reservoir it keeps, W zeroed where
 // the shadow ray was blocked, is next frame's history.
-#import gbuffer
+#import direct_mean
 #import history
 #import resampling
 #import random
 
-@group(2) @binding(0) var direct: texture_storage_2d<rgba32float, read_write>;
 @group(2) @binding(1) var direct_reservoirs: texture_2d<u32>;
 @group(2) @binding(2) var direct_reservoirs_final: texture_storage_2d<rgba32uint, write>;
 @group(2) @binding(3) var direct_reservoir_geometry: texture_storage_2d<rgba16float, write>;
@@ -70,9 +69,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         light = direct_punctual(s, wo) + emitted;
     }
     textureStore(direct_reservoirs_final, id.xy, pack_reservoir(kept));
-    let n = f32(frame.accumulated_frames);
-    let previous = textureLoad(direct, id.xy).rgb;
-    textureStore(direct, id.xy, vec4<f32>(select(light, mix(previous, light, 1.0 / (n + 1.0)), frame.accumulated_frames > 0u), 1.0));
+    keep_direct_mean(id.xy, light);
 }
 
 // Whether the surface at pixel q could have drawn r's sample: it faces the sample, and with

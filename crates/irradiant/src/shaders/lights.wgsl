@@ -100,20 +100,44 @@ fn sample_emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> E
     }
     let origin = offset_ray(s.position, s.geometric_normal);
     let e = sample_emitter(rand(rng), rand2(rng));
+    let reach = emitter_reach(s, wo, origin, e);
+    out.wi = reach.wi;
+    if reach.cos_light <= 0.0 {
+        return out;
+    }
+    // The area pdf turned into solid angle; f · Le · cos_surface / pdf is reach.light / pdf_area.
+    out.pdf = e.pdf_area * reach.distance * reach.distance / reach.cos_light;
+    if !emitter_visible(origin, out.wi, reach.distance, e) {
+        return out;
+    }
+    out.radiance = reach.light / e.pdf_area;
+    return out;
+}
+
+// What an emitter point sends to a surface, shadows aside, in the area measure
+// (brdf · Le · cos at the surface · cos at the emitter / d²), and the shadow ray that decides
+// whether it arrives.
+struct EmitterReach {
+    light: vec3<f32>,
+    wi: vec3<f32>,
+    distance: f32,
+    // the cosine at the emitter; 0 where the point cannot reach the surface's side
+    cos_light: f32,
+}
+
+fn emitter_reach(s: Surface, wo: vec3<f32>, origin: vec3<f32>, e: EmitterSample) -> EmitterReach {
+    var out: EmitterReach;
     let to_light = e.position - origin;
     let d2 = dot(to_light, to_light);
-    let distance = sqrt(d2);
-    out.wi = to_light / distance;
+    out.distance = sqrt(d2);
+    out.wi = to_light / max(out.distance, 1e-20);
     let cos_light = -dot(e.normal, out.wi);
     let cos_surface = dot(s.normal, out.wi);
-    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, out.wi) <= 0.0 {
+    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, out.wi) <= 0.0 || d2 <= 0.0 {
         return out;
     }
-    out.pdf = e.pdf_area * d2 / cos_light;
-    if !emitter_visible(origin, out.wi, distance, e) {
-        return out;
-    }
-    out.radiance = brdf_eval(s, wo, out.wi) * e.radiance * cos_surface / out.pdf;
+    out.cos_light = cos_light;
+    out.light = brdf_eval(s, wo, out.wi) * e.radiance * (cos_surface * cos_light / d2);
     return out;
 }
 

@@ -38,6 +38,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("gbuffer", include_str!("../frame/gbuffer_read.wgsl"))
             .with("gbuffer_write", include_str!("../frame/gbuffer_write.wgsl"))
             .with("history", include_str!("../frame/history.wgsl"))
+            .with("direct_mean", include_str!("../frame/direct_mean.wgsl"))
             .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
             .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
             .with("ddgi_hit_light", include_str!("../ddgi/hit_light.wgsl"))

@@ -2,8 +2,8 @@
 // reservoirs that later frames and neighbouring pixels reuse (ReSTIR DI, Bitterli et al. 2020,
 // Algorithms 3-5). Candidates come from the power-proportional pick of every emitter
 // (sample_emitter); RIS keeps one in proportion to what it sends to the surface unshadowed
-// (Le · brdf · both cosines / d²), so that near, facing emitters win over far ones of the same
-// power. One shadow ray then tests the one kept. Shared by frame/direct and every ray hit's
+// (Le × both cosines / d², target_value), so that near, facing emitters win over far ones of
+// the same power. One shadow ray then tests the one kept. Shared by frame/direct and every ray hit's
 // emitter sample (emitter_light); the path tracer keeps sample_emitter_light, whose pdf its MIS
 // weights need.
 #import lights
@@ -35,30 +35,6 @@ struct Reservoir {
 
 fn empty_reservoir() -> Reservoir {
     return Reservoir(INVALID, vec2<f32>(0.0), 0.0, 0.0, 0.0, 0.0);
-}
-
-// What an emitter point sends to a surface, shadows aside, in the area measure
-// (brdf · Le · cos at the surface · cos at the emitter / d²), and the shadow ray that decides
-// whether it arrives.
-struct EmitterReach {
-    light: vec3<f32>,
-    wi: vec3<f32>,
-    distance: f32,
-}
-
-fn emitter_reach(s: Surface, wo: vec3<f32>, origin: vec3<f32>, e: EmitterSample) -> EmitterReach {
-    var out: EmitterReach;
-    let to_light = e.position - origin;
-    let d2 = dot(to_light, to_light);
-    out.distance = sqrt(d2);
-    out.wi = to_light / max(out.distance, 1e-20);
-    let cos_light = -dot(e.normal, out.wi);
-    let cos_surface = dot(s.normal, out.wi);
-    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, out.wi) <= 0.0 || d2 <= 0.0 {
-        return out;
-    }
-    out.light = brdf_eval(s, wo, out.wi) * e.radiance * (cos_surface * cos_light / d2);
-    return out;
 }
 
 // The target function p̂ the reservoirs resample towards at a surface: the emitter point's
