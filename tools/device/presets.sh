@@ -3,7 +3,8 @@
 # emitters (issue 41, item 3): `balanced`, `quality`, `quality` less each piece, and `balanced`
 # plus each piece, on the many-emitter scenes and the Cornell box, one compare a scene
 # (320×240, 300 frames, 4096-sample references); BINS="before irradiant" compares two binaries,
-# BENCH=1 also times `quality` at 1920×1080, TECHNIQUES replaces the list. Expects .dev/ as tools/device/pack.sh lays it
+# BENCH=1 also times `quality` at 1920×1080 (BENCH_TECHNIQUES: others instead), TECHNIQUES
+# replaces the list. Expects .dev/ as tools/device/pack.sh lays it
 # out; writes into $OUT.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
@@ -17,6 +18,8 @@ techniques+=",ddgi{$q, update.hysteresis = 0.97, update.distance_hysteresis = 0.
 techniques+=",ddgi{gather.rays_per_pixel = 1, gather.pixel_interval = 2, gather.history_frames = 64}"
 techniques+=",ddgi{update.traced_bounce = true}"
 bins=${BINS:-irradiant}
+bench_techniques="ddgi{$q}"
+bench_techniques=${BENCH_TECHNIQUES:-$bench_techniques}
 techniques=${TECHNIQUES:-$techniques}
 for bin in $bins; do
 for scene in ${SCENES:-many-lights scenes/many-lights/four-halls.toml cornell}; do
@@ -24,8 +27,8 @@ for scene in ${SCENES:-many-lights scenes/many-lights/four-halls.toml cornell}; 
     ../$bin compare --scene "$scene" --techniques "$techniques" --size 320x240 --frames 300 \
         --reference-spp 4096 --cache "$OUT/cache-$bin" --out "$OUT/$bin-$name" 2>&1 | grep -E "FLIP" | sed "s|^|$bin $name |" | tee -a "$OUT/presets.txt"
     if [ -n "${BENCH:-}" ]; then
-        ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques "ddgi{$q}" 2>&1 \
-            | grep -E "^([a-z-]+ +ddgi |scene +technique)" | sed "s|^|$bin |" | tee -a "$OUT/bench.txt"
+        ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques "$bench_techniques" 2>&1 \
+            | grep -E "^([a-z-]+ +[a-z+-]+ |scene +technique)" | sed "s|^|$bin |" | tee -a "$OUT/bench.txt"
     fi
 done
 done

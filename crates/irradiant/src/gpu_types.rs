@@ -272,7 +272,11 @@ pub fn all_layouts() -> Vec<Expected> {
             depth_tolerance,
             normal_tolerance,
             history_valid,
-            hybrid
+            hybrid,
+            reach,
+            _pad0,
+            _pad1,
+            _pad2
         }),
         gpu_layout!(GpuSsilPass {
             level,

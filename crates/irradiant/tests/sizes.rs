@@ -48,7 +48,14 @@ fn largest_spec(name: &str, probes_per_group: u32) -> TechniqueSpec {
         "none" => TechniqueSpec::new(name, Preset::Quality),
         n if n.starts_with("lightfield") => TechniqueSpec::with_settings(name, &lightfield),
         "ssil" => TechniqueSpec::with_settings(name, &ssil),
-        "ssil+ddgi" => TechniqueSpec::with_settings(name, &HybridSettings { ssil, ddgi }),
+        "ssil+ddgi" => TechniqueSpec::with_settings(
+            name,
+            &HybridSettings {
+                ssil,
+                ddgi,
+                near_field: 4.0,
+            },
+        ),
         _ => TechniqueSpec::with_settings(name, &ddgi),
     }
 }

@@ -201,6 +201,14 @@ pub struct Ddgi {
 }
 
 impl Ddgi {
+    /// The spacing of the finest volume's probes along its closest axis (scene units): the
+    /// smallest detail of the light the probes resolve.
+    pub fn finest_spacing(&self) -> f32 {
+        self.descs
+            .first()
+            .map_or(0.0, |d| crate::probes::ProbeGrid::new(d).min_spacing())
+    }
+
     /// Validates the settings, compiles the pipelines once and builds a volume for each of the
     /// scene's probe volumes, bound to the frame.
     pub fn new(

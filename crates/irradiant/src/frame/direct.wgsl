@@ -32,18 +32,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         textureStore(direct_reservoirs, id.xy, pack_reservoir(r));
         return;
     }
-    var light = vec3<f32>(0.0);
+    var light = DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
     if surface {
         let s = gbuffer_surface(id.xy);
         let wo = view_dir(s.position);
-        light = direct_punctual(s, wo);
+        light = direct_punctual_split(s, wo);
         if scene_info.emitter_count > 0u && frame.area_light_samples > 0u {
             var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x5bd1e995u);
-            var sum = vec3<f32>(0.0);
+            let origin = shadow_origin(s);
+            let weight = 1.0 / f32(frame.area_light_samples);
             for (var i = 0u; i < frame.area_light_samples; i++) {
-                sum += emitter_light(s, wo, &rng);
+                let sample = reservoir_light(s, wo, origin, resample_emitters(s, origin, HIT_EMITTER_CANDIDATES, &rng));
+                light = add_direct(light, DirectLight(sample.total * weight, sample.diffuse * weight));
             }
-            light += sum / f32(frame.area_light_samples);
         }
     }
     keep_direct_mean(id.xy, light);

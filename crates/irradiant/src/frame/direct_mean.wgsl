@@ -1,13 +1,19 @@
-// The frame's direct light (`direct`): a running mean while the view and the scene stay still,
-// which frame/direct or, with emitter resampling, frame/direct_reuse keeps.
+// The frame's direct light (`direct`) and its diffuse part (`direct_diffuse`, what
+// frame/pyramid hands screen-space gathers): running means while the view and the scene stay
+// still, which frame/direct or, with emitter resampling, frame/direct_reuse keeps.
 #import gbuffer
+#import lights
 
 @group(2) @binding(0) var direct: texture_storage_2d<rgba32float, read_write>;
+@group(2) @binding(4) var direct_diffuse: texture_storage_2d<rgba32float, read_write>;
 
 // Stores this frame's direct light at `pixel`, averaged with the frames before it since the
 // last restart (`accumulated_frames` 0: it starts over).
-fn keep_direct_mean(pixel: vec2<u32>, light: vec3<f32>) {
+fn keep_direct_mean(pixel: vec2<u32>, light: DirectLight) {
     let n = f32(frame.accumulated_frames);
-    let previous = textureLoad(direct, pixel).rgb;
-    textureStore(direct, pixel, vec4<f32>(select(light, mix(previous, light, 1.0 / (n + 1.0)), frame.accumulated_frames > 0u), 1.0));
+    let restart = frame.accumulated_frames == 0u;
+    let total = select(mix(textureLoad(direct, pixel).rgb, light.total, 1.0 / (n + 1.0)), light.total, restart);
+    let diffuse = select(mix(textureLoad(direct_diffuse, pixel).rgb, light.diffuse, 1.0 / (n + 1.0)), light.diffuse, restart);
+    textureStore(direct, pixel, vec4<f32>(total, 1.0));
+    textureStore(direct_diffuse, pixel, vec4<f32>(diffuse, 1.0));
 }

@@ -20,7 +20,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     }
     let geometry = history_geometry(id.xy);
     textureStore(direct_reservoir_geometry, id.xy, geometry);
-    var light = vec3<f32>(0.0);
+    var light = DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
     var kept = empty_reservoir();
     if geometry.w >= 0.0 {
         let s = gbuffer_surface(id.xy);
@@ -63,10 +63,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         reservoir_finish(&r);
         let emitted = reservoir_light(s, wo, origin, r);
         kept = r;
-        if all(emitted == vec3<f32>(0.0)) {
+        if all(emitted.total == vec3<f32>(0.0)) {
             kept.w = 0.0;
         }
-        light = direct_punctual(s, wo) + emitted;
+        light = add_direct(direct_punctual_split(s, wo), emitted);
     }
     textureStore(direct_reservoirs_final, id.xy, pack_reservoir(kept));
     keep_direct_mean(id.xy, light);

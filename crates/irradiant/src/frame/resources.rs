@@ -29,6 +29,8 @@ impl FrameNeeds {
 const TEXTURES: &[(&str, wgpu::TextureFormat, u64)] = &[
     // direct light at each pixel: a running mean while the view and the scene stay still
     ("direct", wgpu::TextureFormat::Rgba32Float, 16),
+    // its diffuse part, the view-independent light each surface sends every way (frame/pyramid)
+    ("direct_diffuse", wgpu::TextureFormat::Rgba32Float, 16),
     // emitter reservoirs (shaders/resampling.wgsl): frame/direct's (its candidates and last
     // frame's), and the one frame/direct_reuse keeps for the next frame with the geometry it
     // was kept for (normal, view depth)
@@ -70,8 +72,8 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64)] = &[
 const PYRAMID: &[(&str, wgpu::TextureFormat, u64)] = &[
     // xyz: shading normal, w: view depth (distance along the camera's forward axis; < 0: sky)
     ("pyramid_normal_depth", wgpu::TextureFormat::Rgba32Float, 16),
-    // rgb: the direct light the surface reflects (not its emission, which frame/direct
-    // already samples as light)
+    // rgb: the direct light the surface reflects diffusely (not its emission, which
+    // frame/direct already samples as light, nor its highlights, which depend on the view)
     ("pyramid_radiance", wgpu::TextureFormat::Rgba16Float, 8),
     // rgb: diffuse albedo
     ("pyramid_albedo", wgpu::TextureFormat::Rgba16Float, 8),

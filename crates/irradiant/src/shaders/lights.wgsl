@@ -4,13 +4,37 @@
 #import brdf
 #import random
 
+// Direct light leaving a surface: towards the viewer (every lobe of the BRDF), and its diffuse
+// part alone, the view-independent share a screen-space gather may take as leaving the surface
+// every way (a highlight the camera sees lights nothing else).
+struct DirectLight {
+    total: vec3<f32>,
+    diffuse: vec3<f32>,
+}
+
+// `arriving` (L · cos at the surface, from wi) reflected towards wo.
+fn reflected(s: Surface, wo: vec3<f32>, wi: vec3<f32>, arriving: vec3<f32>) -> DirectLight {
+    let total = brdf_eval(s, wo, wi) * arriving;
+    let diffuse = select(vec3<f32>(0.0), diffuse_weight(s) / PI * arriving, any(total != vec3<f32>(0.0)));
+    return DirectLight(total, diffuse);
+}
+
+fn add_direct(a: DirectLight, b: DirectLight) -> DirectLight {
+    return DirectLight(a.total + b.total, a.diffuse + b.diffuse);
+}
+
 // Σ over lights of f · L · cos, for a surface seen from wo.
 fn direct_punctual(s: Surface, wo: vec3<f32>) -> vec3<f32> {
-    var total = vec3<f32>(0.0);
+    return direct_punctual_split(s, wo).total;
+}
+
+// direct_punctual with its diffuse part.
+fn direct_punctual_split(s: Surface, wo: vec3<f32>) -> DirectLight {
+    var sum = DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
     for (var i = 0u; i < scene_info.light_count; i++) {
-        total += direct_from_light(s, wo, i);
+        sum = add_direct(sum, direct_from_light_split(s, wo, i));
     }
-    return total;
+    return sum;
 }
 
 // An unbiased one-shadow-ray estimate of direct_punctual: one light chosen uniformly by `u`,
@@ -61,23 +85,33 @@ fn shadow_origin(s: Surface) -> vec3<f32> {
     return offset_ray(s.position, s.geometric_normal);
 }
 
-// f · L · cos from a light along `ray` if nothing blocks it; zero where the light cannot
-// reach the surface's side, so that no shadow ray is needed.
-fn unshadowed_light(s: Surface, wo: vec3<f32>, ray: LightRay) -> vec3<f32> {
+// L · cos from a light along `ray` if nothing blocks it; zero where the light cannot reach
+// the surface's side, so that no shadow ray is needed.
+fn arriving_light(s: Surface, ray: LightRay) -> vec3<f32> {
     let cos_l = dot(s.normal, ray.wi);
     if cos_l <= 0.0 || dot(s.geometric_normal, ray.wi) <= 0.0 || max(ray.radiance.x, max(ray.radiance.y, ray.radiance.z)) <= 0.0 {
         return vec3<f32>(0.0);
     }
-    return brdf_eval(s, wo, ray.wi) * ray.radiance * cos_l;
+    return ray.radiance * cos_l;
+}
+
+// f · L · cos from a light along `ray` if nothing blocks it.
+fn unshadowed_light(s: Surface, wo: vec3<f32>, ray: LightRay) -> vec3<f32> {
+    return brdf_eval(s, wo, ray.wi) * arriving_light(s, ray);
 }
 
 // f · L · cos from light i, with its shadow ray.
 fn direct_from_light(s: Surface, wo: vec3<f32>, i: u32) -> vec3<f32> {
+    return direct_from_light_split(s, wo, i).total;
+}
+
+// direct_from_light with its diffuse part.
+fn direct_from_light_split(s: Surface, wo: vec3<f32>, i: u32) -> DirectLight {
     let origin = shadow_origin(s);
     let ray = light_ray(i, origin);
-    let light = unshadowed_light(s, wo, ray);
-    if any(light != vec3<f32>(0.0)) && occluded(origin, ray.wi, ray.distance) {
-        return vec3<f32>(0.0);
+    let light = reflected(s, wo, ray.wi, arriving_light(s, ray));
+    if any(light.total != vec3<f32>(0.0)) && occluded(origin, ray.wi, ray.distance) {
+        return DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
     }
     return light;
 }
@@ -119,6 +153,8 @@ fn sample_emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> E
 // whether it arrives.
 struct EmitterReach {
     light: vec3<f32>,
+    // Le · cos at the surface · cos at the emitter / d², before the BRDF
+    arriving: vec3<f32>,
     wi: vec3<f32>,
     distance: f32,
     // the cosine at the emitter; 0 where the point cannot reach the surface's side
@@ -137,7 +173,8 @@ fn emitter_reach(s: Surface, wo: vec3<f32>, origin: vec3<f32>, e: EmitterSample)
         return out;
     }
     out.cos_light = cos_light;
-    out.light = brdf_eval(s, wo, out.wi) * e.radiance * (cos_surface * cos_light / d2);
+    out.arriving = e.radiance * (cos_surface * cos_light / d2);
+    out.light = brdf_eval(s, wo, out.wi) * out.arriving;
     return out;
 }
 

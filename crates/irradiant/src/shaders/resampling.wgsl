@@ -100,18 +100,21 @@ fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<fu
     return r;
 }
 
-// The light r's sample brings, f(y) · W, where it reaches the surface unblocked (one shadow
-// ray); zero otherwise.
-fn reservoir_light(s: Surface, wo: vec3<f32>, origin: vec3<f32>, r: Reservoir) -> vec3<f32> {
+// The light r's sample brings, f(y) · W, with its diffuse part, where it reaches the surface
+// unblocked (one shadow ray); zero otherwise.
+fn reservoir_light(s: Surface, wo: vec3<f32>, origin: vec3<f32>, r: Reservoir) -> DirectLight {
+    var out = DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
     if r.emitter >= scene_info.emitter_count || r.w <= 0.0 {
-        return vec3<f32>(0.0);
+        return out;
     }
     let e = emitter_point(r.emitter, r.bary);
     let reach = emitter_reach(s, wo, origin, e);
     if all(reach.light == vec3<f32>(0.0)) || !emitter_visible(origin, reach.wi, reach.distance, e) {
-        return vec3<f32>(0.0);
+        return out;
     }
-    return reach.light * r.w;
+    out.total = reach.light * r.w;
+    out.diffuse = diffuse_weight(s) / PI * reach.arriving * r.w;
+    return out;
 }
 
 // Whether r's sample reaches the surface unblocked (visibility reuse: a reservoir whose sample
@@ -156,5 +159,5 @@ fn emitter_light_from(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<funct
         return vec3<f32>(0.0);
     }
     let origin = offset_ray(s.position, s.geometric_normal);
-    return reservoir_light(s, wo, origin, resample_emitters(s, origin, candidates, rng));
+    return reservoir_light(s, wo, origin, resample_emitters(s, origin, candidates, rng)).total;
 }

@@ -28,6 +28,11 @@ struct GpuSsilParams {
     history_valid: u32,
     // 1: probe light fills what the screen does not cover (ssil+ddgi)
     hybrid: u32,
+    // the farthest a sender may lie from its receiver (ssil+ddgi's near field); < 0: no limit
+    reach: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // The level a dispatch works on.

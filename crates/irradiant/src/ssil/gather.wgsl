@@ -5,6 +5,7 @@
 // it: the point-to-disc form factor (eq. 4), with each sample's surface area from its screen
 // area (eqs. 2–3: the level's pixel area, 2^(2k) times level 0's, over the samples, at the
 // sample's depth, corrected for its tilt), and visibility from marching the level's voxel grid.
+// In ssil+ddgi only senders within `reach` of the receiver count (the near field).
 // For the last bounce the samples are importance-sampled around the mirror direction
 // projected on the screen (f(θ) = α + exp(−s (θr − θ)² / 2π)) and the full BRDF gathers them.
 // Writes (E: cosine-weighted incident radiance ∫L cos dω, coverage: the share of the cosine
@@ -155,7 +156,8 @@ fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
         let xi = level_position(qi, level, ndq.w);
         let d = xi - x;
         let r2 = dot(d, d);
-        if r2 < 1e-10 {
+        // ssil+ddgi: senders past the near field are the probes' (docs/ssil.md).
+        if r2 < 1e-10 || (ssil.reach >= 0.0 && r2 > ssil.reach * ssil.reach) {
             continue;
         }
         let wi = d * inverseSqrt(r2);

@@ -1,5 +1,6 @@
 //! `ssil+ddgi`: DDGI's probes light everything, then the screen-space light replaces them where
-//! the screen sees. Its settings are each technique's own under its name.
+//! the screen sees a sender nearer than the probes resolve (`near_field`). Its settings are each
+//! technique's own under its name, and that reach.
 
 use std::any::Any;
 
@@ -21,9 +22,21 @@ pub struct HybridSettings {
     pub ssil: SsilSettings,
     /// The probes' settings (`[technique.ddgi]`).
     pub ddgi: DdgiSettings,
+    /// How near a sender must be for the screen's light to replace the probes' in its
+    /// direction, as a share of the finest probe spacing (0 to 4; 0: DDGI's light alone).
+    /// The screen adds what lies between probes (contact light and occlusion); beyond that the
+    /// probes hold the same light with the geometry traced, and replacing a share of their
+    /// irradiance by coverage assumes it arrives evenly from every direction, which a bright
+    /// wall beside a dark ceiling does not (docs/ssil.md). Higher: more of the screen's detail
+    /// and more of that error.
+    pub near_field: f32,
 }
 
 crate::settings::presets_from_inherent!(HybridSettings);
+/// The near field of every preset: half the probe spacing (docs/ssil.md measures 0.5 against
+/// wider reaches).
+const NEAR_FIELD: f32 = 0.5;
+
 crate::settings::setting_docs!(HybridSettings {
     "ssil" => SsilSettings,
     "ddgi" => DdgiSettings,
@@ -35,6 +48,7 @@ impl HybridSettings {
         Self {
             ssil: SsilSettings::fast(),
             ddgi: DdgiSettings::fast(),
+            near_field: NEAR_FIELD,
         }
     }
     /// Each technique's balanced preset.
@@ -42,31 +56,28 @@ impl HybridSettings {
         Self {
             ssil: SsilSettings::balanced(),
             ddgi: DdgiSettings::balanced(),
+            near_field: NEAR_FIELD,
         }
     }
-    /// Each technique's quality preset, less DDGI's final gather and traced and blind
-    /// bounces (512 rays a probe instead).
+    /// Each technique's quality preset: the screen replaces only the near field, so DDGI's
+    /// final gather and traced bounce still light the rest.
     pub fn quality() -> Self {
-        let mut ddgi = DdgiSettings::quality();
-        // The screen-space light stands in for the probes where the screen sees; DDGI's traced
-        // final gather would only be replaced there, at its full cost (docs/ddgi.md).
-        ddgi.gather.rays_per_pixel = 0;
-        // Nor the traced bounce at the probe rays' hits: without the gather's mean over frames,
-        // its noise reaches the image (a still scene's image mean varies three times as much,
-        // docs/ssil.md), and the probes light only what the screen misses. 512 rays a probe
-        // instead, as before it. Nor its blind bounces, for the same noise.
-        ddgi.update.traced_bounce = false;
-        ddgi.update.blind_bounces = 0;
-        ddgi.volume.rays_per_probe = 512;
         Self {
             ssil: SsilSettings::quality(),
-            ddgi,
+            ddgi: DdgiSettings::quality(),
+            near_field: NEAR_FIELD,
         }
+    }
+    /// Refuses settings that cannot work, naming the field, the value and what is allowed.
+    pub fn validate(&self) -> Result<(), crate::SettingsError> {
+        self.ssil.validate()?;
+        self.ddgi.validate()?;
+        crate::settings::check_range("technique.near_field", self.near_field, 0.0, 4.0)
     }
 }
 
 /// `ssil+ddgi`: DDGI's probes light everything, then the screen-space light replaces them in
-/// the share of each pixel's hemisphere the screen covers.
+/// the share of each pixel's hemisphere the screen covers with senders in the near field.
 pub struct SsilDdgi {
     /// The probes, which light every pixel first.
     pub ddgi: Ddgi,

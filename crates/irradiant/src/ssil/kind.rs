@@ -7,7 +7,7 @@ use irradiant_scene::Scene;
 use super::hybrid::{HybridSettings, SsilDdgi};
 use super::{GATHER_LABELS, Ssil, SsilSettings, constants, resources};
 use crate::RenderError;
-use crate::ddgi::{Ddgi, DdgiSettings};
+use crate::ddgi::Ddgi;
 use crate::frame::{FrameNeeds, IMAGE_TILE};
 use crate::settings::TechniqueSpec;
 use crate::technique::{Technique, TechniqueContext, TechniqueKind};
@@ -18,19 +18,18 @@ pub struct SsilKind {
 }
 
 impl SsilKind {
-    /// The screen-space settings a spec asks for (and, for the hybrid, DDGI's).
+    /// The screen-space settings a spec asks for (and, for the hybrid, all of its own).
     pub fn settings(
         &self,
         spec: &TechniqueSpec,
         warnings: &mut Vec<String>,
-    ) -> Result<(SsilSettings, Option<DdgiSettings>), RenderError> {
+    ) -> Result<(SsilSettings, Option<HybridSettings>), RenderError> {
         if self.hybrid {
             let preset = <HybridSettings as crate::settings::Presets>::preset(spec.preset);
             let s: HybridSettings =
                 crate::settings::overlay(&preset, &spec.settings, "technique", warnings)?;
-            s.ssil.validate()?;
-            s.ddgi.validate()?;
-            Ok((s.ssil, Some(s.ddgi)))
+            s.validate()?;
+            Ok((s.ssil.clone(), Some(s)))
         } else {
             Ok((SsilSettings::from_spec(spec, warnings)?, None))
         }
@@ -55,7 +54,7 @@ impl TechniqueKind for SsilKind {
     }
     fn resolved_settings(&self, spec: &TechniqueSpec) -> Result<toml::Table, RenderError> {
         Ok(match self.settings(spec, &mut Vec::new())? {
-            (ssil, Some(ddgi)) => crate::settings::as_table(&HybridSettings { ssil, ddgi }),
+            (_, Some(hybrid)) => crate::settings::as_table(&hybrid),
             (ssil, None) => crate::settings::as_table(&ssil),
         })
     }
@@ -99,12 +98,12 @@ impl TechniqueKind for SsilKind {
         scene: &Scene,
         size: (u32, u32),
     ) -> Result<Vec<Allocation>, RenderError> {
-        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
+        let (settings, hybrid) = self.settings(spec, &mut Vec::new())?;
         settings.check_size(size)?;
         let mut plan = resources::plan(&settings, size, self.hybrid);
-        if let Some(ddgi) = ddgi {
+        if let Some(hybrid) = hybrid {
             plan.extend(crate::ddgi::DDGI.plan(
-                &TechniqueSpec::with_settings("ddgi", &ddgi),
+                &TechniqueSpec::with_settings("ddgi", &hybrid.ddgi),
                 scene,
                 size,
             )?);
@@ -117,11 +116,11 @@ impl TechniqueKind for SsilKind {
         scene: &Scene,
         size: (u32, u32),
     ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
-        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
+        let (settings, hybrid) = self.settings(spec, &mut Vec::new())?;
         let mut all = dispatches(&settings, size, self.hybrid);
-        if let Some(ddgi) = ddgi {
+        if let Some(hybrid) = hybrid {
             all.extend(crate::ddgi::DDGI.dispatches(
-                &TechniqueSpec::with_settings("ddgi", &ddgi),
+                &TechniqueSpec::with_settings("ddgi", &hybrid.ddgi),
                 scene,
                 size,
             )?);
@@ -133,14 +132,15 @@ impl TechniqueKind for SsilKind {
         cx: &TechniqueContext,
         spec: &TechniqueSpec,
     ) -> Result<Box<dyn Technique>, RenderError> {
-        let (settings, ddgi) = self.settings(spec, &mut Vec::new())?;
+        let (settings, hybrid) = self.settings(spec, &mut Vec::new())?;
         settings.check_size(cx.frame.size())?;
-        let ssil = Ssil::new(cx, &settings, ddgi.is_some())?;
-        Ok(match ddgi {
-            Some(ddgi) => Box::new(SsilDdgi {
-                ddgi: Ddgi::new(cx, "ddgi", &ddgi)?,
-                ssil,
-            }),
+        let mut ssil = Ssil::new(cx, &settings, hybrid.is_some())?;
+        Ok(match hybrid {
+            Some(hybrid) => {
+                let ddgi = Ddgi::new(cx, "ddgi", &hybrid.ddgi)?;
+                ssil.reach = hybrid.near_field * ddgi.finest_spacing();
+                Box::new(SsilDdgi { ddgi, ssil })
+            }
             None => Box::new(ssil),
         })
     }

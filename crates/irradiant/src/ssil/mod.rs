@@ -83,6 +83,8 @@ struct BouncePasses {
 pub struct Ssil {
     settings: SsilSettings,
     hybrid: bool,
+    /// In ssil+ddgi, the farthest a sender may lie (scene units); below 0: no limit.
+    pub(super) reach: f32,
     resources: SsilResources,
     voxels: Vec<(BoundPass, Workgroups)>,
     bounces: Vec<BouncePasses>,
@@ -302,6 +304,7 @@ impl Ssil {
         Ok(Self {
             settings: settings.clone(),
             hybrid,
+            reach: -1.0,
             resources,
             voxels,
             bounces,
@@ -425,6 +428,10 @@ impl Technique for Ssil {
             normal_tolerance: s.normal_tolerance,
             history_valid: (self.frames > 0) as u32,
             hybrid: self.hybrid as u32,
+            reach: self.reach,
+            _pad0: 0,
+            _pad1: 0,
+            _pad2: 0,
         };
         ctx.queue
             .write_buffer(&self.resources.params, 0, bytemuck::bytes_of(&params));

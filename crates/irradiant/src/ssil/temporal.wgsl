@@ -6,8 +6,8 @@
 // geometry it was filtered on, is next frame's history; and it resolves into the frame's
 // indirect light: the diffuse share of the irradiance plus the glossy radiance. In ssil+ddgi
 // (`hybrid`) DDGI has already written its light there; the screen-space light replaces it in
-// the share of the cosine lobe the screen covered (coverage C) and the probes keep the rest —
-// off-screen and hidden senders, and what lies past the largest ring — so that nothing is
+// the share of the cosine lobe the screen covered (coverage C, senders in the near field only)
+// and the probes keep the rest — off-screen, hidden and farther senders — so that nothing is
 // counted twice.
 #import ssil_common
 #import gbuffer

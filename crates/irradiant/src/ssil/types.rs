@@ -40,8 +40,17 @@ pub struct GpuSsilParams {
     pub history_valid: u32,
     /// 1: probe light fills what the screen does not cover.
     pub hybrid: u32,
+    /// The farthest a sender may lie from its receiver (ssil+ddgi's near field, scene units);
+    /// below 0: no limit.
+    pub reach: f32,
+    /// Padding to a 16-byte multiple; 0.
+    pub _pad0: u32,
+    /// Padding to a 16-byte multiple; 0.
+    pub _pad1: u32,
+    /// Padding to a 16-byte multiple; 0.
+    pub _pad2: u32,
 }
-const _: () = assert!(size_of::<GpuSsilParams>() == 64);
+const _: () = assert!(size_of::<GpuSsilParams>() == 80);
 
 /// What one dispatch works on.
 #[repr(C)]

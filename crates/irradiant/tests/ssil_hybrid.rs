@@ -1,0 +1,173 @@
+//! ssil+ddgi: where its light comes from and that none is counted twice — the screen replaces
+//! the probes' light only in the near field, each part keeps the furnace's energy, and the
+//! screen takes from a surface only the light it sends every way (docs/ssil.md, "The hybrid").
+
+mod common;
+
+use common::*;
+use irradiant::TechniqueSpec;
+use irradiant::ddgi::DdgiSettings;
+use irradiant::ssil::{HybridSettings, SsilDdgi, SsilSettings};
+
+fn hybrid_spec(near_field: f32) -> TechniqueSpec {
+    let mut settings = HybridSettings::balanced();
+    settings.near_field = near_field;
+    TechniqueSpec::with_settings("ssil+ddgi", &settings)
+}
+
+/// With no near field the screen replaces nothing: the hybrid's image is DDGI's, to the last
+/// bit of the probes' light passing through the blend ((1 − C) × probes with C = 0).
+#[test]
+fn with_no_near_field_the_hybrid_is_ddgi_alone() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (48, 48);
+    let image = |spec: TechniqueSpec| {
+        let mut s = session(&ctx, &scene, size, spec);
+        for _ in 0..8 {
+            s.render().unwrap();
+        }
+        s.image().unwrap()
+    };
+    let ddgi = image(spec(Some(&DdgiSettings::balanced())));
+    let hybrid = image(hybrid_spec(0.0));
+    let worst = ddgi
+        .pixels
+        .iter()
+        .zip(&hybrid.pixels)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / (1e-3 + a[c].abs())))
+        .fold(0.0f32, f32::max);
+    eprintln!("largest relative difference from DDGI: {worst:e}");
+    assert!(worst <= 1e-5, "the hybrid changed DDGI's light by {worst}");
+}
+
+/// The DDGI furnace (`glowing-box`: walls that emit 1 and reflect ½; radiance 2 everywhere):
+/// every wall reflects ½ of indirect light, whichever part lights it. The screen's part, its
+/// gathered E over the share C of the cosine lobe it covers, must find the radiance every
+/// sender sends besides its emission (direct ½ + the probes' ½ = 1), and the hybrid's indirect
+/// light the closed form. A sender's light counted twice, or the probes' filled in over what
+/// the screen covered, would show as more.
+#[test]
+fn the_hybrid_keeps_the_furnaces_energy_in_both_parts() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("glowing-box").unwrap().scene;
+    let (le, albedo) = (
+        irradiant_scene::GLOWING_BOX_EMISSION,
+        irradiant_scene::GLOWING_BOX_ALBEDO,
+    );
+    // A near field of a whole probe spacing, so that the screen covers a fair share.
+    let mut s = session(&ctx, &scene, (48, 48), hybrid_spec(1.0));
+    for _ in 0..300 {
+        s.render().unwrap();
+    }
+    let light = s
+        .technique_as::<SsilDdgi>()
+        .unwrap()
+        .ssil
+        .read_light(&ctx)
+        .unwrap();
+    let (mut covered, mut gathered, mut pixels_covered) = (0.0f64, 0.0f64, 0);
+    for [r, g, b, c] in &light {
+        gathered += f64::from(r + g + b) / 3.0;
+        covered += f64::from(*c);
+        pixels_covered += (*c > 0.05) as usize;
+    }
+    let sender = gathered / (std::f64::consts::PI * covered);
+    let indirect = s.indirect().unwrap();
+    let mean_indirect = indirect
+        .pixels
+        .iter()
+        .map(|p| f64::from(p[0] + p[1] + p[2]) / 3.0)
+        .sum::<f64>()
+        / indirect.pixels.len() as f64;
+    let (sender_expected, indirect_expected) = (
+        f64::from(albedo * le / (1.0 - albedo)),
+        f64::from(albedo * albedo * le / (1.0 - albedo)),
+    );
+    eprintln!(
+        "glowing box: {pixels_covered} of {} pixels over 5 % covered, mean coverage {:.3}; the screen's senders {sender:.4} (closed form {sender_expected:.4}); indirect {mean_indirect:.4} (closed form {indirect_expected:.4})",
+        light.len(),
+        covered / light.len() as f64
+    );
+    assert!(
+        pixels_covered * 10 >= light.len(),
+        "the screen should cover part of the lobe at a tenth of the pixels or more"
+    );
+    assert!(
+        (sender - sender_expected).abs() <= 0.05 * sender_expected,
+        "the screen's senders send {sender:.4}, not {sender_expected:.4}"
+    );
+    assert!(
+        (mean_indirect - indirect_expected).abs() <= 0.05 * indirect_expected,
+        "the hybrid's indirect light is {mean_indirect:.4}, not {indirect_expected:.4}"
+    );
+}
+
+/// The screen takes from each surface its diffuse direct light, the share it sends every way:
+/// on a metal Cornell box that is nothing, though the camera sees highlights; on the Lambertian
+/// one it is all of the direct light.
+#[test]
+fn the_screen_gathers_only_the_light_surfaces_send_every_way() {
+    let Some(ctx) = gpu() else { return };
+    let lambertian = irradiant_scene::load("cornell").unwrap().scene;
+    let mut metal = lambertian.clone();
+    for m in &mut metal.materials {
+        m.metallic = 1.0;
+        m.roughness = 0.3;
+    }
+    let size = (32, 32);
+    for (name, scene, diffuse_share) in [("Lambertian", &lambertian, 1.0), ("metal", &metal, 0.0)] {
+        let mut s = session(
+            &ctx,
+            scene,
+            size,
+            TechniqueSpec::with_settings("ssil", &SsilSettings::fast()),
+        );
+        s.render().unwrap();
+        let direct = s.direct().unwrap();
+        let pyramid = read_level(&ctx, s.frame(), "pyramid_radiance", 0);
+        let sum = |v: &mut dyn Iterator<Item = [f32; 3]>| -> f64 {
+            v.map(|p| f64::from(p[0] + p[1] + p[2])).sum()
+        };
+        let seen = sum(&mut direct.pixels.iter().copied());
+        let sent = sum(&mut pyramid.iter().map(|p| [p[0], p[1], p[2]]));
+        eprintln!("{name} Cornell box: direct light {seen:.3}, sent every way {sent:.3}");
+        assert!(seen > 1.0, "the {name} box should be lit");
+        assert!(
+            (sent - diffuse_share * seen).abs() <= 0.01 * seen,
+            "the {name} box sends {sent:.3} every way of {seen:.3} direct light"
+        );
+    }
+}
+
+/// On the Cornell box the hybrid stays with DDGI, far ahead of the screen alone. It is not
+/// yet below DDGI here: at 64×64 the screen's near field costs 2 % of FLIP (at 160×120 it gains
+/// 0.5 %, docs/ssil.md); with every sender on screen (a near field of 4) it loses 22 %.
+#[test]
+fn the_hybrid_stays_with_ddgi_on_the_cornell_box() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (64, 64);
+    let reference = path_trace(&ctx, &scene, size, 512);
+    let flip = |spec: TechniqueSpec| {
+        let mut s = session(&ctx, &scene, size, spec);
+        for _ in 0..60 {
+            s.render().unwrap();
+        }
+        flip_mean(&reference, &s.image().unwrap())
+    };
+    let ddgi = flip(spec(Some(&DdgiSettings::balanced())));
+    let ssil = flip(TechniqueSpec::with_settings(
+        "ssil",
+        &SsilSettings::balanced(),
+    ));
+    let hybrid = flip(TechniqueSpec::with_settings(
+        "ssil+ddgi",
+        &HybridSettings::balanced(),
+    ));
+    eprintln!("Cornell box, FLIP: ddgi {ddgi:.4}, ssil {ssil:.4}, ssil+ddgi {hybrid:.4}");
+    assert!(
+        hybrid <= 1.03 * ddgi && hybrid < ssil,
+        "ssil+ddgi {hybrid:.4} against ddgi {ddgi:.4} and ssil {ssil:.4}"
+    );
+}
