@@ -82,6 +82,8 @@ pub struct Blas {
     pub bounds: (Vec3, Vec3),
     /// Longest root-to-leaf path; traversal stacks must be at least this deep.
     pub depth: u32,
+    /// The tree's SAH cost ([`sah_cost`]).
+    pub sah_cost: f32,
 }
 
 /// The triangles as obvhs builds from them.
@@ -106,6 +108,7 @@ pub fn build_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> Blas {
     let (nodes, triangle_order, depth) = pack(&bvh);
     let root = bvh.nodes[0].aabb;
     Blas {
+        sah_cost: sah_cost(&bvh),
         nodes,
         triangle_order,
         bounds: (Vec3::from(root.min), Vec3::from(root.max)),
@@ -157,6 +160,34 @@ pub fn build_tlas(instance_bounds: &[(Vec3, Vec3)], max_depth: u32) -> Tlas {
         instance_order,
         depth,
     }
+}
+
+/// A binary tree's SAH cost (MacDonald and Booth 1990): the expected work of a ray that
+/// enters the root's box, a node visit and a triangle test counting 1 each — Σ over inner
+/// nodes of their area share, plus Σ over leaves of area share × triangles. A measure of the
+/// tree alone, so that a change of tree can be told from a change of kernel.
+pub fn sah_cost(bvh: &Bvh2) -> f32 {
+    let Some(root) = bvh.nodes.first() else {
+        return 0.0;
+    };
+    let root_area = root.aabb.half_area();
+    if root_area <= 0.0 {
+        return 0.0;
+    }
+    let mut cost = 0.0;
+    let mut work = vec![0usize];
+    while let Some(i) = work.pop() {
+        let node = &bvh.nodes[i];
+        let share = node.aabb.half_area() / root_area;
+        if node.is_leaf() {
+            cost += share * node.prim_count as f32;
+        } else {
+            cost += share;
+            let first = node.first_index as usize;
+            work.extend([first, first + 1]);
+        }
+    }
+    cost
 }
 
 /// World-space bounds of a box under an affine transform (the 8 corners).

@@ -274,3 +274,30 @@ fn a_top_level_tree_never_outgrows_its_bound() {
     order.sort();
     assert_eq!(order, (0..300).collect::<Vec<_>>());
 }
+
+/// The SAH cost: a one-triangle tree costs its one test; triangles spread apart cost far less
+/// than testing all of them; the same triangle n times cannot be split and costs about n.
+#[test]
+fn sah_cost_counts_the_expected_work() {
+    let one = build_blas(&[[Vec3::ZERO, Vec3::X, Vec3::Y]], BuildQuality::Balanced);
+    assert!((one.sah_cost - 1.0).abs() < 1e-6, "{}", one.sah_cost);
+    let mut rng = StdRng::seed_from_u64(3);
+    let soup = random_soup(&mut rng, 1000);
+    let spread = build_blas(&soup, BuildQuality::Balanced);
+    let wide = build_wide_blas(&soup, BuildQuality::Balanced);
+    assert!(
+        spread.sah_cost > 1.0 && spread.sah_cost < 100.0,
+        "{}",
+        spread.sah_cost
+    );
+    assert!(
+        wide.sah_cost > 1.0 && wide.sah_cost < 100.0,
+        "{}",
+        wide.sah_cost
+    );
+    let stacked = build_blas(
+        &vec![[Vec3::ZERO, Vec3::X, Vec3::Y]; 16],
+        BuildQuality::Balanced,
+    );
+    assert!(stacked.sah_cost >= 16.0, "{}", stacked.sah_cost);
+}

@@ -75,6 +75,8 @@ pub struct WideBlas {
     pub bounds: (Vec3, Vec3),
     /// Longest root-to-leaf path in nodes: the traversal stack holds at most one entry a level.
     pub depth: u32,
+    /// The SAH cost of the binary tree it was collapsed from ([`crate::sah_cost`]).
+    pub sah_cost: f32,
 }
 
 pub fn build_wide_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> WideBlas {
@@ -83,6 +85,7 @@ pub fn build_wide_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> WideBl
     let mut bvh2 = ploc_tree(&triangles, params);
     ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
     crate::depth::bound_height(&mut bvh2, crate::MAX_BLAS_DEPTH);
+    let sah_cost = crate::sah_cost(&bvh2);
     let bvh = bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), true, false);
     let nodes: Vec<GpuWideBvhNode> = bvh.nodes.iter().map(|n| bytemuck::cast(*n)).collect();
     let depth = tree_depth(&nodes);
@@ -91,6 +94,7 @@ pub fn build_wide_blas(triangles: &[[Vec3; 3]], quality: BuildQuality) -> WideBl
         triangle_order: bvh.primitive_indices,
         bounds: (bvh.total_aabb.min.into(), bvh.total_aabb.max.into()),
         depth,
+        sah_cost,
     }
 }
 

@@ -161,7 +161,7 @@ pub fn all_layouts() -> Vec<Expected> {
             t,
             triangle,
             instance,
-            _pad
+            work
         }),
         gpu_layout!(GpuRayCastParams {
             ray_count,

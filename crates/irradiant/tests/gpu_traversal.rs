@@ -291,3 +291,67 @@ fn alpha_masked_holes_let_rays_through() {
         hits[1]
     );
 }
+
+/// The counting variant (`irradiant bench`'s work a ray) finds the same hits as the timed
+/// pass, and its counts follow the traversal: a ray that hits visited a node and tested the
+/// triangle it hit; a ray pointed away from the scene stops at the root; no ray passes every
+/// node and triangle; any-hit does no more work than closest-hit; and the 8-wide layout visits
+/// fewer nodes a ray than the binary one over the same triangles.
+#[test]
+fn the_counting_variant_counts_the_traversals_work() {
+    use irradiant::raycast::RayWork;
+    use irradiant::{BlasLayout, GpuSceneSettings};
+    let Some(ctx) = common::gpu() else { return };
+    let mut rng = StdRng::seed_from_u64(14);
+    let scene = test_scene(&mut rng);
+    let mut rays = random_rays(&mut rng, 1000);
+    // Rays from far outside, pointing away from everything.
+    let away: Vec<GpuRay> = (0..64)
+        .map(|i| GpuRay {
+            origin: [100.0 + i as f32, 100.0, 100.0],
+            t_max: 1e20,
+            dir: [1.0, 0.0, 0.0],
+            _pad: 0,
+        })
+        .collect();
+    rays.extend_from_slice(&away);
+    let mut mean_nodes = Vec::new();
+    for layout in [BlasLayout::Binary, BlasLayout::Wide] {
+        let settings = GpuSceneSettings {
+            blas_layout: layout,
+            ..Default::default()
+        };
+        let gpu_scene = GpuScene::new(&ctx, &scene, &settings).unwrap();
+        let timed = RayCaster::new(&ctx, &gpu_scene).unwrap();
+        let counting = RayCaster::counting(&ctx, &gpu_scene).unwrap();
+        let closest = counting.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+        let any = counting.trace(&ctx, &gpu_scene, &rays, true).unwrap();
+        let plain = timed.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+        for (c, p) in closest.iter().zip(&plain) {
+            assert_eq!((c.t, c.triangle, c.instance), (p.t, p.triangle, p.instance));
+            assert_eq!(p.work, 0, "the timed pass counts nothing");
+            assert!(c.node_visits() as usize <= gpu_scene.stats.bvh_nodes);
+            assert!(c.triangle_tests() as usize <= gpu_scene.stats.triangles);
+            if c.t > 0.0 {
+                assert!(c.node_visits() >= 1 && c.triangle_tests() >= 1, "{c:?}");
+            }
+        }
+        for h in &closest[closest.len() - away.len()..] {
+            assert!(
+                h.t < 0.0 && h.node_visits() <= 1 && h.triangle_tests() == 0,
+                "{h:?}"
+            );
+        }
+        let (closest, any) = (RayWork::of(&closest), RayWork::of(&any));
+        eprintln!("{layout:?}: closest hit {closest:?}, any hit {any:?}");
+        assert!(any.node_visits <= closest.node_visits);
+        assert!(any.triangle_tests <= closest.triangle_tests);
+        mean_nodes.push(closest.node_visits);
+    }
+    assert!(
+        mean_nodes[1] < mean_nodes[0],
+        "wide nodes a ray {} should be fewer than binary {}",
+        mean_nodes[1],
+        mean_nodes[0]
+    );
+}

@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use irradiant::pathtrace::{PathTraceSettings, PathTracer};
-use irradiant::raycast::RayCaster;
+use irradiant::raycast::{RayCaster, RayWork};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings, TechniqueSpec};
 use irradiant_gpu::{Profiler, wgpu};
 use serde::Serialize;
@@ -142,6 +142,19 @@ struct PassRecord {
     max_ms: f64,
     rays: Option<u64>,
     mrays_per_s: Option<f64>,
+    /// The counting variant's mean work a ray (ray-cast passes only).
+    work: Option<RayWorkRecord>,
+}
+
+/// Work a ray, so that "nodes a ray" (the tree) and "time a node" (the kernel) are apart.
+#[derive(Serialize, Clone, Copy)]
+struct RayWorkRecord {
+    /// Node visits a ray (8-wide nodes where the bottom level is wide).
+    node_visits_per_ray: f64,
+    /// Triangle tests a ray.
+    triangle_tests_per_ray: f64,
+    /// Node visits a second at the timed pass's median: the kernel's speed per node.
+    g_node_visits_per_s: f64,
 }
 
 #[derive(Serialize)]
@@ -155,6 +168,9 @@ struct SceneRecord {
     bvh_nodes: usize,
     bvh_build_ms: f64,
     max_blas_depth: u32,
+    /// The bottom-level trees' SAH cost (node visits and triangle tests at 1 each, averaged
+    /// over the triangles): the tree's quality apart from the kernel.
+    bvh_sah_cost: f32,
     scene_load_ms: f64,
     /// What the scene's buffers and textures take on the GPU.
     gpu_scene_mib: f64,
@@ -302,6 +318,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 bvh_nodes: gpu_scene.stats.bvh_nodes,
                 bvh_build_ms: gpu_scene.stats.bvh_build.as_secs_f64() * 1e3,
                 max_blas_depth: gpu_scene.stats.max_blas_depth,
+                bvh_sah_cost: gpu_scene.stats.sah_cost,
                 scene_load_ms: load_ms,
                 gpu_scene_mib: gpu_scene.stats.gpu_bytes as f64 / (1024.0 * 1024.0),
                 gpu_allocated_mib: crate::memory::gpu_mib(&ctx),
@@ -427,6 +444,7 @@ fn time_rays(
     record: &mut BenchRecord,
 ) -> Result<(), CliError> {
     let caster = RayCaster::new(ctx, gpu_scene)?;
+    let counting = RayCaster::counting(ctx, gpu_scene)?;
     let primary = rays::primary_rays(scene, size);
     let hits = caster.trace(ctx, gpu_scene, &primary, false)?;
     let diffuse = rays::diffuse_rays(scene, gpu_scene, &primary, &hits);
@@ -440,13 +458,16 @@ fn time_rays(
             caster.record(encoder, &batch, profiler);
             Ok(())
         })?;
-        record.passes.push(pass_record(
-            &scene.name,
-            order,
-            label,
-            &times,
-            Some(rays.len() as u64),
-        ));
+        let mut pass = pass_record(&scene.name, order, label, &times, Some(rays.len() as u64));
+        let work = RayWork::of(&counting.trace(ctx, gpu_scene, rays, any_hit)?);
+        pass.work = Some(RayWorkRecord {
+            node_visits_per_ray: work.node_visits,
+            triangle_tests_per_ray: work.triangle_tests,
+            g_node_visits_per_s: work.node_visits * rays.len() as f64
+                / (pass.median_ms * 1e-3)
+                / 1e9,
+        });
+        record.passes.push(pass);
     }
     let mut tracer = PathTracer::new(ctx, gpu_scene, size.0, size.1)?;
     let settings = PathTraceSettings {
@@ -539,5 +560,6 @@ fn pass_record(
         max_ms: sorted[sorted.len() - 1],
         rays,
         mrays_per_s: rays.map(|r| r as f64 / (median * 1e-3) / 1e6),
+        work: None,
     }
 }

@@ -8,13 +8,14 @@ pub fn print_table(r: &BenchRecord) {
         r.adapter, r.backend, r.driver, r.timing, r.commit
     );
     println!(
-        "{:<22} {:>10} {:>9} {:>12} {:>10} {:>9} {:>12} {:>10} {:>12} {:>13}",
+        "{:<22} {:>10} {:>9} {:>12} {:>10} {:>9} {:>8} {:>12} {:>10} {:>12} {:>13}",
         "scene",
         "triangles",
         "instances",
         "in world",
         "BVH nodes",
         "BVH depth",
+        "BVH SAH",
         "BVH build ms",
         "load ms",
         "GPU scene MiB",
@@ -22,13 +23,14 @@ pub fn print_table(r: &BenchRecord) {
     );
     for s in &r.scenes {
         println!(
-            "{:<22} {:>10} {:>9} {:>12} {:>10} {:>9} {:>12.1} {:>10.1} {:>12.1} {:>13}",
+            "{:<22} {:>10} {:>9} {:>12} {:>10} {:>9} {:>8.1} {:>12.1} {:>10.1} {:>12.1} {:>13}",
             s.scene,
             s.triangles,
             s.instances,
             s.world_triangles,
             s.bvh_nodes,
             s.max_blas_depth,
+            s.bvh_sah_cost,
             s.bvh_build_ms,
             s.scene_load_ms,
             s.gpu_scene_mib,
@@ -36,15 +38,30 @@ pub fn print_table(r: &BenchRecord) {
         );
     }
     println!(
-        "\n{:<22} {:<34} {:>10} {:>10} {:>12} {:>10}",
-        "scene", "pass", "median ms", "min ms", "rays", "Mrays/s"
+        "\n{:<22} {:<34} {:>10} {:>10} {:>12} {:>10} {:>10} {:>10} {:>12}",
+        "scene",
+        "pass",
+        "median ms",
+        "min ms",
+        "rays",
+        "Mrays/s",
+        "nodes/ray",
+        "tris/ray",
+        "Gnodes/s"
     );
     for p in &r.passes {
         let rays = p.rays.map_or("-".into(), |n| n.to_string());
         let rate = p.mrays_per_s.map_or("-".into(), |m| format!("{m:.1}"));
+        let (nodes, tris, node_rate) = p.work.map_or(("-".into(), "-".into(), "-".into()), |w| {
+            (
+                format!("{:.1}", w.node_visits_per_ray),
+                format!("{:.1}", w.triangle_tests_per_ray),
+                format!("{:.2}", w.g_node_visits_per_s),
+            )
+        });
         println!(
-            "{:<22} {:<34} {:>10.3} {:>10.3} {:>12} {:>10}",
-            p.scene, p.label, p.median_ms, p.min_ms, rays, rate
+            "{:<22} {:<34} {:>10.3} {:>10.3} {:>12} {:>10} {:>10} {:>10} {:>12}",
+            p.scene, p.label, p.median_ms, p.min_ms, rays, rate, nodes, tris, node_rate
         );
     }
     frame_table(&r.techniques);

@@ -15,6 +15,30 @@ use crate::RenderError;
 use crate::scene::GpuScene;
 use types::{GpuRay, GpuRayCastParams, GpuRayHit};
 
+/// The mean work of a batch of rays, from the counting variant ([`RayCaster::counting`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RayWork {
+    /// Node visits a ray (wide nodes where the bottom level is wide; top-level nodes too).
+    pub node_visits: f64,
+    /// Triangle tests a ray.
+    pub triangle_tests: f64,
+}
+
+impl RayWork {
+    /// The mean over the counting variant's hits.
+    pub fn of(hits: &[GpuRayHit]) -> Self {
+        let n = hits.len().max(1) as f64;
+        Self {
+            node_visits: hits.iter().map(|h| f64::from(h.node_visits())).sum::<f64>() / n,
+            triangle_tests: hits
+                .iter()
+                .map(|h| f64::from(h.triangle_tests()))
+                .sum::<f64>()
+                / n,
+        }
+    }
+}
+
 /// The compiled `raycast/trace` pass, for one scene's traversal settings.
 pub struct RayCaster {
     pass: Arc<ComputePass>,
@@ -32,10 +56,30 @@ pub struct RayBatch {
 impl RayCaster {
     /// Compiles the pass with the scene's traversal constants.
     pub fn new(ctx: &GpuContext, scene: &GpuScene) -> Result<Self, RenderError> {
+        Self::compile(ctx, scene, "raycast/trace", false)
+    }
+
+    /// The counting variant: the same traversal, each hit's `work` holding the ray's node
+    /// visits and triangle tests (slower; for the work per ray, not for timing).
+    pub fn counting(ctx: &GpuContext, scene: &GpuScene) -> Result<Self, RenderError> {
+        Self::compile(ctx, scene, "raycast/count", true)
+    }
+
+    fn compile(
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        label: &'static str,
+        count_work: bool,
+    ) -> Result<Self, RenderError> {
+        let mut constants = scene.shader_constants();
+        for (name, value) in &mut constants {
+            if *name == "COUNT_WORK" {
+                *value = format!("{}u", count_work as u32);
+            }
+        }
         let pass = crate::shaders::pass(
             ctx,
-            &PassDesc::new("raycast/trace", include_str!("trace.wgsl"))
-                .constants(scene.shader_constants()),
+            &PassDesc::new(label, include_str!("trace.wgsl")).constants(constants),
         )?;
         Ok(Self { pass })
     }

@@ -1,5 +1,6 @@
 // raycast/trace: closest-hit (or any-hit) of a buffer of rays. Used to test the GPU traversal
-// against a CPU oracle and to measure rays per second.
+// against a CPU oracle and to measure rays per second; its counting variant (COUNT_WORK 1)
+// also returns each ray's node visits and triangle tests.
 #import bvh
 
 struct GpuRay {
@@ -13,7 +14,8 @@ struct GpuRayHit {
     t: f32,
     triangle: u32,
     instance: u32,
-    _pad: u32,
+    // COUNT_WORK 1: node visits (bits 0–15) and triangle tests (16–31), each saturating
+    work: u32,
 }
 
 struct GpuRayCastParams {
@@ -41,5 +43,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     out.t = select(hit.t, -1.0, hit.triangle == INVALID);
     out.triangle = hit.triangle;
     out.instance = hit.instance;
+    if COUNT_WORK == 1u {
+        out.work = min(work_nodes, 0xffffu) | (min(work_triangles, 0xffffu) << 16u);
+    }
     hits[index] = out;
 }

@@ -27,8 +27,20 @@ pub struct GpuRayHit {
     pub triangle: u32,
     /// Instance hit, in instance-buffer order (see [`crate::GpuScene::instance_order`]).
     pub instance: u32,
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad: u32,
+    /// The counting variant's node visits (bits 0–15) and triangle tests (bits 16–31), each
+    /// saturating at 65 535; 0 from the timed pass.
+    pub work: u32,
+}
+
+impl GpuRayHit {
+    /// Node visits of the counting variant's trace (wide nodes where the bottom level is wide).
+    pub fn node_visits(&self) -> u32 {
+        self.work & 0xffff
+    }
+    /// Triangle tests of the counting variant's trace.
+    pub fn triangle_tests(&self) -> u32 {
+        self.work >> 16
+    }
 }
 
 /// The ray-cast pass's parameters (its uniform).

@@ -27,6 +27,8 @@ pub(super) struct SceneBuild {
     /// Per mesh: emissive triangle slots with their emitted radiance.
     pub mesh_emitters: Vec<Vec<(u32, glam::Vec3)>>,
     pub max_depth: u32,
+    /// The bottom-level trees' SAH cost, averaged over their triangles.
+    pub sah_cost: f32,
     /// First node of the top level, after every mesh's nodes.
     pub tlas_base: u32,
     pub duration: Duration,
@@ -68,6 +70,7 @@ impl SceneBuild {
         let mut blas_roots = Vec::new();
         let mut mesh_emitters = Vec::new();
         let mut max_depth = 0;
+        let (mut sah_weighted, mut sah_triangles) = (0.0f64, 0usize);
         let alpha_tested: Vec<bool> = scene
             .materials
             .iter()
@@ -88,20 +91,36 @@ impl SceneBuild {
             };
             let slot_base = triangles.len() as u32;
             // (root node, object-space bounds, depth, leaf triangle order) of the mesh's tree.
-            let (root, bounds, depth, triangle_order) = match tree {
+            let (root, bounds, depth, triangle_order, sah_cost) = match tree {
                 Tree::Binary(mut blas) => {
                     let root = nodes.len() as u32;
                     blas.offset(root, slot_base);
                     nodes.extend_from_slice(&blas.nodes);
-                    (root, blas.bounds, blas.depth, blas.triangle_order)
+                    let Blas {
+                        bounds,
+                        depth,
+                        triangle_order,
+                        sah_cost,
+                        ..
+                    } = blas;
+                    (root, bounds, depth, triangle_order, sah_cost)
                 }
                 Tree::Wide(mut blas) => {
                     let root = wide_nodes.len() as u32;
                     blas.offset(root, slot_base);
                     wide_nodes.extend_from_slice(&blas.nodes);
-                    (root, blas.bounds, blas.depth, blas.triangle_order)
+                    let WideBlas {
+                        bounds,
+                        depth,
+                        triangle_order,
+                        sah_cost,
+                        ..
+                    } = blas;
+                    (root, bounds, depth, triangle_order, sah_cost)
                 }
             };
+            sah_weighted += f64::from(sah_cost) * tris.len() as f64;
+            sah_triangles += tris.len();
             max_depth = max_depth.max(depth);
             blas_roots.push((root, bounds));
             let mut emissive = Vec::new();
@@ -152,6 +171,7 @@ impl SceneBuild {
             blas_roots,
             mesh_emitters,
             max_depth,
+            sah_cost: (sah_weighted / sah_triangles.max(1) as f64) as f32,
             tlas_base,
             duration: start.elapsed(),
         })

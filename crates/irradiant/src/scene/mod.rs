@@ -153,6 +153,9 @@ pub struct GpuSceneStats {
     pub bvh_build: Duration,
     /// Depth of the deepest bottom-level tree (sizes the traversal stack).
     pub max_blas_depth: u32,
+    /// The bottom-level trees' SAH cost (`irradiant_bvh::sah_cost`), averaged over their
+    /// triangles: the expected node visits and triangle tests of a ray through a tree.
+    pub sah_cost: f32,
     /// Layers of the texture array (one a texture, at least one).
     pub texture_layers: u32,
     /// Bytes of every scene buffer and the texture array.
@@ -303,6 +306,7 @@ impl GpuScene {
                 bvh_nodes: built.nodes.len() + built.wide_nodes.len(),
                 bvh_build: built.duration,
                 max_blas_depth: built.max_depth,
+                sah_cost: built.sah_cost,
                 texture_layers,
                 gpu_bytes,
             },
@@ -352,6 +356,8 @@ impl GpuScene {
                 "SCENE_HAS_EMITTERS",
                 format!("{}u", self.has_emitters() as u32),
             ),
+            // The traversal's work counters: only raycast/trace's counting variant sets 1.
+            ("COUNT_WORK", "0u".into()),
         ]
     }
 

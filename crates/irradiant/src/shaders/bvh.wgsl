@@ -11,6 +11,11 @@
 // a slice per thread; every tracing kernel runs 64 threads a workgroup and calls
 // bvh_thread(local_invocation_index) first.
 
+// COUNT_WORK (0 or 1, from there too; 1 only in raycast/trace's counting variant) counts the
+// node visits and triangle tests of the last trace() in work_nodes and work_triangles.
+var<private> work_nodes: u32;
+var<private> work_triangles: u32;
+
 const STACK_THREADS: u32 = 64u;
 var<workgroup> blas_stack_memory: array<u32, STACK_THREADS * BLAS_STACK_SIZE * STACK_IN_WORKGROUP + 1u>;
 var<private> bvh_stack_base: u32;
@@ -91,6 +96,9 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, mode:
     var node = root;
     loop {
         let n = bvh_nodes[node];
+        if COUNT_WORK == 1u {
+            work_nodes++;
+        }
         let ta = slab(origin, inv_dir, n.a_min, n.a_max, (*hit).t);
         let tb = slab(origin, inv_dir, n.b_min, n.b_max, (*hit).t);
         // Leaves first: a hit shortens the ray before the inner children are ordered.
@@ -100,6 +108,9 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, mode:
             let first = select(n.b_first, n.a_first, k == 0u);
             if t_box < (*hit).t && count > 0u {
                 for (var i = first; i < first + count; i++) {
+                    if COUNT_WORK == 1u {
+                        work_triangles++;
+                    }
                     let tri = triangles[i];
                     let r = intersect_triangle(tri, origin, dir, (*hit).t);
                     if r.x < (*hit).t {
@@ -229,6 +240,9 @@ fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, 
             let slot = (bit - 24u) ^ (oct_inv4 & 0xffu);
             let index = node_group.x + countOneBits(hits_imask & ~(0xffffffffu << slot));
             let n = wide_nodes[index];
+            if COUNT_WORK == 1u {
+                work_nodes++;
+            }
             let hits = wide_intersect(n, origin, inv_dir, oct_inv4, (*hit).t);
             node_group = vec2<u32>(n.child_base, (hits & 0xff000000u) | (n.exponents_imask >> 24u));
             triangle_group = vec2<u32>(n.primitive_base, hits & 0x00ffffffu);
@@ -239,6 +253,9 @@ fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, 
             let bit = firstLeadingBit(triangle_group.y);
             triangle_group.y &= ~(1u << bit);
             let i = triangle_group.x + bit;
+            if COUNT_WORK == 1u {
+                work_triangles++;
+            }
             let tri = triangles[i];
             let r = intersect_triangle(tri, origin, dir, (*hit).t);
             if r.x < (*hit).t {
@@ -288,6 +305,10 @@ fn trace(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, mode: u32) -> Hit {
     hit.t = min(t_max, RAY_FAR);
     hit.triangle = INVALID;
     hit.instance = INVALID;
+    if COUNT_WORK == 1u {
+        work_nodes = 0u;
+        work_triangles = 0u;
+    }
     // One instance (a static OBJ scene): skip the top level.
     if scene_info.instance_count == 1u {
         let inst = instances[0];
@@ -300,6 +321,9 @@ fn trace(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, mode: u32) -> Hit {
     var node = scene_info.tlas_root;
     loop {
         let n = bvh_nodes[node];
+        if COUNT_WORK == 1u {
+            work_nodes++;
+        }
         let ta = slab(origin, inv_dir, n.a_min, n.a_max, hit.t);
         let tb = slab(origin, inv_dir, n.b_min, n.b_max, hit.t);
         for (var k = 0u; k < 2u; k++) {
