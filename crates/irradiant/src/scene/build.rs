@@ -96,27 +96,25 @@ impl SceneBuild {
                     let root = nodes.len() as u32;
                     blas.offset(root, slot_base);
                     nodes.extend_from_slice(&blas.nodes);
-                    let Blas {
-                        bounds,
-                        depth,
-                        triangle_order,
-                        sah_cost,
-                        ..
-                    } = blas;
-                    (root, bounds, depth, triangle_order, sah_cost)
+                    (
+                        root,
+                        blas.bounds,
+                        blas.depth,
+                        blas.triangle_order,
+                        blas.sah_cost,
+                    )
                 }
                 Tree::Wide(mut blas) => {
                     let root = wide_nodes.len() as u32;
                     blas.offset(root, slot_base);
                     wide_nodes.extend_from_slice(&blas.nodes);
-                    let WideBlas {
-                        bounds,
-                        depth,
-                        triangle_order,
-                        sah_cost,
-                        ..
-                    } = blas;
-                    (root, bounds, depth, triangle_order, sah_cost)
+                    (
+                        root,
+                        blas.bounds,
+                        blas.depth,
+                        blas.triangle_order,
+                        blas.sah_cost,
+                    )
                 }
             };
             sah_weighted += f64::from(sah_cost) * tris.len() as f64;
