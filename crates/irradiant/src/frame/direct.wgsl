@@ -39,10 +39,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         light = direct_punctual_split(s, wo);
         if scene_info.emitter_count > 0u && frame.area_light_samples > 0u {
             var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x5bd1e995u);
-            let origin = shadow_origin(s);
             let weight = 1.0 / f32(frame.area_light_samples);
             for (var i = 0u; i < frame.area_light_samples; i++) {
-                let sample = reservoir_light(s, wo, origin, resample_emitters(s, origin, HIT_EMITTER_CANDIDATES, &rng));
+                let sample = emitter_light_split(s, wo, HIT_EMITTER_CANDIDATES, &rng);
                 light = add_direct(light, DirectLight(sample.total * weight, sample.diffuse * weight));
             }
         }

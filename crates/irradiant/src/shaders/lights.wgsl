@@ -14,7 +14,12 @@ struct DirectLight {
 
 // `arriving` (L · cos at the surface, from wi) reflected towards wo.
 fn reflected(s: Surface, wo: vec3<f32>, wi: vec3<f32>, arriving: vec3<f32>) -> DirectLight {
-    let total = brdf_eval(s, wo, wi) * arriving;
+    return with_diffuse(s, brdf_eval(s, wo, wi) * arriving, arriving);
+}
+
+// Light `total` reflected from `arriving`, with the diffuse lobe's share (none where the BRDF
+// reflected nothing: the light or the viewer below the surface).
+fn with_diffuse(s: Surface, total: vec3<f32>, arriving: vec3<f32>) -> DirectLight {
     let diffuse = select(vec3<f32>(0.0), diffuse_weight(s) / PI * arriving, any(total != vec3<f32>(0.0)));
     return DirectLight(total, diffuse);
 }

@@ -103,18 +103,16 @@ fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<fu
 // The light r's sample brings, f(y) · W, with its diffuse part, where it reaches the surface
 // unblocked (one shadow ray); zero otherwise.
 fn reservoir_light(s: Surface, wo: vec3<f32>, origin: vec3<f32>, r: Reservoir) -> DirectLight {
-    var out = DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
+    let none = DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
     if r.emitter >= scene_info.emitter_count || r.w <= 0.0 {
-        return out;
+        return none;
     }
     let e = emitter_point(r.emitter, r.bary);
     let reach = emitter_reach(s, wo, origin, e);
     if all(reach.light == vec3<f32>(0.0)) || !emitter_visible(origin, reach.wi, reach.distance, e) {
-        return out;
+        return none;
     }
-    out.total = reach.light * r.w;
-    out.diffuse = diffuse_weight(s) / PI * reach.arriving * r.w;
-    return out;
+    return with_diffuse(s, reach.light * r.w, reach.arriving * r.w);
 }
 
 // Whether r's sample reaches the surface unblocked (visibility reuse: a reservoir whose sample
@@ -155,9 +153,14 @@ fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32
 
 // emitter_light with RIS over `candidates`.
 fn emitter_light_from(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
+    return emitter_light_split(s, wo, candidates, rng).total;
+}
+
+// emitter_light_from with its diffuse part (frame/direct).
+fn emitter_light_split(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> DirectLight {
     if SCENE_HAS_EMITTERS == 0u {
-        return vec3<f32>(0.0);
+        return DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
     }
-    let origin = offset_ray(s.position, s.geometric_normal);
-    return reservoir_light(s, wo, origin, resample_emitters(s, origin, candidates, rng)).total;
+    let origin = shadow_origin(s);
+    return reservoir_light(s, wo, origin, resample_emitters(s, origin, candidates, rng));
 }

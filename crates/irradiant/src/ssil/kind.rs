@@ -134,14 +134,14 @@ impl TechniqueKind for SsilKind {
     ) -> Result<Box<dyn Technique>, RenderError> {
         let (settings, hybrid) = self.settings(spec, &mut Vec::new())?;
         settings.check_size(cx.frame.size())?;
-        let mut ssil = Ssil::new(cx, &settings, hybrid.is_some())?;
         Ok(match hybrid {
             Some(hybrid) => {
                 let ddgi = Ddgi::new(cx, "ddgi", &hybrid.ddgi)?;
-                ssil.reach = hybrid.near_field * ddgi.finest_spacing();
+                let reach = hybrid.near_field * ddgi.finest_spacing();
+                let ssil = Ssil::new(cx, &settings, Some(reach))?;
                 Box::new(SsilDdgi { ddgi, ssil })
             }
-            None => Box::new(ssil),
+            None => Box::new(Ssil::new(cx, &settings, None)?),
         })
     }
 }

@@ -84,7 +84,7 @@ pub struct Ssil {
     settings: SsilSettings,
     hybrid: bool,
     /// In ssil+ddgi, the farthest a sender may lie (scene units); below 0: no limit.
-    pub(super) reach: f32,
+    reach: f32,
     resources: SsilResources,
     voxels: Vec<(BoundPass, Workgroups)>,
     bounces: Vec<BouncePasses>,
@@ -100,13 +100,15 @@ pub struct Ssil {
 
 impl Ssil {
     /// Validates the settings, allocates its textures and binds its passes to the frame;
-    /// `hybrid` builds it as `ssil+ddgi`'s part, over the probes' light.
+    /// `hybrid_reach` builds it as `ssil+ddgi`'s part, over the probes' light, gathering senders
+    /// up to that distance (scene units, the near field).
     pub fn new(
         cx: &TechniqueContext,
         settings: &SsilSettings,
-        hybrid: bool,
+        hybrid_reach: Option<f32>,
     ) -> Result<Self, RenderError> {
         settings.validate()?;
+        let hybrid = hybrid_reach.is_some();
         let ctx = cx.ctx;
         let size = cx.frame.size();
         let resources = SsilResources::new(ctx, settings, size, hybrid)?;
@@ -304,7 +306,7 @@ impl Ssil {
         Ok(Self {
             settings: settings.clone(),
             hybrid,
-            reach: -1.0,
+            reach: hybrid_reach.unwrap_or(-1.0),
             resources,
             voxels,
             bounces,
