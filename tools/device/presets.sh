@@ -4,7 +4,8 @@
 # plus each piece, on the many-emitter scenes and the Cornell box, one compare a scene
 # (320×240, 300 frames, 4096-sample references); BINS="before irradiant" compares two binaries,
 # BENCH=1 also times `quality` at 1920×1080 (BENCH_TECHNIQUES: others instead), TECHNIQUES
-# replaces the list. Expects .dev/ as tools/device/pack.sh lays it
+# replaces the list. The binaries share the references (CACHE: a folder that outlives the
+# call, so that a second call with other techniques renders none again). Expects .dev/ as tools/device/pack.sh lays it
 # out; writes into $OUT.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
@@ -25,12 +26,12 @@ for bin in $bins; do
 for scene in ${SCENES:-many-lights scenes/many-lights/four-halls.toml cornell}; do
     name=$(basename "${scene%.*}")
     ../$bin compare --scene "$scene" --techniques "$techniques" --size 320x240 --frames 300 \
-        --reference-spp 4096 --cache "$OUT/cache-$bin" --out "$OUT/$bin-$name" 2>&1 | grep -E "FLIP" | sed "s|^|$bin $name |" | tee -a "$OUT/presets.txt"
+        --reference-spp 4096 --cache "${CACHE:-$OUT/cache}" --out "$OUT/$bin-$name" 2>&1 | grep -E "FLIP" | sed "s|^|$bin $name |" | tee -a "$OUT/presets.txt"
     if [ -n "${BENCH:-}" ]; then
-        ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques "$bench_techniques" 2>&1 \
-            | grep -E "^([a-z-]+ +[a-z+-]+ |scene +technique)" | sed "s|^|$bin |" | tee -a "$OUT/bench.txt"
+        ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques "$bench_techniques" \
+            > "$OUT/bench-$bin-$name.txt" 2>&1
     fi
 done
 done
-rm -rf "$OUT"/cache-*
+rm -rf "$OUT"/cache
 find "$OUT" -name "*.png" -delete

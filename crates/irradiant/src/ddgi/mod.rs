@@ -152,7 +152,7 @@ impl TechniqueKind for DdgiKind {
             .flat_map(|desc| resources::plan(&crate::probes::ProbeGrid::new(desc), &settings))
             .collect();
         if settings.gather.rays_per_pixel > 0 {
-            all.extend(gather::plan(size));
+            all.extend(gather::plan(size, settings.gather.filter_passes));
         }
         Ok(all)
     }
@@ -171,6 +171,9 @@ impl TechniqueKind for DdgiKind {
             .collect();
         if settings.gather.rays_per_pixel > 0 {
             all.push(("ddgi/temporal", gather::workgroups(size)));
+            for _ in 0..settings.gather.filter_passes {
+                all.push(("ddgi/gather_filter", gather::workgroups(size)));
+            }
         }
         Ok(all)
     }
@@ -248,7 +251,9 @@ impl Ddgi {
                 Some(gather::GatherHistory::new(
                     cx.ctx,
                     temporal,
+                    &pipelines.gather_filter,
                     &[&scene_table, &frame_table, &first],
+                    cx.frame.resources.view("indirect"),
                     cx.frame.size(),
                 )?)
             }
@@ -329,6 +334,9 @@ impl Technique for Ddgi {
         let mut resolve = vec!["ddgi/resolve"];
         if s.gather.rays_per_pixel > 0 {
             resolve.push("ddgi/temporal");
+            if s.gather.filter_passes > 0 {
+                resolve.push("ddgi/gather_filter");
+            }
         }
         TechniquePasses { update, resolve }
     }

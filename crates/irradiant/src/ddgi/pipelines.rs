@@ -31,6 +31,8 @@ pub struct DdgiPipelines {
     pub resolve: Arc<ComputePass>,
     /// Present with the final gather (`gather.rays_per_pixel` > 0): its running mean.
     pub temporal: Option<Arc<ComputePass>>,
+    /// ddgi/gather_filter, one a pass (`gather.filter_passes`; none without the gather).
+    pub gather_filter: Vec<Arc<ComputePass>>,
     pub visualize: Arc<ComputePass>,
     /// The probes coloured by state, with their relocation offsets (ProbeView::States).
     pub visualize_states: Arc<ComputePass>,
@@ -162,6 +164,25 @@ impl DdgiPipelines {
                 )?)
             } else {
                 None
+            },
+            gather_filter: if gather_rays > 0 {
+                let passes = settings.gather.filter_passes;
+                (0..passes)
+                    .map(|k| {
+                        compile_plain(
+                            "ddgi/gather_filter",
+                            include_str!("gather_filter.wgsl"),
+                            vec![
+                                // 1, 2, 4, …: each pass reaches twice as far with 25 taps.
+                                ("FILTER_STEP", format!("{}u", 1u32 << k)),
+                                ("FILTER_FIRST", format!("{}u", (k == 0) as u32)),
+                                ("FILTER_LAST", format!("{}u", (k + 1 == passes) as u32)),
+                            ],
+                        )
+                    })
+                    .collect::<Result<_, _>>()?
+            } else {
+                Vec::new()
             },
             visualize: compile(
                 "ddgi/visualize",

@@ -265,6 +265,13 @@ pub struct DdgiGatherSettings {
     /// energy of rare bright paths: at 8 the relative MSE fell on six scenes and FLIP rose on
     /// four (H200, docs/notes/light-quality.md), so every preset leaves it off; compiled in.
     pub firefly_clamp: f32,
+    /// Passes of an edge-aware filter across the image over the gathered light
+    /// (ddgi/gather_filter: 5×5 taps, 1, 2, 4, … pixels apart; 0: none). A mean of a few
+    /// dozen one-ray gathers is noisy in every pixel; each pass averages the neighbours on the
+    /// pixel's plane whose light lies within a few of its standard errors, so that the noise
+    /// goes and edges and contact shadows stay. More reach farther, against a pass over the
+    /// image each and the blur of detail finer than the noise.
+    pub filter_passes: u32,
 }
 
 /// Frames of probe relocation at the start (003 §5 uses five: enough for almost every probe,
@@ -350,6 +357,7 @@ impl DdgiSettings {
                 pixel_interval: 1,
                 history_frames: 32,
                 firefly_clamp: 0.0,
+                filter_passes: 0,
             },
         }
     }
@@ -372,6 +380,7 @@ impl DdgiSettings {
         s.gather.rays_per_pixel = 1;
         s.gather.pixel_interval = 2;
         s.gather.history_frames = 64;
+        s.gather.filter_passes = 2;
         s
     }
 
@@ -510,6 +519,7 @@ impl DdgiSettings {
         check_range("technique.gather.pixel_interval", g.pixel_interval, 1, 16)?;
         check_range("technique.gather.history_frames", g.history_frames, 1, 1024)?;
         check_range("technique.gather.firefly_clamp", g.firefly_clamp, 0.0, 1e6)?;
+        check_range("technique.gather.filter_passes", g.filter_passes, 0, 5)?;
         if !(s.probes_per_group.is_power_of_two() && s.probes_per_group <= 64) {
             return Err(SettingsError::invalid(
                 "technique.speed.probes_per_group",
@@ -551,7 +561,7 @@ mod tests {
                 .to_string()
         };
         // Each refused setting's error names the key, the value and the range allowed.
-        let refused: [(&str, &[&str]); 7] = [
+        let refused: [(&str, &[&str]); 8] = [
             (
                 "[volume]\nrays_per_probe = 0",
                 &["technique.volume.rays_per_probe = 0", "1 to 4096"],
@@ -572,6 +582,10 @@ mod tests {
             (
                 "[gather]\nrays_per_pixel = 100",
                 &["technique.gather.rays_per_pixel = 100", "0 to 64"],
+            ),
+            (
+                "[gather]\nfilter_passes = 9",
+                &["technique.gather.filter_passes = 9", "0 to 5"],
             ),
             // 0 would leave the cells of tied probes alone with no light at all.
             (

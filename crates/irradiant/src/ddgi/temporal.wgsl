@@ -2,12 +2,14 @@
 // running mean of the gathers of up to `gather_history_frames` frames, reprojected along the
 // motion vectors where last frame's pixel held the same surface (the module `history`);
 // elsewhere, and after the frame's history resets, it starts over, from the probes' query
-// until the pixel's tile gathers. The mean, the gathers in it (a) and the geometry it was
-// taken on are next frame's history (two sets, ping-ponged). f32, so that a long mean does
+// until the pixel's tile gathers. The mean, the gathers in it (a), the mean of the gathers'
+// squared luminance (ddgi/gather_filter's estimate of the mean's error) and the geometry it
+// was taken on are next frame's history (two sets, ping-ponged). f32, so that a long mean does
 // not stall on f16's rounding.
 #import ddgi_volume
 #import gbuffer
 #import history
+#import sampling
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
@@ -15,6 +17,8 @@
 @group(2) @binding(21) var gather_history_geometry: texture_2d<f32>;
 @group(2) @binding(22) var gather_mean: texture_storage_2d<rgba32float, write>;
 @group(2) @binding(23) var gather_mean_geometry: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(24) var gather_history_moment: texture_2d<f32>;
+@group(2) @binding(25) var gather_moment: texture_storage_2d<r32float, write>;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) tile: vec3<u32>) {
@@ -26,6 +30,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
     textureStore(gather_mean_geometry, pixel, here);
     if here.w < 0.0 {
         textureStore(gather_mean, pixel, vec4<f32>(0.0));
+        textureStore(gather_moment, pixel, vec4<f32>(0.0));
         return;
     }
     // What frame/compose would read: the volumes' weighted sum over its weight. It is this
@@ -35,6 +40,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
     let traced = gather_tile_traces(tile.xy, frame.frame_index);
     // Gathers in the mean (0: it holds the query alone), at most those of history_frames.
     var gathers = select(0.0, 1.0, traced);
+    let square = luminance(light) * luminance(light);
+    var moment = select(0.0, square, traced);
     let most = max(f32(volume.gather_history_frames / max(volume.gather_interval, 1u)), 1.0);
     let previous = history_position(id.xy);
     if frame.history_frames > 0u && all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
@@ -42,15 +49,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
         let x = gbuffer_position(id.xy, gbuffer_depth_at(id.xy));
         if same_surface(textureLoad(gather_history_geometry, p, 0), x, here.xyz, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
             let old = textureLoad(gather_history, p, 0);
+            let old_moment = textureLoad(gather_history_moment, p, 0).r;
             if traced {
                 gathers = min(old.a + 1.0, most);
                 light = mix(old.rgb, light, 1.0 / gathers);
+                moment = mix(old_moment, square, 1.0 / gathers);
             } else if old.a > 0.0 {
                 gathers = old.a;
                 light = old.rgb;
+                moment = old_moment;
             }
         }
     }
     textureStore(gather_mean, pixel, vec4<f32>(light, gathers));
+    textureStore(gather_moment, pixel, vec4<f32>(moment));
     textureStore(indirect, pixel, vec4<f32>(light, 1.0));
 }

@@ -1,0 +1,137 @@
+// ddgi/gather_filter: one pass of the final gather's filter across the image
+// (`gather.filter_passes`), after ddgi/temporal. A running mean of a few dozen one-ray gathers
+// is noise in every pixel (two-rooms: eight times the rays took `quality`'s relative MSE from
+// 0.0175 to 0.0077, docs/notes/light-quality.md). Each pass is a 5×5 à-trous step (Dammertz et
+// al. 2010) at FILTER_STEP pixels between taps; a neighbour counts where it lies on the
+// pixel's plane, faces its way and reads a light within a few of the pixel's standard errors,
+// the error of each pixel's mean estimated from its gathers' second moment, as SVGF does
+// (Schied et al. 2017). The filter works on irradiance, before the albedo: texture detail is
+// never blurred. The history keeps the unfiltered mean, so nothing the filter does stays.
+//
+// FILTER_FIRST: the source is this frame's mean (rgb, gathers in a) and its moment; later
+// passes read the last pass's (rgb, variance of the mean). FILTER_LAST writes the frame's
+// `indirect` (rgb, weight 1).
+#import gbuffer
+#import history
+#import sampling
+
+@group(2) @binding(30) var filter_source: texture_2d<f32>;
+@group(2) @binding(31) var filter_moment: texture_2d<f32>;
+@group(2) @binding(32) var filter_target: texture_storage_2d<rgba32float, write>;
+
+// The B3 spline's weight at 0, 1 and 2 taps out (a function: a constant array indexed at run
+// time becomes a copy in local memory).
+fn kernel(taps_out: i32) -> f32 {
+    return select(select(0.0625, 0.25, taps_out == 1), 0.375, taps_out == 0);
+}
+// How many of the pixel's standard errors a neighbour's light may differ by and still count
+// fully (SVGF's σ_l).
+const LIGHT_SIGMA: f32 = 2.0;
+// The normals' agreement: cos^64 (SVGF's σ_n), as six squarings.
+fn normals_agree(cosine: f32) -> f32 {
+    var c = max(cosine, 0.0);
+    for (var i = 0; i < 6; i++) {
+        c *= c;
+    }
+    return c;
+}
+// How fast the weight falls as a neighbour leaves the pixel's plane: e^(−this × the sine of
+// the angle between the plane and the step to the neighbour).
+const PLANE_SHARPNESS: f32 = 8.0;
+
+// The light at a pixel and the variance of that light as an estimate of the truth.
+struct Light {
+    rgb: vec3<f32>,
+    variance: f32,
+}
+
+fn source_light(pixel: vec2<i32>) -> Light {
+    let s = textureLoad(filter_source, pixel, 0);
+    if FILTER_FIRST == 0u {
+        return Light(s.rgb, s.a);
+    }
+    // A mean of n gathers: the gathers' own variance over n. With none it is the probes'
+    // query, smooth already; a mean of one gather gets the variance of a light that could as
+    // well have been zero.
+    let gathers = s.a;
+    if gathers < 1.0 {
+        return Light(s.rgb, 0.0);
+    }
+    let l = luminance(s.rgb);
+    let spread = max(textureLoad(filter_moment, pixel, 0).r - l * l, select(0.0, l * l, gathers < 2.0));
+    return Light(s.rgb, spread / gathers);
+}
+
+// The variance of the pixel's light, smoothed over its 3×3 neighbours in the first pass (a
+// single pixel's estimate of its own variance is itself noisy); later passes read variances
+// the passes before already averaged.
+fn smoothed_variance(pixel: vec2<i32>, own: f32, size: vec2<i32>) -> f32 {
+    if FILTER_FIRST == 0u {
+        return own;
+    }
+    var variance = 0.0;
+    var around = 0.0;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let q = pixel + vec2<i32>(dx, dy);
+            if all(q >= vec2<i32>(0)) && all(q < size) && gbuffer_depth_at(vec2<u32>(q)) >= 0.0 {
+                let w = kernel(abs(dx)) * kernel(abs(dy));
+                variance += w * source_light(q).variance;
+                around += w;
+            }
+        }
+    }
+    return variance / around;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_frame(id.xy) {
+        return;
+    }
+    let pixel = vec2<i32>(id.xy);
+    let depth = gbuffer_depth_at(id.xy);
+    let here = source_light(pixel);
+    if depth < 0.0 {
+        textureStore(filter_target, pixel, vec4<f32>(0.0));
+        return;
+    }
+    let x = gbuffer_position(id.xy, depth);
+    let n = gbuffer_normal_at(id.xy);
+    let size = vec2<i32>(frame_size());
+    let error = sqrt(smoothed_variance(pixel, here.variance, size));
+    let l = luminance(here.rgb);
+    var sum = vec3<f32>(0.0);
+    var sum_variance = 0.0;
+    var weights = 0.0;
+    for (var ty = -2; ty <= 2; ty++) {
+        for (var tx = -2; tx <= 2; tx++) {
+            let q = pixel + vec2<i32>(tx, ty) * i32(FILTER_STEP);
+            if any(q < vec2<i32>(0)) || any(q >= size) {
+                continue;
+            }
+            let q_depth = gbuffer_depth_at(vec2<u32>(q));
+            if q_depth < 0.0 {
+                continue;
+            }
+            let there = source_light(q);
+            var w = kernel(abs(tx)) * kernel(abs(ty));
+            if tx != 0 || ty != 0 {
+                let step = gbuffer_position(vec2<u32>(q), q_depth) - x;
+                let off_plane = abs(dot(n, step)) / max(length(step), 1e-9);
+                let facing = normals_agree(dot(n, gbuffer_normal_at(vec2<u32>(q))));
+                let apart = abs(luminance(there.rgb) - l) / (LIGHT_SIGMA * error + 1e-9 + 1e-3 * l);
+                w *= exp(-PLANE_SHARPNESS * off_plane - apart) * facing;
+            }
+            sum += w * there.rgb;
+            sum_variance += w * w * there.variance;
+            weights += w;
+        }
+    }
+    let light = sum / weights;
+    if FILTER_LAST == 1u {
+        textureStore(filter_target, pixel, vec4<f32>(light, 1.0));
+    } else {
+        textureStore(filter_target, pixel, vec4<f32>(light, sum_variance / (weights * weights)));
+    }
+}
