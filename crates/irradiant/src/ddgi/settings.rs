@@ -266,7 +266,7 @@ pub struct DdgiGatherSettings {
     /// four (H200, docs/notes/light-quality.md), so every preset leaves it off; compiled in.
     pub firefly_clamp: f32,
     /// Passes of an edge-aware filter across the image over the gathered light
-    /// (ddgi/gather_filter: 5×5 taps, 1, 2, 4, … pixels apart; 0: none). A mean of a few
+    /// (ddgi/gather_filter: 3×3 taps, 1, 2, 4, … pixels apart; 0: none). A mean of a few
     /// dozen one-ray gathers is noisy in every pixel; each pass averages the neighbours on the
     /// pixel's plane whose light lies within a few of its standard errors, so that the noise
     /// goes and edges and contact shadows stay. More reach farther, against a pass over the
