@@ -380,7 +380,7 @@ impl DdgiSettings {
         s.gather.rays_per_pixel = 1;
         s.gather.pixel_interval = 2;
         s.gather.history_frames = 64;
-        s.gather.filter_passes = 2;
+        s.gather.filter_passes = 3;
         s
     }
 
