@@ -41,6 +41,41 @@ fn with_no_near_field_the_hybrid_is_ddgi_alone() {
     assert!(worst <= 1e-5, "the hybrid changed DDGI's light by {worst}");
 }
 
+/// With DDGI's final gather the pixels trace their own near field, and the screen's part steps
+/// aside (`HybridSettings::screen_part`): none is built and the image is DDGI's.
+#[test]
+fn with_the_final_gather_the_hybrid_is_ddgi_alone() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (48, 48);
+    let mut settings = HybridSettings::balanced();
+    settings.ddgi.gather.rays_per_pixel = 1;
+    settings.ddgi.gather.filter_passes = 1;
+    let run = |spec: TechniqueSpec| {
+        let mut s = session(&ctx, &scene, size, spec);
+        for _ in 0..8 {
+            s.render().unwrap();
+        }
+        let screen_part = s
+            .technique_as::<SsilDdgi>()
+            .is_some_and(|h| h.ssil.is_some());
+        (s.image().unwrap(), screen_part)
+    };
+    let (ddgi, _) = run(spec(Some(&settings.ddgi)));
+    let (hybrid, screen_part) = run(TechniqueSpec::with_settings("ssil+ddgi", &settings));
+    assert!(
+        !screen_part,
+        "the hybrid built its screen part beside the gather"
+    );
+    let worst = ddgi
+        .pixels
+        .iter()
+        .zip(&hybrid.pixels)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / (1e-3 + a[c].abs())))
+        .fold(0.0f32, f32::max);
+    assert!(worst <= 1e-5, "the hybrid changed DDGI's light by {worst}");
+}
+
 /// The DDGI furnace (`glowing-box`: walls that emit 1 and reflect ½; radiance 2 everywhere):
 /// every wall reflects ½ of indirect light, whichever part lights it. The screen's part, its
 /// gathered E over the share C of the cosine lobe it covers, must find the radiance every
@@ -64,6 +99,8 @@ fn the_hybrid_keeps_the_furnaces_energy_in_both_parts() {
         .technique_as::<SsilDdgi>()
         .unwrap()
         .ssil
+        .as_ref()
+        .unwrap()
         .read_light(&ctx)
         .unwrap();
     let (mut covered, mut gathered, mut pixels_covered) = (0.0f64, 0.0f64, 0);

@@ -59,14 +59,22 @@ impl HybridSettings {
             near_field: NEAR_FIELD,
         }
     }
-    /// Each technique's quality preset: the screen replaces only the near field, so DDGI's
-    /// final gather and traced bounce still light the rest.
+    /// Each technique's quality preset: DDGI's final gather traces the near field, so the
+    /// screen's part steps aside (`screen_part`).
     pub fn quality() -> Self {
         Self {
             ssil: SsilSettings::quality(),
             ddgi: DdgiSettings::quality(),
             near_field: NEAR_FIELD,
         }
+    }
+    /// Whether the screen's part runs. With DDGI's final gather (`ddgi.gather.rays_per_pixel`)
+    /// each pixel traces its near field: the screen's estimate in that light's place loses
+    /// what the rays see and the screen does not (the Cornell box at `quality`: FLIP 0.0268
+    /// → 0.0416, H200; docs/ssil.md), so the hybrid is then DDGI's gather alone and spends
+    /// nothing on the screen.
+    pub fn screen_part(&self) -> bool {
+        self.ddgi.gather.rays_per_pixel == 0
     }
     /// Refuses settings that cannot work, naming the field, the value and what is allowed.
     pub fn validate(&self) -> Result<(), crate::SettingsError> {
@@ -81,8 +89,9 @@ impl HybridSettings {
 pub struct SsilDdgi {
     /// The probes, which light every pixel first.
     pub ddgi: Ddgi,
-    /// The screen-space light, built as the hybrid's part (over the probes' light).
-    pub ssil: Ssil,
+    /// The screen-space light, built as the hybrid's part (over the probes' light); none
+    /// where DDGI gathers at the pixels (`HybridSettings::screen_part`).
+    pub ssil: Option<Ssil>,
 }
 
 impl Technique for SsilDdgi {
@@ -90,29 +99,37 @@ impl Technique for SsilDdgi {
         "ssil+ddgi"
     }
     fn passes(&self) -> TechniquePasses {
-        let (d, s) = (self.ddgi.passes(), self.ssil.passes());
-        TechniquePasses {
-            update: d.update.into_iter().chain(s.update).collect(),
-            resolve: d.resolve.into_iter().chain(s.resolve).collect(),
+        let mut all = self.ddgi.passes();
+        if let Some(ssil) = &self.ssil {
+            let s = ssil.passes();
+            all.update.extend(s.update);
+            all.resolve.extend(s.resolve);
         }
+        all
     }
     fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {
         self.ddgi.prepare(ctx, camera);
-        self.ssil.prepare(ctx, camera);
+        if let Some(ssil) = &mut self.ssil {
+            ssil.prepare(ctx, camera);
+        }
     }
     fn update(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
         self.ddgi.update(encoder, profiler);
     }
     fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
         self.ddgi.resolve(encoder, profiler.as_deref_mut());
-        self.ssil.resolve(encoder, profiler);
+        if let Some(ssil) = &mut self.ssil {
+            ssil.resolve(encoder, profiler);
+        }
     }
     fn visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {
         self.ddgi.visualize(encoder, view);
     }
     fn invalidate(&mut self) {
         self.ddgi.invalidate();
-        self.ssil.invalidate();
+        if let Some(ssil) = &mut self.ssil {
+            ssil.invalidate();
+        }
     }
     fn scene_changed(&mut self, change: &SceneChange) {
         self.ddgi.scene_changed(change);
@@ -122,17 +139,23 @@ impl Technique for SsilDdgi {
     }
     fn check_state(&self, ctx: &GpuContext) -> Result<Vec<String>, RenderError> {
         let mut all = self.ddgi.check_state(ctx)?;
-        all.extend(self.ssil.check_state(ctx)?);
+        if let Some(ssil) = &self.ssil {
+            all.extend(ssil.check_state(ctx)?);
+        }
         Ok(all)
     }
     fn inspect(&self, ctx: &GpuContext) -> Result<crate::inspect::Inspection, RenderError> {
         let mut out = self.ddgi.inspect(ctx)?;
-        out.images.extend(self.ssil.inspect(ctx)?.images);
+        if let Some(ssil) = &self.ssil {
+            out.images.extend(ssil.inspect(ctx)?.images);
+        }
         Ok(out)
     }
     fn counters(&self, ctx: &GpuContext) -> Result<Vec<Counter>, RenderError> {
         let mut all = self.ddgi.counters(ctx)?;
-        all.extend(self.ssil.counters(ctx)?);
+        if let Some(ssil) = &self.ssil {
+            all.extend(ssil.counters(ctx)?);
+        }
         Ok(all)
     }
     fn as_any(&self) -> &dyn Any {

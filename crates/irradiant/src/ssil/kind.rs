@@ -67,9 +67,12 @@ impl TechniqueKind for SsilKind {
         }
     }
     fn frame_needs(&self, spec: &TechniqueSpec) -> FrameNeeds {
-        let levels = self
-            .settings(spec, &mut Vec::new())
-            .map_or(0, |(s, _)| s.pyramid_levels());
+        let levels = match self.settings(spec, &mut Vec::new()) {
+            Ok((s, hybrid)) if hybrid.as_ref().is_none_or(HybridSettings::screen_part) => {
+                s.pyramid_levels()
+            }
+            _ => 0,
+        };
         FrameNeeds {
             pyramid_levels: levels,
         }
@@ -100,7 +103,10 @@ impl TechniqueKind for SsilKind {
     ) -> Result<Vec<Allocation>, RenderError> {
         let (settings, hybrid) = self.settings(spec, &mut Vec::new())?;
         settings.check_size(size)?;
-        let mut plan = resources::plan(&settings, size, self.hybrid);
+        let mut plan = Vec::new();
+        if hybrid.as_ref().is_none_or(HybridSettings::screen_part) {
+            plan = resources::plan(&settings, size, self.hybrid);
+        }
         if let Some(hybrid) = hybrid {
             plan.extend(crate::ddgi::DDGI.plan(
                 &TechniqueSpec::with_settings("ddgi", &hybrid.ddgi),
@@ -117,7 +123,10 @@ impl TechniqueKind for SsilKind {
         size: (u32, u32),
     ) -> Result<Vec<(&'static str, Workgroups)>, RenderError> {
         let (settings, hybrid) = self.settings(spec, &mut Vec::new())?;
-        let mut all = dispatches(&settings, size, self.hybrid);
+        let mut all = Vec::new();
+        if hybrid.as_ref().is_none_or(HybridSettings::screen_part) {
+            all = dispatches(&settings, size, self.hybrid);
+        }
         if let Some(hybrid) = hybrid {
             all.extend(crate::ddgi::DDGI.dispatches(
                 &TechniqueSpec::with_settings("ddgi", &hybrid.ddgi),
@@ -138,7 +147,11 @@ impl TechniqueKind for SsilKind {
             Some(hybrid) => {
                 let ddgi = Ddgi::new(cx, "ddgi", &hybrid.ddgi)?;
                 let reach = hybrid.near_field * ddgi.finest_spacing();
-                let ssil = Ssil::new(cx, &settings, Some(reach))?;
+                let ssil = if hybrid.screen_part() {
+                    Some(Ssil::new(cx, &settings, Some(reach))?)
+                } else {
+                    None
+                };
                 Box::new(SsilDdgi { ddgi, ssil })
             }
             None => Box::new(Ssil::new(cx, &settings, None)?),
