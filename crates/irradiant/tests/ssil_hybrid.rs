@@ -7,12 +7,22 @@ mod common;
 use common::*;
 use irradiant::TechniqueSpec;
 use irradiant::ddgi::DdgiSettings;
+use irradiant::frame::Image;
 use irradiant::ssil::{HybridSettings, SsilDdgi, SsilSettings};
 
 fn hybrid_spec(near_field: f32) -> TechniqueSpec {
     let mut settings = HybridSettings::balanced();
     settings.near_field = near_field;
     TechniqueSpec::with_settings("ssil+ddgi", &settings)
+}
+
+/// The largest relative difference of any pixel's channel between two images.
+fn largest_relative_difference(a: &Image, b: &Image) -> f32 {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / (1e-3 + a[c].abs())))
+        .fold(0.0f32, f32::max)
 }
 
 /// With no near field the screen replaces nothing: the hybrid's image is DDGI's, to the last
@@ -31,12 +41,7 @@ fn with_no_near_field_the_hybrid_is_ddgi_alone() {
     };
     let ddgi = image(spec(Some(&DdgiSettings::balanced())));
     let hybrid = image(hybrid_spec(0.0));
-    let worst = ddgi
-        .pixels
-        .iter()
-        .zip(&hybrid.pixels)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / (1e-3 + a[c].abs())))
-        .fold(0.0f32, f32::max);
+    let worst = largest_relative_difference(&ddgi, &hybrid);
     eprintln!("largest relative difference from DDGI: {worst:e}");
     assert!(worst <= 1e-5, "the hybrid changed DDGI's light by {worst}");
 }
@@ -67,12 +72,7 @@ fn with_the_final_gather_the_hybrid_is_ddgi_alone() {
         !screen_part,
         "the hybrid built its screen part beside the gather"
     );
-    let worst = ddgi
-        .pixels
-        .iter()
-        .zip(&hybrid.pixels)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / (1e-3 + a[c].abs())))
-        .fold(0.0f32, f32::max);
+    let worst = largest_relative_difference(&ddgi, &hybrid);
     assert!(worst <= 1e-5, "the hybrid changed DDGI's light by {worst}");
 }
 
