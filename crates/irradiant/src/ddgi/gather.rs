@@ -35,7 +35,7 @@ const FORMATS: [(wgpu::TextureFormat, u64); 3] = [
 ];
 /// Between two filter passes that do not write the frame's `indirect`: (light, variance).
 const FILTER_SCRATCH: &str = "ddgi/gather_filtered";
-const FILTER_SCRATCH_BYTES: u64 = 16;
+const FILTER_SCRATCH_FORMAT: (wgpu::TextureFormat, u64) = (wgpu::TextureFormat::Rgba32Float, 16);
 
 /// ddgi/temporal's workgroups at an image size: one thread a pixel, as ddgi/resolve.
 pub fn workgroups((width, height): (u32, u32)) -> Workgroups {
@@ -54,7 +54,7 @@ pub fn plan(size: (u32, u32), filter_passes: u32) -> Vec<Allocation> {
         all.push(Allocation::texture(
             FILTER_SCRATCH,
             size,
-            FILTER_SCRATCH_BYTES,
+            FILTER_SCRATCH_FORMAT.1,
             1,
             "the image size (--size) or technique.gather.filter_passes",
         ));
@@ -65,7 +65,7 @@ pub fn plan(size: (u32, u32), filter_passes: u32) -> Vec<Allocation> {
 /// Where each of `passes` filter passes writes: the last the frame's `indirect`, the ones
 /// before it alternately the scratch and `indirect`, so that no pass reads what it writes.
 /// true: `indirect`.
-pub fn filter_targets(passes: u32) -> Vec<bool> {
+fn filter_targets(passes: u32) -> Vec<bool> {
     (0..passes).map(|k| (passes - 1 - k) % 2 == 0).collect()
 }
 
@@ -103,7 +103,7 @@ impl GatherHistory {
             .map(|(label, (format, _))| texture(label, format))
             .collect();
         if filters.len() >= 2 {
-            textures.push(texture(FILTER_SCRATCH, wgpu::TextureFormat::Rgba32Float));
+            textures.push(texture(FILTER_SCRATCH, FILTER_SCRATCH_FORMAT.0));
         }
         let views: Vec<wgpu::TextureView> = textures
             .iter()
