@@ -8,18 +8,19 @@
 #   PART=probes      DDGI's update against probe count (1k to 200k, probe states on and off)
 #                    and against rays per probe, Sibenik at 1920×1080.
 #   PART=resolution  the frame and DDGI's resolve from 720p to 8K, Sibenik.
-# PART may list several. Writes growth-<part>-<point>.json (and .txt) into $OUT; the plots come
+# PART may list several. Writes growth.tgz into $OUT: growth-<part>-<point>.json and .txt; the plots come
 # from `cargo run -p irradiant-eval --example growth_plots -- DIR docs/images/growth`.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 bin=${BIN:-../irradiant}
+res=$(mktemp -d)
 sibenik=scenes/sibenik/sibenik.toml
-nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/growth-gpu.txt" 2>&1 || true
+nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$res/growth-gpu.txt" 2>&1 || true
 point() { # name, then bench arguments
     local name=$1; shift
-    $bin bench --iterations ${ITERATIONS:-20} --json "$OUT/growth-$name.json" "$@" \
-        > "$OUT/growth-$name.txt" 2>&1 || echo "$name failed: exit $?" | tee -a "$OUT/growth-$name.txt"
+    $bin bench --iterations ${ITERATIONS:-20} --json "$res/growth-$name.json" "$@" \
+        > "$res/growth-$name.txt" 2>&1 || echo "$name failed: exit $?" | tee -a "$res/growth-$name.txt"
 }
 for part in ${PART:-rays probes resolution}; do
     case $part in
@@ -56,5 +57,5 @@ for part in ${PART:-rays probes resolution}; do
         ;;
     esac
 done
-grep -h "failed" "$OUT"/growth-*.txt || true
-ls "$OUT"
+grep -h "failed" "$res"/growth-*.txt || true
+tar -C "$res" -czf "$OUT/growth.tgz" .

@@ -3,10 +3,11 @@
 //!
 //! Images are plain slices so that this crate needs no GPU: linear RGB radiance for PSNR and
 //! relative MSE, tonemapped sRGB8 for FLIP (nv-flip implements LDR-FLIP). [`report`] turns a
-//! comparison into a self-contained HTML page.
+//! comparison into a self-contained HTML page, [`plot`] curves into SVG.
 
 #![warn(missing_docs)]
 
+pub mod plot;
 pub mod report;
 
 /// Why two images cannot be compared.

@@ -4,6 +4,8 @@
 use base64::prelude::{BASE64_STANDARD, Engine};
 use serde::Serialize;
 
+use crate::plot::{Curve, line_plot_svg};
+
 /// Everything measured for one technique against the reference.
 #[derive(Clone, Debug, Serialize)]
 pub struct TechniqueResult {
@@ -90,7 +92,7 @@ pub struct TimeSeries {
     pub lag_bound: f32,
 }
 
-fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -216,9 +218,9 @@ pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
         let error: Vec<Curve> = c
             .over_time
             .iter()
-            .map(|t| Curve {
-                name: t.technique.clone(),
-                points: t.error.iter().map(|&(f, e)| (f as f64, e as f64)).collect(),
+            .map(|t| {
+                let points = t.error.iter().map(|&(f, e)| (f as f64, e as f64));
+                Curve::line(t.technique.clone(), points.collect())
             })
             .collect();
         s.push_str(&line_plot_svg(
@@ -230,9 +232,9 @@ pub fn html(c: &Comparison, png: &dyn Fn(&str) -> Vec<u8>) -> String {
         let flicker: Vec<Curve> = c
             .over_time
             .iter()
-            .map(|t| Curve {
-                name: t.technique.clone(),
-                points: t.flicker.iter().map(|&(f, v)| (f as f64, v)).collect(),
+            .map(|t| {
+                let points = t.flicker.iter().map(|&(f, v)| (f as f64, v));
+                Curve::line(t.technique.clone(), points.collect())
             })
             .collect();
         s.push_str(&line_plot_svg(
@@ -305,104 +307,5 @@ mod tests {
             2,
             "an error plot and a flicker plot"
         );
-    }
-}
-
-/// One curve of a plot: a name and its (x, y) points.
-pub struct Curve {
-    /// Label of the curve in the legend.
-    pub name: String,
-    /// The (x, y) points, joined in the order given.
-    pub points: Vec<(f64, f64)>,
-}
-
-/// A line plot as an SVG document (plotters' SVG backend), for inlining in the report.
-pub fn line_plot_svg(title: &str, x_label: &str, y_label: &str, curves: &[Curve]) -> String {
-    use plotters::prelude::*;
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (640, 320)).into_drawing_area();
-        let _ = root.fill(&WHITE);
-        let x_max = curves
-            .iter()
-            .flat_map(|c| c.points.iter().map(|p| p.0))
-            .fold(1.0f64, f64::max);
-        let y_max = curves
-            .iter()
-            .flat_map(|c| c.points.iter().map(|p| p.1))
-            .fold(1e-6f64, f64::max)
-            * 1.1;
-        let chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 16))
-            .margin(10)
-            .x_label_area_size(30)
-            .y_label_area_size(50)
-            .build_cartesian_2d(0.0..x_max, 0.0..y_max);
-        let Ok(mut chart) = chart else {
-            return svg_fallback(title);
-        };
-        let _ = chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .draw();
-        let palette = [RED, BLUE, GREEN, MAGENTA, CYAN, BLACK];
-        for (i, c) in curves.iter().enumerate() {
-            let color = palette[i % palette.len()];
-            if let Ok(series) = chart.draw_series(LineSeries::new(
-                c.points.iter().copied(),
-                color.stroke_width(2),
-            )) {
-                series.label(c.name.clone()).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2))
-                });
-            }
-        }
-        let _ = chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.8))
-            .draw();
-        let _ = root.present();
-    }
-    svg
-}
-
-fn svg_fallback(title: &str) -> String {
-    format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"40\"><text x=\"10\" y=\"25\">{} (no data)</text></svg>",
-        escape(title)
-    )
-}
-
-#[cfg(test)]
-mod plot_tests {
-    use super::*;
-
-    #[test]
-    fn a_plot_is_an_svg_with_a_path_per_curve() {
-        let curves = vec![
-            Curve {
-                name: "ddgi".into(),
-                points: (0..30)
-                    .map(|i| (i as f64, 1.0 / (1.0 + i as f64)))
-                    .collect(),
-            },
-            Curve {
-                name: "classic".into(),
-                points: (0..30).map(|i| (i as f64, 0.5)).collect(),
-            },
-        ];
-        let svg = line_plot_svg("error over time", "frame", "FLIP", &curves);
-        assert!(
-            svg.starts_with("<svg") && svg.contains("</svg>"),
-            "{}",
-            &svg[..svg.len().min(200)]
-        );
-        assert!(
-            svg.matches("<polyline").count() + svg.matches("<path").count() >= 2,
-            "one line a curve"
-        );
-        assert!(svg.contains("ddgi") && svg.contains("classic") && svg.contains("error over time"));
     }
 }
