@@ -66,7 +66,9 @@ pub fn plan(size: (u32, u32), filter_passes: u32) -> Vec<Allocation> {
 /// before it alternately the scratch and `indirect`, so that no pass reads what it writes.
 /// true: `indirect`.
 fn filter_targets(passes: u32) -> Vec<bool> {
-    (0..passes).map(|k| (passes - 1 - k).is_multiple_of(2)).collect()
+    (0..passes)
+        .map(|k| (passes - 1 - k).is_multiple_of(2))
+        .collect()
 }
 
 pub struct GatherHistory {
