@@ -95,6 +95,11 @@ pub struct BenchArgs {
     /// path, and the worst frame's GI is reported too. Takes precedence over --moving-camera.
     #[arg(long)]
     pub camera_path: bool,
+    /// Also write each scene's triangles and the primary and diffuse rays timed, with their hit
+    /// distances, into this folder as raw f32 files, so that a peer traces the very same rays
+    /// (`tools/device/peer.sh`, Mitsuba 3 through OptiX).
+    #[arg(long)]
+    pub dump_rays: Option<PathBuf>,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -332,6 +337,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 Timing { warmup, iterations },
                 order,
                 &mut record,
+                args.dump_rays.as_deref(),
             )?;
             drop(gpu_scene);
             let frames = frames::FrameBench {
@@ -442,12 +448,21 @@ fn time_rays(
     timing: Timing,
     order: &'static str,
     record: &mut BenchRecord,
+    dump: Option<&std::path::Path>,
 ) -> Result<(), CliError> {
     let caster = RayCaster::new(ctx, gpu_scene)?;
     let counting = RayCaster::counting(ctx, gpu_scene)?;
     let primary = rays::primary_rays(scene, size);
     let hits = caster.trace(ctx, gpu_scene, &primary, false)?;
     let diffuse = rays::diffuse_rays(scene, gpu_scene, &primary, &hits);
+    if let Some(dir) = dump {
+        let diffuse_hits = caster.trace(ctx, gpu_scene, &diffuse, false)?;
+        let sets = [
+            ("primary", primary.as_slice(), hits.as_slice()),
+            ("diffuse", diffuse.as_slice(), diffuse_hits.as_slice()),
+        ];
+        rays::dump(dir, scene, &sets)?;
+    }
     for (label, rays, any_hit) in [
         ("raycast/trace (primary)", &primary, false),
         ("raycast/trace (diffuse)", &diffuse, false),

@@ -83,3 +83,47 @@ pub fn diffuse_rays(
         })
         .collect()
 }
+
+/// `bench --dump-rays DIR`: the scene's world-space triangles and the rays timed, with the hit
+/// distance Irradiant found for each, as little-endian f32 files for a peer renderer to trace
+/// the very same rays (`tools/mitsuba/rays.py`):
+/// `<scene>.triangles.f32` (9 floats a triangle: three corners), `<scene>.<set>.rays.f32`
+/// (6 a ray: origin, direction) and `<scene>.<set>.t.f32` (1 a ray: the hit's t, -1 on a miss).
+pub fn dump(
+    dir: &std::path::Path,
+    scene: &irradiant_scene::Scene,
+    sets: &[(&str, &[GpuRay], &[irradiant::gpu_types::GpuRayHit])],
+) -> Result<(), crate::CliError> {
+    let write = |name: String, floats: Vec<f32>| {
+        let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+        crate::write_file(&dir.join(name), bytes)
+    };
+    std::fs::create_dir_all(dir).map_err(|e| {
+        crate::CliError::Usage(format!(
+            "--dump-rays {}: cannot create the folder: {e}",
+            dir.display()
+        ))
+    })?;
+    let mut triangles = Vec::new();
+    for instance in &scene.instances {
+        let mesh = &scene.meshes[instance.mesh as usize];
+        for t in 0..mesh.triangle_count() {
+            for corner in mesh.triangle(t) {
+                triangles.extend(instance.transform.transform_point3(corner).to_array());
+            }
+        }
+    }
+    write(format!("{}.triangles.f32", scene.name), triangles)?;
+    for (set, rays, hits) in sets {
+        let floats = rays
+            .iter()
+            .flat_map(|r| r.origin.into_iter().chain(r.dir))
+            .collect();
+        write(format!("{}.{set}.rays.f32", scene.name), floats)?;
+        write(
+            format!("{}.{set}.t.f32", scene.name),
+            hits.iter().map(|h| h.t).collect(),
+        )?;
+    }
+    Ok(())
+}
