@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Packs Mitsuba 3 and Dr.Jit for the lent GPU, which has no network (tools/device/peer.sh):
-# the wheels for its Python (3.12) from PyPI, trimmed to the cuda_ad_rgb variant (the other
-# variants, headers and type stubs removed), as .dev/peer.tar.xz (about 32 MB). Run after
+# the wheels for its Python (3.12) from PyPI, trimmed to what tools/mitsuba/rays.py uses: the
+# cuda_ad_rgb variant (scalar_rgb beside it), the two plugins a bare mesh loads (diffuse,
+# uniform); no other variant, plugin, spectral data, header or type stub. The result is
+# .dev/peer.tar.xz (about 15 MB), small enough to carry with the binary. Run after
 # tools/device/pack.sh, which lays out .dev/.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -14,6 +16,8 @@ for wheel in "$work"/*.whl; do (cd "$work/site" && unzip -q -o "$wheel"); done
 cd "$work/site"
 rm -rf mitsuba/llvm_* mitsuba/cuda_ad_mono* mitsuba/cuda_ad_spectral* mitsuba/include mitsuba/cmake \
     mitsuba/pkgconfig mitsuba/mitsuba_stubs drjit/include drjit/cmake ./*.dist-info
+find mitsuba/plugins -name "*.so" ! -name diffuse.so ! -name uniform.so -delete
+rm -rf mitsuba/data
 find . -name "*.pyi" -delete
 tar cf - mitsuba drjit | xz -6 -T2 > "$OLDPWD/.dev/peer.tar.xz"
 rm -rf "$work"

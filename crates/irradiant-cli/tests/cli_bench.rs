@@ -12,9 +12,12 @@ fn the_smoke_bench_times_every_pass_and_a_vary_grid() {
     let dir = scratch("bench-smoke");
     let path = |name: &str| dir.join(name).to_string_lossy().into_owned();
     let json = path("bench.json");
+    let rays = path("rays");
     let (ok, stdout, stderr) = irradiant(&[
         "bench",
         "--smoke",
+        "--dump-rays",
+        &rays,
         "--techniques",
         "ddgi{volume.rays_per_probe = 32},ssil",
         "--vary",
@@ -74,6 +77,67 @@ fn the_smoke_bench_times_every_pass_and_a_vary_grid() {
     assert!(record["passes"].as_array().unwrap().len() >= 4);
     let ddgi = &record["techniques"][0];
     assert!(ddgi["passes"].as_array().unwrap().len() >= 9, "{ddgi}");
+    the_dumped_rays_land_on_the_dumped_triangles(&dir.join("rays"), &record);
+}
+
+/// `--dump-rays` (for tools/mitsuba/rays.py): every triangle of the world, 64×64 rays a set, and
+/// each hit's distance, such that a primary ray's hit point lies on one of the triangles.
+fn the_dumped_rays_land_on_the_dumped_triangles(dir: &std::path::Path, record: &serde_json::Value) {
+    let floats = |name: &str| -> Vec<f32> {
+        let bytes = std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        bytes
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+            .collect()
+    };
+    let triangles = floats("cornell.triangles.f32");
+    let world_triangles = record["scenes"][0]["world_triangles"].as_u64().unwrap() as usize;
+    assert_eq!(triangles.len(), world_triangles * 9);
+    let corners: Vec<[f32; 3]> = triangles
+        .chunks_exact(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    for set in ["primary", "diffuse"] {
+        let rays = floats(&format!("cornell.{set}.rays.f32"));
+        let t = floats(&format!("cornell.{set}.t.f32"));
+        assert_eq!((rays.len(), t.len()), (64 * 64 * 6, 64 * 64), "{set}");
+        let hits = t.iter().filter(|&&t| t >= 0.0).count();
+        assert!(hits > 64 * 64 / 2, "{set}: {hits} hits of 4096");
+    }
+    let rays = floats("cornell.primary.rays.f32");
+    let t = floats("cornell.primary.t.f32");
+    let sub = |a: [f32; 3], b: [f32; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f32; 3], b: [f32; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    // Whether p lies within 1 mm of the triangle's plane and inside its edges.
+    let on = |p: [f32; 3], tri: &[[f32; 3]]| {
+        let n = cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]));
+        let area2 = dot(n, n).sqrt();
+        let plane = dot(sub(p, tri[0]), n).abs() / area2;
+        let inside = (0..3).all(|i| {
+            let edge = cross(sub(tri[(i + 1) % 3], tri[i]), sub(p, tri[i]));
+            dot(edge, n) >= -1e-3 * area2
+        });
+        plane < 1e-3 && inside
+    };
+    for (ray, &t) in rays
+        .chunks_exact(6)
+        .zip(&t)
+        .step_by(97)
+        .filter(|(_, t)| **t >= 0.0)
+    {
+        let p = [0, 1, 2].map(|i| ray[i] + ray[i + 3] * t);
+        assert!(
+            corners.chunks_exact(3).any(|tri| on(p, tri)),
+            "the hit {p:?} lies on no triangle"
+        );
+    }
 }
 
 /// `bench --check-order` runs the scenes forward and reversed in one call and compares every

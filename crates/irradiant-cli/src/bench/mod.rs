@@ -329,16 +329,13 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 gpu_allocated_mib: crate::memory::gpu_mib(&ctx),
                 peak_host_mib: crate::memory::peak_host_mib(),
             });
-            time_rays(
-                &ctx,
-                &scene,
-                &gpu_scene,
+            let rays = RayRun {
                 size,
-                Timing { warmup, iterations },
+                timing: Timing { warmup, iterations },
                 order,
-                &mut record,
-                args.dump_rays.as_deref(),
-            )?;
+                dump: args.dump_rays.as_deref(),
+            };
+            time_rays(&ctx, &scene, &gpu_scene, &rays, &mut record)?;
             drop(gpu_scene);
             let frames = frames::FrameBench {
                 ctx: ctx.clone(),
@@ -440,16 +437,28 @@ fn order_check(record: &BenchRecord, reverse_start: &RecordLengths, tolerance: f
 }
 
 /// Ray casting (primary, diffuse, diffuse any-hit) and one path-traced sample per pixel.
+/// How a scene's rays are timed: the image size (rays a dispatch), the timing, which order of
+/// the scene list this is, and where to dump the rays for a peer (`--dump-rays`).
+struct RayRun<'a> {
+    size: (u32, u32),
+    timing: Timing,
+    order: &'static str,
+    dump: Option<&'a std::path::Path>,
+}
+
 fn time_rays(
     ctx: &GpuContext,
     scene: &irradiant_scene::Scene,
     gpu_scene: &GpuScene,
-    size: (u32, u32),
-    timing: Timing,
-    order: &'static str,
+    run: &RayRun,
     record: &mut BenchRecord,
-    dump: Option<&std::path::Path>,
 ) -> Result<(), CliError> {
+    let &RayRun {
+        size,
+        timing,
+        order,
+        dump,
+    } = run;
     let caster = RayCaster::new(ctx, gpu_scene)?;
     let counting = RayCaster::counting(ctx, gpu_scene)?;
     let primary = rays::primary_rays(scene, size);
