@@ -78,6 +78,17 @@ fn read_records(dir: &Path) -> Result<Vec<(String, Value)>, String> {
     Ok(records)
 }
 
+/// Both axes logarithmic: every sweep here spans orders of magnitude.
+fn log_log<'a>(title: &'a str, x_label: &'a str, y_label: &'a str) -> Axes<'a> {
+    Axes {
+        title,
+        x_label,
+        y_label,
+        x: Scale::Log,
+        y: Scale::Log,
+    }
+}
+
 fn number(v: &Value) -> f64 {
     v.as_f64().unwrap_or(f64::NAN)
 }
@@ -130,13 +141,11 @@ fn rays_against_triangles(records: &[(String, Value)]) -> String {
         points: shipped,
         style: CurveStyle::Points,
     });
-    let axes = Axes {
-        title: "Rays a second against triangles (Sibenik's world grown around its camera)",
-        x_label: "triangles in the world",
-        y_label: "Mrays/s",
-        x: Scale::Log,
-        y: Scale::Log,
-    };
+    let axes = log_log(
+        "Rays a second against triangles (Sibenik's world grown around its camera)",
+        "triangles in the world",
+        "Mrays/s",
+    );
     plot_svg(&axes, &curves)
 }
 
@@ -160,13 +169,11 @@ fn build_against_triangles(records: &[(String, Value)]) -> String {
             world_points(records, false, scene("bvh_build_ms")),
         ),
     ];
-    let axes = Axes {
-        title: "BVH build time and memory against triangles",
-        x_label: "triangles in the world",
-        y_label: "ms or MiB",
-        x: Scale::Log,
-        y: Scale::Log,
-    };
+    let axes = log_log(
+        "BVH build time and memory against triangles",
+        "triangles in the world",
+        "ms or MiB",
+    );
     plot_svg(&axes, &curves)
 }
 
@@ -207,13 +214,11 @@ fn ddgi_against_probes(records: &[(String, Value)]) -> String {
             update_points(records, "growth-probes-", "probe_states=false", "probes"),
         ),
     ];
-    let axes = Axes {
-        title: "DDGI's update against probes (Sibenik, 256 rays a probe)",
-        x_label: "probes in the volume",
-        y_label: "ms",
-        x: Scale::Log,
-        y: Scale::Log,
-    };
+    let axes = log_log(
+        "DDGI's update against probes (Sibenik, 256 rays a probe)",
+        "probes in the volume",
+        "ms",
+    );
     plot_svg(&axes, &curves)
 }
 
@@ -224,13 +229,11 @@ fn ddgi_against_rays(records: &[(String, Value)]) -> String {
         "rays_per_probe",
         "rays_per_probe",
     );
-    let axes = Axes {
-        title: "DDGI's update against rays a probe (Sibenik, 32×8×32 probes)",
-        x_label: "rays a probe",
-        y_label: "ms",
-        x: Scale::Log,
-        y: Scale::Log,
-    };
+    let axes = log_log(
+        "DDGI's update against rays a probe (Sibenik, 32×8×32 probes)",
+        "rays a probe",
+        "ms",
+    );
     plot_svg(&axes, &[Curve::line("update ms, probe states on", points)])
 }
 
@@ -270,12 +273,10 @@ fn frame_against_resolution(records: &[(String, Value)]) -> String {
         Curve::line("frame/gbuffer", pass("frame/gbuffer")),
         Curve::line("ddgi/resolve", pass("ddgi/resolve")),
     ];
-    let axes = Axes {
-        title: "The frame against resolution (Sibenik, DDGI balanced; 720p to 8K)",
-        x_label: "megapixels",
-        y_label: "ms",
-        x: Scale::Log,
-        y: Scale::Log,
-    };
+    let axes = log_log(
+        "The frame against resolution (Sibenik, DDGI balanced; 720p to 8K)",
+        "megapixels",
+        "ms",
+    );
     plot_svg(&axes, &curves)
 }
