@@ -113,6 +113,7 @@ impl GatherHistory {
             .collect();
         // views: [mean 0, geometry 0, moment 0, mean 1, geometry 1, moment 1, scratch?].
         let set = |now: usize, item: usize| &views[3 * now + item];
+        let scratch = views.get(LABELS.len() * LABELS[0].len());
         let bind = |now: usize| -> Result<BoundPass, RenderError> {
             let before = 1 - now;
             let own = ResourceTable::new()
@@ -131,7 +132,12 @@ impl GatherHistory {
             let mut source = set(now, 0);
             let mut bound = Vec::new();
             for (pass, to_indirect) in filters.iter().zip(targets) {
-                let target = if to_indirect { indirect } else { &views[6] };
+                // filter_targets sends a pass to the scratch only where there are two or more,
+                // and then the scratch exists.
+                let target = match (to_indirect, scratch) {
+                    (false, Some(scratch)) => scratch,
+                    _ => indirect,
+                };
                 let own = ResourceTable::new()
                     .texture("filter_source", source)
                     .texture("filter_moment", set(now, 2))

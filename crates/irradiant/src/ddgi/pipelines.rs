@@ -173,7 +173,7 @@ impl DdgiPipelines {
                             "ddgi/gather_filter",
                             include_str!("gather_filter.wgsl"),
                             vec![
-                                // 1, 2, 4, …: each pass reaches twice as far with 25 taps.
+                                // 1, 2, 4, …: each pass reaches twice as far with the same 3×3 taps.
                                 ("FILTER_STEP", format!("{}u", 1u32 << k)),
                                 ("FILTER_FIRST", format!("{}u", (k == 0) as u32)),
                                 ("FILTER_LAST", format!("{}u", (k + 1 == passes) as u32)),
