@@ -3,7 +3,9 @@
 # camera path, in one call. `bench`: GI at 1920×1080 along the path for three cascades (the
 # scene's default), one dense and one sparse volume over the world, the convergence rounds and
 # the probe states on and off, and Sibenik's sleeping savings; `quality`: FLIP along the path
-# against path-traced frames, cascades against the dense volume. Expects .dev/ as
+# against path-traced frames, cascades against the dense volume; `between`: the light between
+# volumes on and off, its cost along the path and its FLIP along the path and on Sibenik's
+# cascades. Expects .dev/ as
 # tools/device/pack.sh lays it out; writes into $OUT.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
@@ -34,5 +36,22 @@ quality)
         --over-time "${FRAMES:-1620}" --every "${EVERY:-135}" --sequence-spp "${SPP:-1024}" \
         --cache "$OUT/cache" --out "$OUT/world-path" 2>&1 | tail -40 | tee "$OUT/world-quality.txt"
     rm -rf "$OUT/cache"
+    ;;
+between)
+    off='ddgi{update.light_between_volumes = false}'
+    $bin bench --scene "$world" --size 1920x1080 --iterations "${FRAMES:-1620}" --camera-path \
+        --techniques ddgi --vary 'update.light_between_volumes = [false, true]' \
+        --json "$OUT/between-path.json" 2>&1 | grep -v "^ *$" | tee "$OUT/between-path.txt"
+    $bin bench --scene scenes/sibenik/sibenik.toml --size 1920x1080 --iterations 30 \
+        --techniques 'ddgi{volume.cascades = 3}' --vary 'update.light_between_volumes = [false, true]' \
+        --json "$OUT/between-sibenik.json" 2>&1 | grep -v "^ *$" | tee "$OUT/between-sibenik.txt"
+    $bin compare --scene "$world" --techniques "none,$off,ddgi" --size 320x240 \
+        --over-time "${FRAMES:-1620}" --every "${EVERY:-135}" --sequence-spp "${SPP:-1024}" \
+        --cache "$OUT/cache" --out "$OUT/between-world" 2>&1 | tail -40 | tee "$OUT/between-world.txt"
+    $bin compare --scene scenes/sibenik/sibenik.toml --size 320x240 --reference-spp 4096 --frames 300 \
+        --techniques "ddgi{volume.cascades = 3, update.light_between_volumes = false},ddgi{volume.cascades = 3}" \
+        --cache "$OUT/cache" --out "$OUT/between-sibenik" 2>&1 | tail -30 | tee "$OUT/between-sibenik-flip.txt"
+    rm -rf "$OUT/cache"
+    tar czf "$OUT/between.tgz" -C "$OUT" --exclude between.tgz . 2>/dev/null || true
     ;;
 esac

@@ -238,7 +238,7 @@ pub fn all_layouts() -> Vec<Expected> {
             entering_end,
             blend_centre,
             convergence_rounds,
-            padding0,
+            light_between_volumes,
             padding1,
             padding2
         }),
@@ -250,6 +250,15 @@ pub fn all_layouts() -> Vec<Expected> {
         }),
         gpu_layout!(GpuDdgiRaySample { radiance, distance }),
         gpu_layout!(GpuDdgiBlendWeight { ray, weight }),
+        gpu_layout!(GpuDdgiDeferredRead {
+            position,
+            viewer_distance,
+            normal,
+            geometric_normal,
+            wo,
+            weight_rg,
+            weight_b_taken
+        }),
         gpu_layout!(GpuDdgiShadowRay {
             origin,
             sample,

@@ -46,24 +46,16 @@ struct RaySlot {
     group_key: u32,
 }
 
-// Which ray a thread of ddgi/trace or ddgi/shade takes. A 64-thread workgroup takes
-// PROBES_PER_GROUP neighbouring listed probes (a shader constant from DdgiSettings) and
-// 64 / PROBES_PER_GROUP neighbouring rays of each, interleaved so that a warp holds the
-// same rays of all its probes: near-parallel rays from nearby origins, or with one probe a
-// cone of rays from one origin.
+// Which ray a thread of ddgi/trace or ddgi/shade takes (ray_place).
 fn ray_slot(group: vec3<u32>, local_index: u32) -> RaySlot {
-    let rays_per_group = 64u / PROBES_PER_GROUP;
-    let blocks = ray_blocks(volume.rays_per_probe);
-    let linear = folded_index(group);
-    let first = (linear / blocks) * PROBES_PER_GROUP;
-    let listed = first + local_index % PROBES_PER_GROUP;
+    let place = ray_place(folded_index(group), local_index, volume.rays_per_probe);
     let count = listed_count();
     let last = count - 1u;
     var slot: RaySlot;
-    slot.ray = (linear % blocks) * rays_per_group + local_index / PROBES_PER_GROUP;
-    slot.valid = listed < count && slot.ray < volume.rays_per_probe;
-    slot.probe = listed_at(min(listed, last));
+    slot.ray = place.ray;
+    slot.valid = place.listed < count && slot.ray < volume.rays_per_probe;
+    slot.probe = listed_at(min(place.listed, last));
     slot.index = slot.probe * volume.rays_per_probe + slot.ray;
-    slot.group_key = listed_at(min(first, last)) * blocks + linear % blocks;
+    slot.group_key = listed_at(min(place.first, last)) * ray_blocks(volume.rays_per_probe) + place.block;
     return slot;
 }

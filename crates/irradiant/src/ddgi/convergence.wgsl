@@ -9,7 +9,8 @@
 // enters together also gathers the bounces between its own probes within the frame.
 #import ddgi_states
 
-@group(2) @binding(22) var<storage, read> convergence: DdgiConvergence;
+// A uniform where it is read: the ray passes are at the adapter's storage-buffer limit.
+@group(2) @binding(22) var<uniform> convergence: DdgiConvergence;
 
 // The samples the probe's value holds before this blend: its blended frames; for a newly
 // probe only the rounds blended before this one (all of this frame's, in the normal update).

@@ -4,6 +4,7 @@
 // (`traced_light`), and traced on past hits the probes are blind to (`probes_blind_to`).
 // Emission is left out: the frame's direct pass samples every emitter already.
 #import ddgi_query
+#import ddgi_rays
 #import resampling
 
 // The punctual lights' share: every light with `all_lights`, else the one `u` picks, weighted
@@ -37,18 +38,21 @@ fn probes_blind_to(read: ProbeRead, bounces_left: u32) -> bool {
     return bounces_left > 0u && read.seen < BLIND_THRESHOLD;
 }
 
-// A probe ray's hit, beyond its punctual lights: one emitter sample and the probes' irradiance
-// read at the hit, or, where they are blind to it, one ray traced on.
+// A probe ray's hit, beyond its punctual lights: one emitter sample and the probes' light.
 fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
     let l = hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng);
-    let read = ddgi_irradiance(s.position, s.normal, wo);
-    // A `let`, not the constant itself: `BLIND_BOUNCES - 1u` would be a constant expression,
-    // and one that overflows where BLIND_BOUNCES is 0.
-    let bounces = BLIND_BOUNCES;
+    return l + hit_probe_light(s, ddgi_irradiance(s.position, s.normal, wo), BLIND_BOUNCES, rng);
+}
+
+// The probes' light a surface reflects, `read` there: their irradiance, or where they are too
+// blind to it and `bounces` are left, what one ray traced on brings back. `bounces` is a
+// parameter, not the constant: `BLIND_BOUNCES - 1u` would be a constant expression, and one
+// that overflows where BLIND_BOUNCES is 0.
+fn hit_probe_light(s: Surface, read: ProbeRead, bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
     if probes_blind_to(read, bounces) {
-        return l + reflected_from_a_traced_ray(s, bounces - 1u, rng);
+        return reflected_from_a_traced_ray(s, bounces - 1u, rng);
     }
-    return l + diffuse_weight(s) * read.irradiance;
+    return diffuse_weight(s) * read.irradiance;
 }
 
 // What a Lambertian surface reflects of the light one cosine-distributed ray traced on from it
@@ -93,4 +97,66 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, candidate
 // than the probe spacing see what lies beyond it.
 fn hit_emitter_and_traced_bounce(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
     return hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng) + reflected_from_a_traced_ray(s, BLIND_BOUNCES, rng);
+}
+
+// The traced bounce with the probes' light at the traced ray's hit left to ddgi/between_volumes
+// (light between volumes): one emitter sample at s, and the direct light of the traced ray's
+// hit as s reflects it. `deferred` gets the hit, weighted by what both surfaces reflect and
+// seen from the ray's length; where the ray leaves the scene it adds the sky instead and
+// leaves nothing to read.
+fn hit_emitter_and_traced_bounce_deferred(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>, deferred: ptr<function, GpuDdgiDeferredRead>) -> vec3<f32> {
+    let l = hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng);
+    let origin = offset_ray(s.position, s.geometric_normal);
+    let dir = cosine_direction(s.normal, rng);
+    let hit = trace_ray(origin, dir, RAY_FAR, false);
+    if hit.triangle == INVALID {
+        *deferred = nothing_to_read();
+        return l + diffuse_weight(s) * scene_info.sky;
+    }
+    let h = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
+    let h_wo = -dir;
+    let direct = hit_punctual_light(h, h_wo, rand(rng)) + hit_emitter_light(h, h_wo, HIT_EMITTER_CANDIDATES, rng);
+    *deferred = deferred_read(h, h_wo, hit.t, diffuse_weight(s) * diffuse_weight(h));
+    return l + diffuse_weight(s) * direct;
+}
+
+// A point whose probe light is read later (GpuDdgiDeferredRead), none of it given yet.
+fn deferred_read(s: Surface, wo: vec3<f32>, viewer_distance: f32, weight: vec3<f32>) -> GpuDdgiDeferredRead {
+    var r: GpuDdgiDeferredRead;
+    r.position = array<f32, 3>(s.position.x, s.position.y, s.position.z);
+    r.viewer_distance = viewer_distance;
+    r.normal = pack2x16snorm(oct_encode(s.normal));
+    r.geometric_normal = pack2x16snorm(oct_encode(s.geometric_normal));
+    r.wo = pack2x16snorm(oct_encode(wo));
+    r.weight_rg = pack2x16float(weight.rg);
+    r.weight_b_taken = pack2x16float(vec2<f32>(weight.b, 0.0));
+    return r;
+}
+
+// A ray with no probe light to read: a miss, a backface, or the traced bounce's miss.
+fn nothing_to_read() -> GpuDdgiDeferredRead {
+    var r: GpuDdgiDeferredRead;
+    r.weight_b_taken = pack2x16float(vec2<f32>(0.0, 1.0));
+    return r;
+}
+
+// The share of the volumes' weight a deferred read has been given so far.
+fn deferred_taken(r: GpuDdgiDeferredRead) -> f32 {
+    return unpack2x16float(r.weight_b_taken).y;
+}
+
+// The Lambertian surface a deferred read stands for: its weight as the albedo, so that
+// diffuse_weight gives it back and a ray traced on carries it.
+fn deferred_surface(r: GpuDdgiDeferredRead) -> Surface {
+    var s: Surface;
+    s.position = vec3<f32>(r.position[0], r.position[1], r.position[2]);
+    s.normal = oct_decode(unpack2x16snorm(r.normal));
+    s.geometric_normal = oct_decode(unpack2x16snorm(r.geometric_normal));
+    s.albedo = vec3<f32>(unpack2x16float(r.weight_rg), unpack2x16float(r.weight_b_taken).x);
+    return s;
+}
+
+// The direction towards a deferred read's viewer.
+fn deferred_wo(r: GpuDdgiDeferredRead) -> vec3<f32> {
+    return oct_decode(unpack2x16snorm(r.wo));
 }

@@ -36,7 +36,7 @@ pub use volume::{Atlases, DdgiDispatches, DdgiVolume, ProbeStateCounts, VolumePl
 
 use std::any::Any;
 
-use irradiant_gpu::{Allocation, GpuContext, Profiler, Workgroups, wgpu};
+use irradiant_gpu::{Allocation, BoundPass, GpuContext, Profiler, ResourceTable, Workgroups, wgpu};
 use irradiant_scene::{ProbeVolumeDesc, Scene};
 
 use crate::RenderError;
@@ -147,9 +147,13 @@ impl TechniqueKind for DdgiKind {
         size: (u32, u32),
     ) -> Result<Vec<Allocation>, RenderError> {
         let settings = self.settings(spec, &mut Vec::new())?;
-        let mut all: Vec<Allocation> = volume_descs(scene, &settings)
+        let descs = volume_descs(scene, &settings);
+        let several = descs.len() > 1;
+        let mut all: Vec<Allocation> = descs
             .iter()
-            .flat_map(|desc| resources::plan(&crate::probes::ProbeGrid::new(desc), &settings))
+            .flat_map(|desc| {
+                resources::plan(&crate::probes::ProbeGrid::new(desc), &settings, several)
+            })
             .collect();
         if settings.gather.rays_per_pixel > 0 {
             all.extend(gather::plan(size, settings.gather.filter_passes));
@@ -201,6 +205,34 @@ pub struct Ddgi {
     descs: Vec<ProbeVolumeDesc>,
     /// Frames updated, for the cascades' schedule.
     frames: u64,
+    /// With several volumes, for each volume its rays' ddgi/between_volumes passes: one bound
+    /// to each volume, finest first.
+    between: Vec<Vec<BoundPass>>,
+}
+
+/// ddgi/between_volumes bound for each volume's rays (the owner) to each volume's probes,
+/// finest first.
+fn bind_between_volumes(
+    ctx: &GpuContext,
+    pass: &std::sync::Arc<irradiant_gpu::ComputePass>,
+    tables: &[&ResourceTable],
+    volumes: &[DdgiVolume],
+) -> Result<Vec<Vec<BoundPass>>, RenderError> {
+    volumes
+        .iter()
+        .map(|owner| {
+            let rays = owner.resources.owner_table();
+            volumes
+                .iter()
+                .map(|source| {
+                    let probes = source.resources.bounce_table();
+                    let mut all = tables.to_vec();
+                    all.extend([&probes, &rays]);
+                    pass.bind(ctx, &all).map_err(RenderError::from)
+                })
+                .collect()
+        })
+        .collect()
 }
 
 impl Ddgi {
@@ -222,7 +254,7 @@ impl Ddgi {
         settings.validate()?;
         let descs = volume_descs(cx.scene, settings);
         cascades::check_follow(cx.scene, &descs)?;
-        let pipelines = DdgiPipelines::new(cx.ctx, cx.gpu_scene, settings)?;
+        let pipelines = DdgiPipelines::new(cx.ctx, cx.gpu_scene, settings, descs.len())?;
         let scene_table = cx.gpu_scene.resources();
         let frame_table = cx.frame.resources.table();
         let count = descs.len();
@@ -245,6 +277,12 @@ impl Ddgi {
                 )
             })
             .collect::<Result<Vec<DdgiVolume>, _>>()?;
+        let between = match &pipelines.between_volumes {
+            Some(pass) => {
+                bind_between_volumes(cx.ctx, pass, &[&scene_table, &frame_table], &volumes)?
+            }
+            None => Vec::new(),
+        };
         let gather = match &pipelines.temporal {
             Some(temporal) => {
                 let first = volumes[0].resources.table();
@@ -267,6 +305,7 @@ impl Ddgi {
             scene_key: saved::scene_key(cx.scene, &cx.scene.pose_at(0.0)),
             descs,
             frames: 0,
+            between,
         })
     }
 
@@ -324,6 +363,9 @@ impl Technique for Ddgi {
         if s.queues_shadow_rays() {
             update.push("ddgi/shadow");
         }
+        if self.volumes.iter().any(DdgiVolume::reads_between_volumes) {
+            update.push("ddgi/between_volumes");
+        }
         update.extend([
             "ddgi/relocate",
             "ddgi/blend_weights",
@@ -350,7 +392,8 @@ impl Technique for Ddgi {
         let cascades = self.settings.volume.cascades;
         for (i, v) in self.volumes.iter_mut().enumerate() {
             if cascades == 0 || cascades::updates(i as u32, cascades, self.frames) {
-                v.record_update(encoder, profiler.as_deref_mut());
+                let between = self.between.get(i).map_or(&[][..], Vec::as_slice);
+                v.record_update(encoder, profiler.as_deref_mut(), between);
             } else {
                 // Off its turn: only the planes a step brought in start over.
                 v.record_window_enter(encoder, profiler.as_deref_mut());

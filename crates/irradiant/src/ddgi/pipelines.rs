@@ -20,6 +20,9 @@ pub struct DdgiPipelines {
     pub shade: Arc<ComputePass>,
     /// Present when shadow rays are queued (`DdgiSettings::queues_shadow_rays`).
     pub shadow: Option<Arc<ComputePass>>,
+    /// Present with several volumes: one volume's share of the probe light at the hits of
+    /// another's (or its own) probe rays (light between volumes).
+    pub between_volumes: Option<Arc<ComputePass>>,
     pub relocate: Arc<ComputePass>,
     pub window_enter: Arc<ComputePass>,
     pub probe_states: Arc<ComputePass>,
@@ -41,10 +44,13 @@ pub struct DdgiPipelines {
 }
 
 impl DdgiPipelines {
+    /// Compiles the passes for `volumes` probe volumes (the light between them only where
+    /// there are several).
     pub fn new(
         ctx: &GpuContext,
         scene: &GpuScene,
         settings: &DdgiSettings,
+        volumes: usize,
     ) -> Result<Self, RenderError> {
         let mut common = scene.shader_constants();
         common.extend(shader_constants(settings));
@@ -119,6 +125,15 @@ impl DdgiPipelines {
                 Some(compile_plain(
                     "ddgi/shadow",
                     include_str!("shadow.wgsl"),
+                    vec![],
+                )?)
+            } else {
+                None
+            },
+            between_volumes: if volumes > 1 {
+                Some(compile(
+                    "ddgi/between_volumes",
+                    include_str!("between_volumes.wgsl"),
                     vec![],
                 )?)
             } else {

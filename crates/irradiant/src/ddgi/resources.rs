@@ -6,7 +6,8 @@ use irradiant_gpu::{Allocation, GpuContext, ResourceTable, wgpu};
 
 use super::settings::DdgiSettings;
 use super::types::{
-    GpuDdgiBlendWeight, GpuDdgiRayHit, GpuDdgiRaySample, GpuDdgiShadowRay, GpuDdgiVolume,
+    GpuDdgiBlendWeight, GpuDdgiDeferredRead, GpuDdgiRayHit, GpuDdgiRaySample, GpuDdgiShadowRay,
+    GpuDdgiVolume,
 };
 use super::volume::DdgiDispatches;
 use crate::RenderError;
@@ -53,8 +54,10 @@ pub fn tile_sides(settings: &DdgiSettings) -> [u32; 2] {
     ]
 }
 
-/// Every allocation of one volume, from its grid and settings alone.
-pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
+/// Every allocation of one volume, from its grid and settings, and whether the technique has
+/// several volumes (whose probe rays then leave their hits' probe light to
+/// ddgi/between_volumes, through `deferred_reads`).
+pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings, several_volumes: bool) -> Vec<Allocation> {
     let v = &settings.volume;
     let probes = grid.probe_count as u64;
     let rays = probes * v.rays_per_probe as u64;
@@ -80,6 +83,11 @@ pub fn plan(grid: &ProbeGrid, settings: &DdgiSettings) -> Vec<Allocation> {
         Allocation::storage(
             "ddgi/samples",
             rays * size_of::<GpuDdgiRaySample>() as u64,
+            probe_setting,
+        ),
+        Allocation::storage(
+            "ddgi/deferred_reads",
+            if several_volumes { rays } else { 1 } * size_of::<GpuDdgiDeferredRead>() as u64,
             probe_setting,
         ),
         Allocation::storage(
@@ -168,6 +176,9 @@ pub struct DdgiResources {
     pub directions: wgpu::Buffer,
     pub hits: wgpu::Buffer,
     pub samples: wgpu::Buffer,
+    /// A GpuDdgiDeferredRead a probe ray with several volumes (one otherwise): the hits whose
+    /// probe light ddgi/between_volumes adds.
+    pub deferred_reads: wgpu::Buffer,
     /// Two packed f16 pairs a texel (rgb, value^(1/gamma)): what the query samples, through
     /// its texture copy.
     pub irradiance: wgpu::Buffer,
@@ -221,8 +232,9 @@ impl DdgiResources {
         atlas_layout: &AtlasLayout,
         settings: &DdgiSettings,
         dispatches: &DdgiDispatches,
+        several_volumes: bool,
     ) -> Result<Self, RenderError> {
-        let allocations = plan(grid, settings);
+        let allocations = plan(grid, settings, several_volumes);
         ctx.check_allocations(&allocations)?;
         let size = |label: &str| {
             allocations
@@ -282,6 +294,7 @@ impl DdgiResources {
             directions: storage("ddgi/directions", v.rays_per_probe as u64 * 16),
             hits: storage("ddgi/hits", size("ddgi/hits")),
             samples: storage("ddgi/samples", size("ddgi/samples")),
+            deferred_reads: storage("ddgi/deferred_reads", size("ddgi/deferred_reads")),
             irradiance: storage("ddgi/irradiance_atlas", size("ddgi/irradiance_atlas")),
             irradiance_bounce: storage(
                 "ddgi/irradiance_bounce_atlas",
@@ -317,7 +330,7 @@ impl DdgiResources {
                 device,
                 "ddgi/convergence",
                 CONVERGENCE_BYTES,
-                wgpu::BufferUsages::INDIRECT,
+                wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::UNIFORM,
             ),
         })
     }
@@ -332,6 +345,16 @@ impl DdgiResources {
         self.table_sampling(&self.irradiance_bounce_view)
     }
 
+    /// The updating volume's rays, as ddgi/between_volumes names them beside another volume's
+    /// table.
+    pub fn owner_table(&self) -> ResourceTable<'_> {
+        ResourceTable::new()
+            .buffer("owner", &self.volume)
+            .buffer("owner_active_probes", &self.active_probes)
+            .buffer("owner_samples", &self.samples)
+            .buffer("owner_deferred_reads", &self.deferred_reads)
+    }
+
     fn table_sampling<'a>(&'a self, irradiance: &'a wgpu::TextureView) -> ResourceTable<'a> {
         ResourceTable::new()
             .buffer("volume", &self.volume)
@@ -339,6 +362,7 @@ impl DdgiResources {
             .buffer("directions", &self.directions)
             .buffer("hits", &self.hits)
             .buffer("samples", &self.samples)
+            .buffer("deferred_reads", &self.deferred_reads)
             .buffer("irradiance_atlas", &self.irradiance)
             .buffer("irradiance_bounce_atlas", &self.irradiance_bounce)
             .buffer("irradiance_history", &self.irradiance_history)

@@ -92,6 +92,10 @@ pub struct DdgiVolumeSettings {
     pub cascade_probes: [u32; 3],
 }
 
+fn default_light_between_volumes() -> bool {
+    true
+}
+
 fn default_cascade_spacing() -> f32 {
     1.0
 }
@@ -192,6 +196,17 @@ pub struct DdgiUpdateSettings {
     /// traces on at more hits: closer to the truth where the probes stand in other light,
     /// and slower. Compiled in, as `blind_bounces`.
     pub blind_threshold: f32,
+    /// With several volumes (cascades, or the scene's probe volumes), light passes between
+    /// them (003 §7.4): a probe ray's hit reads the probes of every volume that covers it,
+    /// each with the share a pixel there would get, finest first, so that a ray that leaves
+    /// its volume reads the one it lands in and a lamp's bounce in one volume reaches the
+    /// probes of the next. Off: each probe ray reads its own volume, whose probes past its
+    /// edge hold none of the light beyond it (two-rooms split at its wall: the dark room's
+    /// indirect light about half the truth, docs/ddgi.md). Costs one pass a volume over each
+    /// updating volume's rays (ddgi/between_volumes, 36 bytes more a probe ray); nothing with
+    /// one volume.
+    #[serde(default = "default_light_between_volumes")]
+    pub light_between_volumes: bool,
     /// Seed of the per-frame random rotation of the ray set.
     pub seed: u32,
 }
@@ -342,6 +357,7 @@ impl DdgiSettings {
                 traced_bounce: false,
                 blind_bounces: 0,
                 blind_threshold: 0.5,
+                light_between_volumes: true,
                 seed: 0,
             },
             speed: DdgiSpeedSettings {

@@ -9,6 +9,9 @@
 @group(2) @binding(3) var<storage, read> directions: array<vec4<f32>>;
 @group(2) @binding(4) var<storage, read> hits: array<GpuDdgiRayHit>;
 @group(2) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
+// With several volumes and `update.light_between_volumes`: each ray's hit, whose probe light
+// ddgi/between_volumes adds from every volume that covers it (defers_probe_light).
+@group(2) @binding(25) var<storage, read_write> deferred_reads: array<GpuDdgiDeferredRead>;
 
 // TRACED_BOUNCE (0 or 1, DdgiUpdateSettings::traced_bounce): each hit's indirect light from one
 // cosine-distributed ray traced on from it (traced_light), instead of the probes read at the
@@ -57,6 +60,13 @@ fn ray_rng(index: u32) -> u32 {
     return rng_seed(index, ray_frame(), 0x68bc21ebu);
 }
 
+// Whether the probes' light at this pass's hits is left to ddgi/between_volumes: with several
+// volumes, in the normal update. A convergence round runs before the passes that would read
+// the other volumes, and reads its own.
+fn defers_probe_light() -> bool {
+    return volume.light_between_volumes != 0u && convergence.round == 0u;
+}
+
 // Shades one probe ray into samples[slot.index]; with SHADOW_QUEUE, leaves out the chosen
 // light and returns true with its shadow ray in `shadow` where that light can reach the hit.
 fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay>) -> bool {
@@ -80,6 +90,9 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
         out.radiance = scene_info.sky;
         out.distance = volume.max_ray_distance;
         samples[index] = out;
+        if defers_probe_light() {
+            deferred_reads[index] = nothing_to_read();
+        }
         return false;
     }
     let origin = probe_position(probe);
@@ -92,6 +105,9 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
         out.radiance = vec3<f32>(0.0);
         out.distance = -BACKFACE_DEPTH_SCALE * hit.t;
         samples[index] = out;
+        if defers_probe_light() {
+            deferred_reads[index] = nothing_to_read();
+        }
         return false;
     }
     let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, unpack2x16unorm(hit.bary));
@@ -113,7 +129,16 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
     } else {
         l = hit_punctual_light(s, wo, light_u);
     }
-    if TRACED_BOUNCE == 1u {
+    if defers_probe_light() {
+        var deferred: GpuDdgiDeferredRead;
+        if TRACED_BOUNCE == 1u {
+            l += hit_emitter_and_traced_bounce_deferred(s, wo, &rng, &deferred);
+        } else {
+            l += hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, &rng);
+            deferred = deferred_read(s, wo, 0.0, diffuse_weight(s));
+        }
+        deferred_reads[index] = deferred;
+    } else if TRACED_BOUNCE == 1u {
         l += hit_emitter_and_traced_bounce(s, wo, &rng);
     } else {
         l += hit_emitter_and_probe_light(s, wo, &rng);

@@ -97,9 +97,11 @@ pub struct GpuDdgiVolume {
     /// Convergence rounds recorded this frame (`update.convergence_rounds`, ddgi_convergence);
     /// 0 in frames without them.
     pub convergence_rounds: u32,
+    /// 1: probe rays leave the probes' light at their hits to ddgi/between_volumes, which
+    /// reads it from every volume that covers the hit (`update.light_between_volumes`, with
+    /// several volumes); 0: each ray reads its own volume in ddgi/shade.
+    pub light_between_volumes: u32,
     /// Pads the struct to a multiple of 16 bytes.
-    pub padding0: u32,
-    /// Padding.
     pub padding1: u32,
     /// Padding.
     pub padding2: u32,
@@ -144,6 +146,32 @@ pub struct GpuDdgiShadowRay {
     pub light: u32,
 }
 const _: () = assert!(size_of::<GpuDdgiShadowRay>() == 32);
+
+/// A probe ray's hit whose probe light ddgi/shade leaves to ddgi/between_volumes: each volume
+/// that covers the point adds its share (003 §7.4's weights, finest first), so that light
+/// passes between volumes. Scalars only, 36 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuDdgiDeferredRead {
+    /// Where the probes are read: the probe ray's hit, or with the traced bounce the traced
+    /// ray's.
+    pub position: [f32; 3],
+    /// How far the viewer of the point is: 0 for a probe ray's own hit (read as the probe
+    /// rays read), the traced ray's length for a traced bounce's hit (read as a ray from a
+    /// surface reads, `ddgi_irradiance_seen_from`).
+    pub viewer_distance: f32,
+    /// Shading normal, octahedral, `pack2x16snorm`.
+    pub normal: u32,
+    /// Geometric normal, the same: where a ray traced on starts.
+    pub geometric_normal: u32,
+    /// Towards the viewer, the same.
+    pub wo: u32,
+    /// What the read irradiance is multiplied by on its way to the probe (r, g), `pack2x16float`.
+    pub weight_rg: u32,
+    /// The same's b, and the share of the volumes' weight given so far (1: nothing to read).
+    pub weight_b_taken: u32,
+}
+const _: () = assert!(size_of::<GpuDdgiDeferredRead>() == 36);
 
 /// One ray's weight in one texel's blend (ddgi/blend_weights.wgsl); a texel's header entry
 /// holds its entry count in `ray` and their weight sum in `weight`.

@@ -122,6 +122,7 @@ impl DdgiDispatches {
             ("ddgi/ray_directions", self.ray_directions),
             ("ddgi/trace", self.rays),
             ("ddgi/shade", self.rays),
+            ("ddgi/between_volumes", self.rays),
             ("ddgi/relocate", self.probes),
             ("ddgi/window_enter", self.probes),
             ("ddgi/probe_states", self.probes),
@@ -172,6 +173,8 @@ pub struct DdgiVolume {
     /// This volume's place among the technique's, finest first; whether it is the coarsest.
     index: u32,
     is_last: bool,
+    /// Whether the technique has other volumes, whose light its probe rays may read.
+    has_neighbours: bool,
     /// Frames blended so far; 0 means the next update starts the probes from scratch.
     pub frame: u32,
     /// Active hysteresis reductions.
@@ -207,6 +210,13 @@ pub struct VolumePlace {
     pub is_last: bool,
 }
 
+impl VolumePlace {
+    /// Whether the technique has other volumes than this one.
+    pub fn has_neighbours(&self) -> bool {
+        self.index > 0 || !self.is_last
+    }
+}
+
 impl DdgiVolume {
     /// Allocates the volume for `desc`, binds the shared pipelines to its resources and the
     /// given tables (scene, frame), and starts its probes from scratch; `dynamic_bounds` are
@@ -225,7 +235,14 @@ impl DdgiVolume {
         let grid = ProbeGrid::new(desc);
         let atlas = AtlasLayout::new(grid.probe_count, &tile_sides(settings));
         let dispatches = DdgiDispatches::new(&grid, settings, frame_size);
-        let resources = DdgiResources::new(ctx, &grid, &atlas, settings, &dispatches)?;
+        let resources = DdgiResources::new(
+            ctx,
+            &grid,
+            &atlas,
+            settings,
+            &dispatches,
+            place.has_neighbours(),
+        )?;
         let passes = {
             let own = resources.table();
             let mut all: Vec<&ResourceTable> = tables.to_vec();
@@ -267,6 +284,7 @@ impl DdgiVolume {
             diagonal,
             index: place.index,
             is_last: place.is_last,
+            has_neighbours: place.has_neighbours(),
             frame: 0,
             boosts: Vec::new(),
             relocation_pending: true,
@@ -391,6 +409,12 @@ impl DdgiVolume {
             .fold((1.0f32, 1.0f32), |(i, d), (bi, bd)| (i.min(bi), d.min(bd)))
     }
 
+    /// Whether its probe rays leave their hits' probe light to ddgi/between_volumes, which
+    /// reads every volume that covers them (`update.light_between_volumes`).
+    pub fn reads_between_volumes(&self) -> bool {
+        self.has_neighbours && self.settings.update.light_between_volumes
+    }
+
     fn volume_uniform(&self) -> GpuDdgiVolume {
         let (v, u) = (&self.settings.volume, &self.settings.update);
         let g = &self.grid;
@@ -453,7 +477,7 @@ impl DdgiVolume {
             entering_end: self.window.entering_end(),
             blend_centre: self.window.blend_centre(),
             convergence_rounds: self.convergence_rounds(),
-            padding0: 0,
+            light_between_volumes: self.reads_between_volumes() as u32,
             padding1: 0,
             padding2: 0,
         }
@@ -497,12 +521,15 @@ impl DdgiVolume {
         self.wake_box_count = boxes.len() as u32;
     }
 
-    /// Records the probe update: ray directions, trace, shade, (shadow), (relocate), blend
-    /// weights, blends (borders included), probe states.
+    /// Records the probe update: ray directions, trace, shade, (shadow), (the light of every
+    /// volume at the rays' hits: `between`, ddgi/between_volumes bound to each volume, finest
+    /// first, and to this one's rays), (relocate), blend weights, blends (borders included),
+    /// probe states.
     pub fn record_update(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         mut profiler: Option<&mut Profiler>,
+        between: &[BoundPass],
     ) {
         if self.states_pending {
             // Every probe starts vigilant, so every probe is listed.
@@ -531,6 +558,17 @@ impl DdgiVolume {
             );
         }
         self.record_rays(encoder, profiler.as_deref_mut(), Round::Update);
+        if self.reads_between_volumes() {
+            let offset = Round::Update.list() + ACTIVE_RAY_GROUPS;
+            for pass in between {
+                pass.dispatch_indirect(
+                    encoder,
+                    profiler.as_deref_mut(),
+                    &self.resources.active_probes,
+                    offset,
+                );
+            }
+        }
         if self.relocation_mode() != 0 {
             if self.relocating() && self.relocation_pending {
                 encoder.clear_buffer(&self.resources.offsets, 0, None);

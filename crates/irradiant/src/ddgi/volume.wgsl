@@ -79,7 +79,8 @@ struct GpuDdgiVolume {
     blend_centre: vec4<f32>,
     // convergence rounds recorded this frame (ddgi_convergence); 0 in frames without them
     convergence_rounds: u32,
-    padding0: u32,
+    // 1: probe rays leave their hits' probe light to ddgi/between_volumes (GpuDdgiDeferredRead)
+    light_between_volumes: u32,
     padding1: u32,
     padding2: u32,
 }
