@@ -200,11 +200,10 @@ pub struct DdgiUpdateSettings {
     /// them (003 §7.4): a probe ray's hit reads the probes of every volume that covers it,
     /// each with the share a pixel there would get, finest first, so that a ray that leaves
     /// its volume reads the one it lands in and a lamp's bounce in one volume reaches the
-    /// probes of the next. Off: each probe ray reads its own volume, whose probes past its
-    /// edge hold none of the light beyond it (two-rooms split at its wall: the dark room's
-    /// indirect light about half the truth, docs/ddgi.md). Costs one pass a volume over each
-    /// updating volume's rays (ddgi/between_volumes, 36 bytes more a probe ray); nothing with
-    /// one volume.
+    /// probes of the next. Off: each probe ray reads its own volume, whose probes hold none of
+    /// the light past its edge (two-rooms with a finer volume over its dark room: that room's
+    /// indirect light 13.5 % low, docs/ddgi.md). Costs one pass a volume over each updating
+    /// volume's rays (ddgi/between_volumes) and 36 bytes a probe ray; nothing with one volume.
     #[serde(default = "default_light_between_volumes")]
     pub light_between_volumes: bool,
     /// Seed of the per-frame random rotation of the ray set.
