@@ -18,6 +18,7 @@ pub mod constants;
 mod gather;
 pub mod oracle;
 mod pipelines;
+mod reflections;
 mod resources;
 pub mod saved;
 mod settings;
@@ -29,8 +30,8 @@ pub use resources::{
     MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER,
 };
 pub use settings::{
-    DdgiGatherSettings, DdgiSettings, DdgiSpeedSettings, DdgiUpdateSettings, DdgiVolumeSettings,
-    ProbeWeights, RELOCATION_FRAMES,
+    DdgiGatherSettings, DdgiReflectionSettings, DdgiSettings, DdgiSpeedSettings,
+    DdgiUpdateSettings, DdgiVolumeSettings, ProbeWeights, RELOCATION_FRAMES,
 };
 pub use volume::{Atlases, DdgiDispatches, DdgiVolume, ProbeStateCounts, VolumePlace};
 
@@ -158,6 +159,9 @@ impl TechniqueKind for DdgiKind {
         if settings.gather.rays_per_pixel > 0 {
             all.extend(gather::plan(size, settings.gather.filter_passes));
         }
+        if settings.reflections.enabled {
+            all.extend(reflections::plan(size));
+        }
         Ok(all)
     }
     fn dispatches(
@@ -178,6 +182,10 @@ impl TechniqueKind for DdgiKind {
             for _ in 0..settings.gather.filter_passes {
                 all.push(("ddgi/gather_filter", gather::workgroups(size)));
             }
+        }
+        if settings.reflections.enabled {
+            all.push(("ddgi/reflect", settings.reflections.trace_workgroups(size)));
+            all.push(("ddgi/reflect_filter", gather::workgroups(size)));
         }
         Ok(all)
     }
@@ -205,6 +213,8 @@ pub struct Ddgi {
     descs: Vec<ProbeVolumeDesc>,
     /// Frames updated, for the cascades' schedule.
     frames: u64,
+    /// GI in glossy reflections (`reflections.enabled`), read from the finest volume.
+    reflections: Option<reflections::Reflections>,
     /// With several volumes, for each volume its rays' ddgi/between_volumes passes: one bound
     /// to each volume, finest first.
     between: Vec<Vec<BoundPass>>,
@@ -297,8 +307,22 @@ impl Ddgi {
             }
             None => None,
         };
+        let reflections = match &pipelines.reflections {
+            Some((trace, filter)) => {
+                let first = volumes[0].resources.table();
+                Some(reflections::Reflections::new(
+                    cx.ctx,
+                    (trace, filter),
+                    &[&scene_table, &frame_table, &first],
+                    &settings.reflections,
+                    cx.frame.size(),
+                )?)
+            }
+            None => None,
+        };
         Ok(Self {
             name,
+            reflections,
             settings: settings.clone(),
             volumes,
             gather,
@@ -380,6 +404,9 @@ impl Technique for Ddgi {
                 resolve.push("ddgi/gather_filter");
             }
         }
+        if s.reflections.enabled {
+            resolve.extend(["ddgi/reflect", "ddgi/reflect_filter"]);
+        }
         TechniquePasses { update, resolve }
     }
     fn prepare(&mut self, ctx: &GpuContext, camera: &irradiant_scene::Camera) {
@@ -406,7 +433,10 @@ impl Technique for Ddgi {
             v.record_resolve(encoder, profiler.as_deref_mut());
         }
         if let Some(gather) = &mut self.gather {
-            gather.record(encoder, profiler);
+            gather.record(encoder, profiler.as_deref_mut());
+        }
+        if let Some(reflections) = &mut self.reflections {
+            reflections.record(encoder, profiler);
         }
     }
     fn visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {

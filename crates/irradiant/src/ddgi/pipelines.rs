@@ -36,6 +36,8 @@ pub struct DdgiPipelines {
     pub temporal: Option<Arc<ComputePass>>,
     /// ddgi/gather_filter, one a pass (`gather.filter_passes`; none without the gather).
     pub gather_filter: Vec<Arc<ComputePass>>,
+    /// ddgi/reflect and ddgi/reflect_filter, with `reflections.enabled`.
+    pub reflections: Option<(Arc<ComputePass>, Arc<ComputePass>)>,
     pub visualize: Arc<ComputePass>,
     /// The probes coloured by state, with their relocation offsets (ProbeView::States).
     pub visualize_states: Arc<ComputePass>,
@@ -198,6 +200,23 @@ impl DdgiPipelines {
                     .collect::<Result<_, _>>()?
             } else {
                 Vec::new()
+            },
+            reflections: if settings.reflections.enabled {
+                let constants = settings.reflections.shader_constants();
+                Some((
+                    compile(
+                        "ddgi/reflect",
+                        include_str!("reflect.wgsl"),
+                        constants.clone(),
+                    )?,
+                    compile_plain(
+                        "ddgi/reflect_filter",
+                        include_str!("reflect_filter.wgsl"),
+                        constants,
+                    )?,
+                ))
+            } else {
+                None
             },
             visualize: compile(
                 "ddgi/visualize",

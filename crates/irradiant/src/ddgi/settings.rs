@@ -6,6 +6,7 @@
 use documented::DocumentedFields;
 use serde::{Deserialize, Serialize};
 
+pub use super::reflections::DdgiReflectionSettings;
 use crate::settings::TechniqueSpec;
 use crate::settings::{Presets, SettingsError, check_range, overlay};
 
@@ -36,6 +37,9 @@ pub struct DdgiSettings {
     /// A traced final gather at the pixels, the probes lighting the rays' hits: changing any
     /// rebuilds the volumes.
     pub gather: DdgiGatherSettings,
+    /// GI in glossy reflections (003 §4.4): a rebuild.
+    #[serde(default = "DdgiReflectionSettings::off")]
+    pub reflections: DdgiReflectionSettings,
 }
 
 /// Probe volume sizes and layouts (`[technique.volume]`): a change rebuilds the volumes.
@@ -308,23 +312,27 @@ crate::settings::setting_docs!(DdgiSettings {
     "update" => DdgiUpdateSettings,
     "speed" => DdgiSpeedSettings,
     "gather" => DdgiGatherSettings,
+    "reflections" => DdgiReflectionSettings,
 });
 crate::settings::setting_docs!(DdgiVolumeSettings);
 crate::settings::setting_docs!(DdgiUpdateSettings);
 crate::settings::setting_docs!(DdgiSpeedSettings);
 crate::settings::setting_docs!(DdgiGatherSettings);
+crate::settings::setting_docs!(DdgiReflectionSettings);
 
 impl DdgiSettings {
-    /// Balanced with 64 rays a probe and hysteresis 0.95.
+    /// Balanced with 64 rays a probe, hysteresis 0.95 and no reflections.
     pub fn fast() -> Self {
         let mut s = Self::balanced();
         s.volume.rays_per_probe = 64;
         s.update.hysteresis = 0.95;
         s.update.convergence_rounds = 1;
+        s.reflections = DdgiReflectionSettings::off();
         s
     }
 
-    /// 256 rays a probe, hysteresis 0.97, relocation and probe states on, no final gather.
+    /// 256 rays a probe, hysteresis 0.97, relocation and probe states on, no final gather,
+    /// reflections traced at half resolution.
     pub fn balanced() -> Self {
         Self {
             volume: DdgiVolumeSettings {
@@ -374,11 +382,12 @@ impl DdgiSettings {
                 firefly_clamp: 0.0,
                 filter_passes: 0,
             },
+            reflections: DdgiReflectionSettings::half(),
         }
     }
 
-    /// Balanced with the traced and blind bounces, every light shaded, hysteresis 0.98 and a
-    /// one-ray final gather.
+    /// Balanced with the traced and blind bounces, every light shaded, hysteresis 0.98, a
+    /// one-ray final gather and reflections traced at every glossy pixel.
     pub fn quality() -> Self {
         let mut s = Self::balanced();
         // The traced bounce, rather than 512 rays a probe: about the same time, every probe
@@ -396,6 +405,7 @@ impl DdgiSettings {
         s.gather.pixel_interval = 2;
         s.gather.history_frames = 64;
         s.gather.filter_passes = 3;
+        s.reflections = DdgiReflectionSettings::full();
         s
     }
 
@@ -427,6 +437,7 @@ impl DdgiSettings {
         self.volume == other.volume
             && self.speed == other.speed
             && self.gather == other.gather
+            && self.reflections == other.reflections
             && self.update.traced_bounce == other.update.traced_bounce
             && self.update.blind_bounces == other.update.blind_bounces
             && self.update.blind_threshold == other.update.blind_threshold
@@ -434,6 +445,7 @@ impl DdgiSettings {
 
     /// Refuses settings that cannot work, naming the field, the value and what is allowed.
     pub fn validate(&self) -> Result<(), SettingsError> {
+        self.reflections.validate()?;
         let (v, u, s) = (&self.volume, &self.update, &self.speed);
         check_range("technique.volume.rays_per_probe", v.rays_per_probe, 1, 4096)?;
         check_range(
