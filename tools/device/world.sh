@@ -5,7 +5,8 @@
 # the probe states on and off, and Sibenik's sleeping savings; `quality`: FLIP along the path
 # against path-traced frames, cascades against the dense volume; `between`: the light between
 # volumes on and off, its cost along the path and its FLIP along the path and on Sibenik's
-# cascades. Expects .dev/ as
+# cascades; `steps`: at 1920×1080 along the path, the flicker by frames since a probe window
+# stepped (seams and pops). Expects .dev/ as
 # tools/device/pack.sh lays it out; writes into $OUT.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
@@ -36,6 +37,13 @@ quality)
         --over-time "${FRAMES:-1620}" --every "${EVERY:-135}" --sequence-spp "${SPP:-1024}" \
         --cache "$OUT/cache" --out "$OUT/world-path" 2>&1 | tail -40 | tee "$OUT/world-quality.txt"
     rm -rf "$OUT/cache"
+    ;;
+steps)
+    $bin compare --scene "$world" --techniques ddgi --size 1920x1080 --over-time "${FRAMES:-1620}" \
+        --every "${EVERY:-810}" --sequence-spp "${SPP:-64}" --reference-spp "${SPP:-64}" \
+        --cache "$OUT/cache" --out "$OUT/steps" 2>&1 | tail -5 | tee "$OUT/steps.txt"
+    cp "$OUT/steps/comparison.json" "$OUT/steps.json"
+    rm -rf "$OUT/cache" "$OUT/steps"
     ;;
 between)
     off='ddgi{update.light_between_volumes = false}'

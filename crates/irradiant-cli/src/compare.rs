@@ -245,8 +245,30 @@ pub fn run(args: &CompareArgs, adapter: &AdapterChoice) -> Result<(), CliError> 
             );
         }
     }
+    for t in comparison
+        .over_time
+        .iter()
+        .filter(|t| !t.window_steps.is_empty())
+    {
+        let groups: Vec<String> = t
+            .flicker_since_step(STEP_FLICKER_FRAMES)
+            .iter()
+            .map(|(k, mean, n)| format!("{k}: {mean:.5} ({n})"))
+            .collect();
+        println!(
+            "  {:<16} flicker by frames since a probe window stepped ({} steps; the last group \
+             {STEP_FLICKER_FRAMES} or more): {}",
+            t.technique,
+            t.window_steps.len(),
+            groups.join(", ")
+        );
+    }
     Ok(())
 }
+
+/// Frames after a window step that `compare --over-time` tells apart in the flicker: past the
+/// entered planes' relocation (5 frames) and the convergence rounds that follow it.
+const STEP_FLICKER_FRAMES: u32 = 8;
 
 fn compare_into(
     setup: &Setup,

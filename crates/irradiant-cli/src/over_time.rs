@@ -6,6 +6,10 @@ use irradiant::frame::{Image, LightingChange, SceneChange};
 use irradiant::{GpuScene, GpuSceneSettings};
 use irradiant_eval::report::TimeSeries;
 
+use irradiant::Session;
+use irradiant::ddgi::Ddgi;
+use irradiant::ssil::SsilDdgi;
+
 use crate::CliError;
 use crate::compare::Setup;
 use crate::reference::reference;
@@ -44,11 +48,15 @@ pub fn follow_animation(setup: &Setup) -> Result<Vec<TimeSeries>, CliError> {
     let mut series = Vec::new();
     for (label, spec) in setup.specs {
         let mut session = setup.session(spec, 0.0)?;
-        let (mut error, mut flicker) = (Vec::new(), Vec::new());
+        let (mut error, mut flicker, mut window_steps) = (Vec::new(), Vec::new(), Vec::new());
         let mut previous: Option<Image> = None;
         for i in 0..args.over_time {
             session.seek(time(i));
+            let steps_before = steps_taken(&session);
             session.render()?;
+            if steps_taken(&session) > steps_before {
+                window_steps.push(i);
+            }
             let image = session.image()?;
             if let Some(p) = &previous {
                 let lum = |c: &[f32; 3]| (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]) as f64;
@@ -83,7 +91,17 @@ pub fn follow_animation(setup: &Setup) -> Result<Vec<TimeSeries>, CliError> {
             change_frame,
             lag_frames,
             lag_bound,
+            window_steps,
         });
     }
     Ok(series)
+}
+
+/// The probe windows' steps so far, where the technique's probes follow (DDGI's, alone or in
+/// `ssil+ddgi`); 0 for every other technique.
+fn steps_taken(session: &Session) -> u64 {
+    session
+        .technique_as::<Ddgi>()
+        .or_else(|| session.technique_as::<SsilDdgi>().map(|h| &h.ddgi))
+        .map_or(0, Ddgi::window_steps)
 }

@@ -90,6 +90,29 @@ pub struct TimeSeries {
     pub lag_frames: Option<u32>,
     /// The FLIP under which the error counts as recovered (`--lag-bound`).
     pub lag_bound: f32,
+    /// Frames in which a probe window stepped (techniques with windows that follow).
+    pub window_steps: Vec<u32>,
+}
+
+impl TimeSeries {
+    /// The mean flicker of the frames `k` frames after the last window step, for k from 0 to
+    /// `most` (the last: `most` or more), with how many frames each holds: a step that shows
+    /// stands out at its k. Frames before the first step are left out.
+    pub fn flicker_since_step(&self, most: u32) -> Vec<(u32, f64, usize)> {
+        let mut sums = vec![(0.0, 0usize); most as usize + 1];
+        for &(frame, change) in &self.flicker {
+            let Some(step) = self.window_steps.iter().rev().find(|&&s| s <= frame) else {
+                continue;
+            };
+            let k = (frame - step).min(most) as usize;
+            sums[k].0 += change;
+            sums[k].1 += 1;
+        }
+        sums.into_iter()
+            .enumerate()
+            .map(|(k, (sum, n))| (k as u32, if n > 0 { sum / n as f64 } else { 0.0 }, n))
+            .collect()
+    }
 }
 
 pub(crate) fn escape(text: &str) -> String {
@@ -291,6 +314,7 @@ mod tests {
                 technique: "ddgi".into(),
                 error: vec![(0, 0.1), (4, 0.3), (8, 0.1)],
                 flicker: vec![(1, 0.01), (2, 0.02)],
+                window_steps: Vec::new(),
                 change_frame: Some(4),
                 lag_frames: Some(4),
                 lag_bound: 0.125,
@@ -307,5 +331,28 @@ mod tests {
             2,
             "an error plot and a flicker plot"
         );
+    }
+
+    /// Frames are grouped by how long ago the last window step was; those before the first
+    /// step, and none at a k, count nowhere.
+    #[test]
+    fn flicker_is_grouped_by_frames_since_the_last_step() {
+        let series = TimeSeries {
+            technique: "ddgi".into(),
+            error: Vec::new(),
+            flicker: (1..=9).map(|f| (f, f as f64)).collect(),
+            window_steps: vec![3, 5],
+            change_frame: None,
+            lag_frames: None,
+            lag_bound: 0.1,
+        };
+        // Frame 3 and 5 are steps (k 0), 4 and 6 one after (k 1), 7 two after, 8 and 9 three
+        // or more (k 3 with most 3); 1 and 2 come before the first step.
+        assert_eq!(
+            series.flicker_since_step(3),
+            vec![(0, 4.0, 2), (1, 5.0, 2), (2, 7.0, 1), (3, 8.5, 2)]
+        );
+        assert_eq!(series.flicker_since_step(5)[4], (4, 9.0, 1));
+        assert_eq!(series.flicker_since_step(5)[5], (5, 0.0, 0));
     }
 }

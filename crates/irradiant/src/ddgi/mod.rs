@@ -363,6 +363,12 @@ impl Ddgi {
         Ok(total)
     }
 
+    /// Window steps taken so far, summed over the volumes (`DdgiVolume::window_steps`): a
+    /// frame in which this grows brought probe planes in somewhere.
+    pub fn window_steps(&self) -> u64 {
+        self.volumes.iter().map(DdgiVolume::window_steps).sum()
+    }
+
     /// Shadow rays queued in the last update, summed over the volumes.
     pub fn read_queued_shadow_rays(&self, ctx: &GpuContext) -> Result<u32, RenderError> {
         self.volumes

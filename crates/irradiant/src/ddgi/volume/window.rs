@@ -25,6 +25,8 @@ pub(super) struct Window {
     pub fresh_frames: u32,
     /// Where the target stood at the last `follow`: the blend weights centre on it.
     target: Option<Vec3>,
+    /// Steps taken since the volume was made (after its first frame), for measurements.
+    steps: u64,
 }
 
 impl Window {
@@ -65,6 +67,12 @@ impl DdgiVolume {
     /// Whether the volume follows the camera or an instance.
     pub fn follows(&self) -> bool {
         self.window.follow.is_some()
+    }
+
+    /// Steps its window took since the volume was made (after its first frame): a frame in
+    /// which this grows brought planes in.
+    pub fn window_steps(&self) -> u64 {
+        self.window.steps
     }
 
     /// Notes where a followed instance stands at the scene's new pose (one removed since
@@ -110,6 +118,7 @@ impl DdgiVolume {
             None => planes,
         });
         self.window.fresh_frames = RELOCATION_FRAMES;
+        self.window.steps += 1;
     }
 
     /// Records ddgi/window_enter on the frame of a step, before the probes trace (and on a
