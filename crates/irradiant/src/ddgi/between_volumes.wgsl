@@ -22,7 +22,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
     if place.listed >= owner_active_probes.lists[LIST_UPDATING].count || place.ray >= owner.rays_per_probe {
         return;
     }
-    let index = owner_active_probes.probes[place.listed] * owner.rays_per_probe + place.ray;
+    let index = owner_active_probes.probes[LIST_UPDATING * owner.probe_count + place.listed] * owner.rays_per_probe + place.ray;
     var r = owner_deferred_reads[index];
     let taken = deferred_taken(r);
     let s = deferred_surface(r);

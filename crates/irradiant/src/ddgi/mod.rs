@@ -76,6 +76,8 @@ impl DdgiKind {
             settings.update.traced_bounce = false;
             settings.update.blind_bounces = 0;
             settings.gather.rays_per_pixel = 0;
+            settings.reflections.enabled = false;
+            settings.update.light_between_volumes = false;
         }
         Ok(settings)
     }
@@ -423,13 +425,16 @@ impl Technique for Ddgi {
     }
     fn update(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
         let cascades = self.settings.volume.cascades;
+        // Every window's entered planes start over first, updating or not: a finer volume's
+        // rays read the coarser ones (ddgi/between_volumes), whose uniforms already hold this
+        // frame's step, before those volumes' own turn.
+        for v in &mut self.volumes {
+            v.record_window_enter(encoder, profiler.as_deref_mut());
+        }
         for (i, v) in self.volumes.iter_mut().enumerate() {
             if cascades == 0 || cascades::updates(i as u32, cascades, self.frames) {
                 let between = self.between.get(i).map_or(&[][..], Vec::as_slice);
                 v.record_update(encoder, profiler.as_deref_mut(), between);
-            } else {
-                // Off its turn: only the planes a step brought in start over.
-                v.record_window_enter(encoder, profiler.as_deref_mut());
             }
         }
         self.frames += 1;
@@ -550,7 +555,7 @@ mod tests {
     /// Classic probes are the baseline the paper improves on: whatever the preset asks, they
     /// trace no bounce at their rays' hits and no gather at the pixels.
     #[test]
-    fn classic_probes_trace_neither_a_bounce_nor_a_gather() {
+    fn classic_probes_trace_neither_a_bounce_nor_a_gather_nor_reflections() {
         let spec = TechniqueSpec::new("classic-probes", Preset::Quality);
         let full = DDGI.settings(&spec, &mut Vec::new()).unwrap();
         assert!(full.update.traced_bounce && full.gather.rays_per_pixel > 0);
@@ -559,6 +564,8 @@ mod tests {
         assert!(!classic.update.traced_bounce);
         assert_eq!(classic.update.blind_bounces, 0);
         assert_eq!(classic.gather.rays_per_pixel, 0);
+        assert!(full.reflections.enabled && !classic.reflections.enabled);
+        assert!(!classic.update.light_between_volumes);
     }
 
     /// The traced bounce and the blind bounces are compiled into DDGI's passes: switching one

@@ -11,12 +11,14 @@
 #import brdf
 
 // rgb: the reflected light (f · cos / pdf × what the ray brings back); a: the ray's length,
-// 0 where the pixel reflects nothing (not glossy, or the sample fell below the surface), < 0
-// where it did not trace this frame or sees no surface.
+// 0 where the sample fell below the surface (a sample of no light), NO_RAY where the pixel did
+// not trace this frame, sees no surface or is not glossy (no sample at all).
 @group(2) @binding(40) var reflection_rays: texture_storage_2d<rgba16float, write>;
 
 // Rays that leave the scene: far enough to read as distant to the filter.
 const SKY_DISTANCE: f32 = 1.0e4;
+// A pixel without a sample this frame (ddgi/reflect_filter skips it).
+const NO_RAY: vec4<f32> = vec4<f32>(0.0, 0.0, 0.0, -1.0);
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
@@ -31,7 +33,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         for (var x = 0u; x < REFLECT_STEP; x++) {
             let pixel = block + vec2<u32>(x, y);
             if in_frame(pixel) && any(pixel != chosen) {
-                textureStore(reflection_rays, pixel, vec4<f32>(0.0, 0.0, 0.0, -1.0));
+                textureStore(reflection_rays, pixel, NO_RAY);
             }
         }
     }
@@ -47,13 +49,14 @@ fn is_glossy(s: Surface) -> bool {
 
 fn reflected_light(pixel: vec2<u32>) -> vec4<f32> {
     if gbuffer_depth_at(pixel) < 0.0 {
-        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+        return NO_RAY;
     }
     let s = gbuffer_surface(pixel);
     let wo = view_dir(s.position);
     let n_dot_v = dot(s.normal, wo);
+    // A matte neighbour is no sample of a glossy pixel's reflection.
     if !is_glossy(s) || n_dot_v <= 0.0 {
-        return vec4<f32>(0.0);
+        return NO_RAY;
     }
     var rng = rng_seed(pixel.y * frame.width + pixel.x, frame.frame_index, frame.seed ^ 0x85ebca6bu);
     // A mirror's alpha of 0 leaves the lobe a delta, which the visible normals still sample.

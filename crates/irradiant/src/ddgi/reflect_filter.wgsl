@@ -36,8 +36,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let glossiness = saturate(s.roughness / max(REFLECT_MAX_ROUGHNESS, 1e-6));
-    // This frame's rays around the pixel.
-    let own = textureLoad(reflection_rays_read, pixel, 0);
+    // This frame's rays around the pixel. The pixel's own ray length is its 2×2 block's ray's
+    // with half-resolution tracing (ddgi/reflect's turn), where the pixel did not trace.
+    let turn = frame.frame_index % (REFLECT_STEP * REFLECT_STEP);
+    let traced = (id.xy / REFLECT_STEP) * REFLECT_STEP + vec2<u32>(turn % REFLECT_STEP, turn / REFLECT_STEP);
+    var own = textureLoad(reflection_rays_read, pixel, 0);
+    if own.a < 0.0 && in_frame(traced) {
+        own = textureLoad(reflection_rays_read, vec2<i32>(traced), 0);
+    }
     let radius = 1 + i32(round(glossiness));
     let size = vec2<i32>(frame_size());
     var sum = vec3<f32>(0.0);

@@ -27,9 +27,9 @@ pub struct DdgiReflectionSettings {
     /// query at each glossy pixel that traces, and two passes over the image; nothing is
     /// traced in scenes without glossy surfaces.
     pub enabled: bool,
-    /// The roughest surface that traces (GGX roughness, 0 to 1). Rougher lobes are wide and
-    /// their reflection is close to the irradiance the diffuse term already carries; each
-    /// glossy pixel traced costs a ray.
+    /// The roughest surface that traces (GGX roughness, 0 to 1). Rougher surfaces get no
+    /// glossy indirect light (a metal rougher than this none at all: it has no diffuse term);
+    /// each glossy pixel traced costs a ray.
     pub max_roughness: f32,
     /// Trace one pixel of each 2×2 a frame, in turn, and fill the others from it: a quarter of
     /// the rays, at the cost of detail in sharp reflections and four frames to refine them.

@@ -207,7 +207,8 @@ pub struct DdgiUpdateSettings {
     /// probes of the next. Off: each probe ray reads its own volume, whose probes hold none of
     /// the light past its edge (two-rooms with a finer volume over its dark room: that room's
     /// indirect light 13.5 % low, docs/ddgi.md). Costs one pass a volume over each updating
-    /// volume's rays (ddgi/between_volumes) and 36 bytes a probe ray; nothing with one volume.
+    /// volume's rays (ddgi/between_volumes); nothing with one volume. With several volumes the
+    /// 36 bytes a probe ray it needs are allocated, on or off.
     #[serde(default = "default_light_between_volumes")]
     pub light_between_volumes: bool,
     /// Seed of the per-frame random rotation of the ray set.
