@@ -113,11 +113,8 @@ pub struct DdgiVolume {
     max_ray_distance: f32,
     /// The volume's extent, for the default ray length.
     diagonal: f32,
-    /// This volume's place among the technique's, finest first; whether it is the coarsest.
-    index: u32,
-    is_last: bool,
-    /// Whether the technique has other volumes, whose light its probe rays may read.
-    has_neighbours: bool,
+    /// This volume's place among the technique's, finest first.
+    place: VolumePlace,
     /// Frames blended so far; 0 means the next update starts the probes from scratch.
     pub frame: u32,
     /// Active hysteresis reductions.
@@ -146,6 +143,7 @@ fn gather_history(history_frames: u32, hysteresis: f32, boost: f32) -> u32 {
 }
 
 /// Where a volume sits among its technique's volumes.
+#[derive(Clone, Copy, Debug)]
 pub struct VolumePlace {
     /// Its place among the volumes, finest first (0: the finest).
     pub index: u32,
@@ -225,9 +223,7 @@ impl DdgiVolume {
             passes,
             max_ray_distance: 0.0,
             diagonal,
-            index: place.index,
-            is_last: place.is_last,
-            has_neighbours: place.has_neighbours(),
+            place,
             frame: 0,
             boosts: Vec::new(),
             relocation_pending: true,
@@ -355,7 +351,7 @@ impl DdgiVolume {
     /// Whether its probe rays leave their hits' probe light to ddgi/between_volumes, which
     /// reads every volume that covers them (`update.light_between_volumes`).
     pub fn reads_between_volumes(&self) -> bool {
-        self.has_neighbours && self.settings.update.light_between_volumes
+        self.place.has_neighbours() && self.settings.update.light_between_volumes
     }
 
     fn volume_uniform(&self) -> GpuDdgiVolume {
@@ -400,8 +396,8 @@ impl DdgiVolume {
             all_lights: v.shade_all_lights as u32,
             state_phase: self.state_phase(),
             wake_box_count: self.wake_box_count,
-            volume_index: self.index,
-            volume_is_last: self.is_last as u32,
+            volume_index: self.place.index,
+            volume_is_last: self.place.is_last as u32,
             bounce_hysteresis: u.bounce_hysteresis * irradiance_boost,
             extrapolation: u.extrapolation,
             tied_probe_weight: u.tied_probe_weight,
