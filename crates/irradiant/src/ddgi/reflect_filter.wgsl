@@ -80,19 +80,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         frames = 1.0;
     }
     let most = mix(2.0, REFLECT_HISTORY, glossiness);
-    let previous = history_position(id.xy);
-    if frame.history_frames > 0u && all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
-        let p = vec2<i32>(previous);
-        let x = gbuffer_position(id.xy, gbuffer_depth_at(id.xy));
-        if same_surface(textureLoad(reflection_history_geometry, p, 0), x, here.xyz, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
-            let old = textureLoad(reflection_history, p, 0);
-            if frames > 0.0 {
-                frames = min(old.a + 1.0, most);
-                light = mix(old.rgb, light, 1.0 / frames);
-            } else {
-                frames = old.a;
-                light = old.rgb;
-            }
+    let p = same_surface_texel(id.xy, here.xyz, reflection_history_geometry);
+    if p.x >= 0 {
+        let old = textureLoad(reflection_history, p, 0);
+        if frames > 0.0 {
+            frames = min(old.a + 1.0, most);
+            light = mix(old.rgb, light, 1.0 / frames);
+        } else {
+            frames = old.a;
+            light = old.rgb;
         }
     }
     textureStore(reflection_mean, pixel, vec4<f32>(light, frames));

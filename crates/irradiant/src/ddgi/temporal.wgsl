@@ -43,22 +43,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
     let square = luminance(light) * luminance(light);
     var moment = select(0.0, square, traced);
     let most = max(f32(volume.gather_history_frames / max(volume.gather_interval, 1u)), 1.0);
-    let previous = history_position(id.xy);
-    if frame.history_frames > 0u && all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
-        let p = vec2<i32>(previous);
-        let x = gbuffer_position(id.xy, gbuffer_depth_at(id.xy));
-        if same_surface(textureLoad(gather_history_geometry, p, 0), x, here.xyz, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
-            let old = textureLoad(gather_history, p, 0);
-            let old_moment = textureLoad(gather_history_moment, p, 0).r;
-            if traced {
-                gathers = min(old.a + 1.0, most);
-                light = mix(old.rgb, light, 1.0 / gathers);
-                moment = mix(old_moment, square, 1.0 / gathers);
-            } else if old.a > 0.0 {
-                gathers = old.a;
-                light = old.rgb;
-                moment = old_moment;
-            }
+    let p = same_surface_texel(id.xy, here.xyz, gather_history_geometry);
+    if p.x >= 0 {
+        let old = textureLoad(gather_history, p, 0);
+        let old_moment = textureLoad(gather_history_moment, p, 0).r;
+        if traced {
+            gathers = min(old.a + 1.0, most);
+            light = mix(old.rgb, light, 1.0 / gathers);
+            moment = mix(old_moment, square, 1.0 / gathers);
+        } else if old.a > 0.0 {
+            gathers = old.a;
+            light = old.rgb;
+            moment = old_moment;
         }
     }
     textureStore(gather_mean, pixel, vec4<f32>(light, gathers));

@@ -36,3 +36,20 @@ fn same_surface(old: vec4<f32>, x: vec3<f32>, n: vec3<f32>, depth_tolerance: f32
         && abs(old.w - expected) <= depth_tolerance * max(expected, 1e-6)
         && dot(old.xyz, n) >= normal_tolerance;
 }
+
+// The texel of last frame's history that held this pixel's surface (normal n), where the
+// history's geometry (history_geometry's layout, in `geometry`) says it is the same surface;
+// (-1, -1) where it is another, the motion leads out of the frame or the frame's history
+// restarted.
+fn same_surface_texel(pixel: vec2<u32>, n: vec3<f32>, geometry: texture_2d<f32>) -> vec2<i32> {
+    let previous = history_position(pixel);
+    if frame.history_frames == 0u || any(previous < vec2<f32>(0.0)) || any(previous >= frame_size()) {
+        return vec2<i32>(-1);
+    }
+    let p = vec2<i32>(previous);
+    let x = gbuffer_position(pixel, gbuffer_depth_at(pixel));
+    if !same_surface(textureLoad(geometry, p, 0), x, n, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
+        return vec2<i32>(-1);
+    }
+    return p;
+}
