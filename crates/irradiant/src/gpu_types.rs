@@ -48,7 +48,7 @@ pub fn all_layouts() -> Vec<Expected> {
         }),
         gpu_layout!(GpuTriangleShading {
             n0,
-            _pad0,
+            emitter_ordinal,
             n1,
             _pad1,
             n2,
@@ -69,7 +69,7 @@ pub fn all_layouts() -> Vec<Expected> {
             previous_object_to_world1,
             previous_object_to_world2,
             blas_root,
-            _pad0,
+            emitter_base,
             _pad1,
             _pad2
         }),
@@ -96,9 +96,9 @@ pub fn all_layouts() -> Vec<Expected> {
             e1,
             instance,
             e2,
-            alias_entry,
+            cluster,
             normal,
-            alias_probability,
+            _pad,
             radiance,
             pdf_area
         }),
@@ -106,9 +106,15 @@ pub fn all_layouts() -> Vec<Expected> {
             sky,
             light_count,
             emitter_count,
-            emissive_power,
+            grid_clusters,
             tlas_root,
-            instance_count
+            instance_count,
+            grid_min,
+            grid_width,
+            grid_inverse_cell,
+            grid_member_row,
+            grid_dims,
+            _pad
         }),
         gpu_layout!(GpuCamera {
             position,

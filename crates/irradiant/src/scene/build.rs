@@ -126,7 +126,9 @@ impl SceneBuild {
                 let [a, b, c] = tris[t as usize];
                 let material = mesh.triangle_materials[t as usize];
                 let emission = scene.materials[material as usize].emission;
+                let mut shading_of = triangle_shading(mesh, t as usize);
                 if emission.max_element() > 0.0 {
+                    shading_of.emitter_ordinal = emissive.len() as u32;
                     emissive.push((triangles.len() as u32, emission));
                 }
                 triangles.push(GpuTriangle {
@@ -141,7 +143,7 @@ impl SceneBuild {
                     e2: (c - a).into(),
                     _pad: 0,
                 });
-                shading.push(triangle_shading(mesh, t as usize));
+                shading.push(shading_of);
                 triangle_sources.push((mesh_index as u32, t));
                 slot_triangles.push([a, b, c]);
             }
@@ -198,7 +200,7 @@ fn triangle_shading(mesh: &irradiant_scene::Mesh, t: usize) -> GpuTriangleShadin
     };
     GpuTriangleShading {
         n0: n(0),
-        _pad0: 0,
+        emitter_ordinal: 0,
         n1: n(1),
         _pad1: 0,
         n2: n(2),

@@ -30,8 +30,9 @@ const _: () = assert!(size_of::<GpuTriangle>() == 48);
 pub struct GpuTriangleShading {
     /// Normal at the first vertex, object space.
     pub n0: [f32; 3],
-    /// Padding after a vec3; 0.
-    pub _pad0: u32,
+    /// For an emissive triangle, its place among its mesh's emissive triangles: an instance's
+    /// `emitter_base` plus this is its entry of the emitters buffer. 0 otherwise.
+    pub emitter_ordinal: u32,
     /// Normal at the second vertex.
     pub n1: [f32; 3],
     /// Padding after a vec3; 0.
@@ -77,8 +78,8 @@ pub struct GpuInstance {
     /// Root node of the mesh's bottom-level tree, in the binary or the wide node buffer as
     /// [`BlasLayout`](super::BlasLayout) picks.
     pub blas_root: u32,
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad0: u32,
+    /// Its first entry of the emitters buffer (its mesh's emissive triangles follow in order).
+    pub emitter_base: u32,
     /// Padding to a 16-byte multiple; 0.
     pub _pad1: u32,
     /// Padding to a 16-byte multiple; 0.
@@ -128,10 +129,10 @@ pub struct GpuLight {
 }
 const _: () = assert!(size_of::<GpuLight>() == 48);
 
-/// One emissive triangle of one instance for next-event estimation, chosen with probability
-/// ∝ luminance(emission) × world area.
+/// One emissive triangle of one instance for next-event estimation, picked through the emitter
+/// grid (`scene::emitter_grid`): its cluster by the cell, then itself ∝ luminance × world area.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuEmitter {
     /// Its first vertex in world space (at the last uploaded pose).
     pub v0: [f32; 3],
@@ -143,17 +144,16 @@ pub struct GpuEmitter {
     pub instance: u32,
     /// Its second edge (v2 − v0) in world space.
     pub e2: [f32; 3],
-    /// The alias table's other emitter for this entry (Vose's method): a pick that lands here
-    /// and draws above `alias_probability` takes that one (`alias` is a WGSL keyword). O(1) a pick, where a search of the
-    /// cumulative distribution costs a load per halving.
-    pub alias_entry: u32,
+    /// Its cluster of the emitter grid.
+    pub cluster: u32,
     /// Its front face's world normal (unit length).
     pub normal: [f32; 3],
-    /// The chance that a pick landing on this entry keeps it.
-    pub alias_probability: f32,
+    /// Padding after a vec3; 0.
+    pub _pad: u32,
     /// Emitted radiance (front face).
     pub radiance: [f32; 3],
-    /// The area pdf of a point picked on it: luminance(radiance) / Σ luminance × area.
+    /// The area pdf of a point on it given its cluster: luminance(radiance) / the cluster's
+    /// Σ luminance × area (× the cell's probability of the cluster: the pdf at a point).
     pub pdf_area: f32,
 }
 const _: () = assert!(size_of::<GpuEmitter>() == 80);
@@ -168,15 +168,26 @@ pub struct GpuSceneInfo {
     pub light_count: u32,
     /// Entries of the emitters buffer.
     pub emitter_count: u32,
-    /// Σ luminance(emission) × world area over the emitters: an emissive point's area pdf is
-    /// luminance(emission) / emissive_power.
-    pub emissive_power: f32,
+    /// Clusters of the emitter grid: texels of a cell's row.
+    pub grid_clusters: u32,
     /// Root node of the top-level tree, in the binary node buffer after every mesh's nodes.
     pub tlas_root: u32,
     /// Entries of the instances buffer.
     pub instance_count: u32,
+    /// The emitter grid's low corner.
+    pub grid_min: [f32; 3],
+    /// Texels a row of the emitter grid's texture.
+    pub grid_width: u32,
+    /// The emitter grid's cells per unit of length along each axis.
+    pub grid_inverse_cell: [f32; 3],
+    /// The emitter grid texture's first row of cluster members (the cell count).
+    pub grid_member_row: u32,
+    /// The emitter grid's cells along each axis.
+    pub grid_dims: [u32; 3],
+    /// Padding to a 16-byte multiple; 0.
+    pub _pad: u32,
 }
-const _: () = assert!(size_of::<GpuSceneInfo>() == 32);
+const _: () = assert!(size_of::<GpuSceneInfo>() == 80);
 
 /// A pinhole camera as an orthonormal frame; image y goes down.
 #[repr(C)]

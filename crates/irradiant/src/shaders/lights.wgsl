@@ -121,38 +121,6 @@ fn direct_from_light_split(s: Surface, wo: vec3<f32>, i: u32) -> DirectLight {
     return light;
 }
 
-// One point on an emissive triangle (chosen ∝ power) as seen from a surface: f · Le · cos / pdf
-// where it reaches the surface unblocked (else zero), the pdf in solid angle (0 where it cannot
-// reach the surface's side) and the direction, for the path tracer's MIS weight.
-struct EmitterLight {
-    radiance: vec3<f32>,
-    pdf: f32,
-    wi: vec3<f32>,
-}
-
-fn sample_emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> EmitterLight {
-    var out: EmitterLight;
-    // Scenes without emitters compile none of this: present though never run, it made
-    // ddgi/shade on Sibenik 7 % longer (H100).
-    if SCENE_HAS_EMITTERS == 0u {
-        return out;
-    }
-    let origin = offset_ray(s.position, s.geometric_normal);
-    let e = sample_emitter(rand(rng), rand2(rng));
-    let reach = emitter_reach(s, wo, origin, e);
-    out.wi = reach.wi;
-    if reach.cos_light <= 0.0 {
-        return out;
-    }
-    // The area pdf turned into solid angle; f · Le · cos_surface / pdf is reach.light / pdf_area.
-    out.pdf = e.pdf_area * reach.distance * reach.distance / reach.cos_light;
-    if !emitter_visible(origin, out.wi, reach.distance, e) {
-        return out;
-    }
-    out.radiance = reach.light / e.pdf_area;
-    return out;
-}
-
 // What an emitter point sends to a surface, shadows aside, in the area measure
 // (brdf · Le · cos at the surface · cos at the emitter / d²), and the shadow ray that decides
 // whether it arrives.

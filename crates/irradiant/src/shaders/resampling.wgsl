@@ -1,11 +1,11 @@
 // Emitter samples chosen by resampled importance sampling (RIS, Talbot et al. 2005) and held in
 // reservoirs that later frames and neighbouring pixels reuse (ReSTIR DI, Bitterli et al. 2020,
-// Algorithms 3-5). Candidates come from the power-proportional pick of every emitter
-// (sample_emitter); RIS keeps one in proportion to what it sends to the surface unshadowed
-// (Le × both cosines / d², target_value), so that near, facing emitters win over far ones of
-// the same power. One shadow ray then tests the one kept. Shared by frame/direct and every ray hit's
-// emitter sample (emitter_light); the path tracer keeps sample_emitter_light, whose pdf its MIS
-// weights need.
+// Algorithms 3-5). Candidates come from the emitter grid's pick for the surface's cell
+// (pick_emitter: by power, facing and distance to the cell); RIS keeps one in proportion to
+// what it sends to the surface unshadowed (Le × both cosines / d², target_value), so that near,
+// facing emitters win over far ones of the same power. One shadow ray then tests the one kept.
+// Shared by frame/direct, every ray hit's emitter sample (emitter_light) and the path
+// tracer's next-event estimation.
 #import lights
 
 // Candidates a ray hit's one emitter sample is chosen from (emitter_light): enough that the
@@ -85,16 +85,17 @@ fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, o
     reservoir_add(r, other.emitter, other.bary, here, here * other.w * other.m, other.m, u);
 }
 
-// RIS over `candidates` emitter points picked in proportion to power: the reservoir that keeps
-// one, its W set (no shadow ray yet).
+// RIS over `candidates` emitter points picked through the emitter grid for the surface's cell:
+// the reservoir that keeps one, its W set (no shadow ray yet).
 fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> Reservoir {
     var r = empty_reservoir();
+    let cell = emitter_cell(origin);
     for (var i = 0u; i < candidates; i++) {
-        let emitter = pick_emitter(rand(rng));
+        let pick = pick_emitter(cell, rand(rng), rand(rng));
         let bary = uniform_triangle(rand2(rng));
-        let e = emitter_point(emitter, bary);
+        let e = emitter_point(pick.index, bary);
         let value = target_value(s, origin, e);
-        reservoir_add(&r, emitter, bary, value, value / e.pdf_area, 1.0, rand(rng));
+        reservoir_add(&r, pick.index, bary, value, value / (e.pdf_area * pick.cluster_probability), 1.0, rand(rng));
     }
     reservoir_finish(&r);
     return r;

@@ -16,6 +16,9 @@
 @group(0) @binding(9) var scene_sampler: sampler;
 // Bottom-level trees in the wide layout (BLAS_WIDE == 1); one unused node otherwise.
 @group(0) @binding(10) var<storage, read> wide_nodes: array<GpuWideBvhNode>;
+// The emitter grid (scene::emitter_grid): per cell an alias table over the emitters' clusters,
+// then the clusters' members.
+@group(0) @binding(11) var emitter_grid: texture_2d<u32>;
 
 fn to_object_point(inst: GpuInstance, p: vec3<f32>) -> vec3<f32> {
     let q = vec4<f32>(p, 1.0);
@@ -100,22 +103,53 @@ struct EmitterSample {
     instance: u32,
 }
 
-fn sample_emitter(u_select: f32, u: vec2<f32>) -> EmitterSample {
-    return emitter_point(pick_emitter(u_select), uniform_triangle(u));
+// The emitter grid's cell holding p, clamped to the grid (EmitterGrid::cell): the place an
+// emitter is picked from and its pdf read at.
+fn emitter_cell(p: vec3<f32>) -> u32 {
+    let dims = vec3<i32>(scene_info.grid_dims);
+    let c = clamp(vec3<i32>(floor((p - scene_info.grid_min) * scene_info.grid_inverse_cell)), vec3<i32>(0), dims - 1);
+    return u32(c.x) + scene_info.grid_dims.x * (u32(c.y) + scene_info.grid_dims.y * u32(c.z));
 }
 
-// The emitter (an entry of `emitters`) a uniform u_select picks, in proportion to its power:
-// the alias table's entry where u_select lands, or its alias.
-fn pick_emitter(u_select: f32) -> u32 {
+// An emitter picked from a cell, with its cluster's probability there.
+struct EmitterPick {
+    index: u32,
+    cluster_probability: f32,
+}
+
+// Picks an emitter for a point in `cell`: a cluster through the cell's alias table, then a
+// member of it in proportion to power through the cluster's. Two texel reads.
+fn pick_emitter(cell: u32, u_cluster: f32, u_member: f32) -> EmitterPick {
+    let clusters = scene_info.grid_clusters;
+    let scaled = u_cluster * f32(clusters);
+    let entry = min(u32(scaled), clusters - 1u);
+    let t = textureLoad(emitter_grid, vec2<u32>(entry, cell), 0);
+    let keep = scaled - f32(entry) < bitcast<f32>(t.x);
+    let cluster = select(t.y, entry, keep);
     let n = scene_info.emitter_count;
-    let scaled = u_select * f32(n);
-    let entry = min(u32(scaled), n - 1u);
-    let e = emitters[entry];
-    return select(e.alias_entry, entry, scaled - f32(entry) < e.alias_probability);
+    let first = cluster * n / clusters;
+    let count = (cluster + 1u) * n / clusters - first;
+    let scaled_member = u_member * f32(count);
+    let slot = first + min(u32(scaled_member), count - 1u);
+    let m = textureLoad(emitter_grid, vec2<u32>(slot % scene_info.grid_width, scene_info.grid_member_row + slot / scene_info.grid_width), 0);
+    let index = select(m.y, m.x, scaled_member - floor(scaled_member) < bitcast<f32>(m.z));
+    return EmitterPick(index, bitcast<f32>(select(t.w, t.z, keep)));
 }
 
-// The point of emitter `index` at barycentrics b (along its triangle's e1 and e2), with the
-// area pdf sample_emitter gives it: how a reservoir's sample is found again in later frames.
+// The area pdf with which pick_emitter and a uniform point on the triangle pick a point of
+// emitter `index` for `cell`.
+fn emitter_area_pdf(cell: u32, index: u32) -> f32 {
+    let e = emitters[index];
+    return bitcast<f32>(textureLoad(emitter_grid, vec2<u32>(e.cluster, cell), 0).z) * e.pdf_area;
+}
+
+// The entry of the emitters buffer of a hit's triangle (an emissive one).
+fn hit_emitter(instance: u32, triangle: u32) -> u32 {
+    return instances[instance].emitter_base + triangle_shading[triangle].emitter_ordinal;
+}
+
+// The point of emitter `index` at barycentrics b (along its triangle's e1 and e2), with its
+// area pdf given its cluster: how a reservoir's sample is found again in later frames.
 fn emitter_point(index: u32, b: vec2<f32>) -> EmitterSample {
     let e = emitters[index];
     var s: EmitterSample;
@@ -126,9 +160,4 @@ fn emitter_point(index: u32, b: vec2<f32>) -> EmitterSample {
     s.triangle = e.triangle;
     s.instance = e.instance;
     return s;
-}
-
-// The area pdf with which sample_emitter picks a point of an emitter of this radiance.
-fn emitter_pdf_area(emission: vec3<f32>) -> f32 {
-    return luminance(emission) / max(scene_info.emissive_power, 1e-30);
 }

@@ -49,7 +49,8 @@ struct GpuTriangle {
 // Shading data, same order as GpuTriangle. Normals of length 0 mean "use the face normal".
 struct GpuTriangleShading {
     n0: vec3<f32>,
-    _pad0: u32,
+    // an emissive triangle's place among its mesh's: emitters[instance.emitter_base + this]
+    emitter_ordinal: u32,
     n1: vec3<f32>,
     _pad1: u32,
     n2: vec3<f32>,
@@ -73,7 +74,7 @@ struct GpuInstance {
     previous_object_to_world1: vec4<f32>,
     previous_object_to_world2: vec4<f32>,
     blas_root: u32,
-    _pad0: u32,
+    emitter_base: u32,
     _pad1: u32,
     _pad2: u32,
 }
@@ -102,18 +103,17 @@ struct GpuLight {
     cos_outer: f32,
 }
 
-// One emissive triangle for next-event estimation, chosen with probability ∝ its power.
-// An emissive triangle in world space at the last uploaded pose, with its alias-table entry
-// (scene::types::GpuEmitter).
+// An emissive triangle in world space at the last uploaded pose, with its cluster of the
+// emitter grid and its area pdf within it (scene::types::GpuEmitter).
 struct GpuEmitter {
     v0: vec3<f32>,
     triangle: u32,
     e1: vec3<f32>,
     instance: u32,
     e2: vec3<f32>,
-    alias_entry: u32,
+    cluster: u32,
     normal: vec3<f32>,
-    alias_probability: f32,
+    _pad: u32,
     radiance: vec3<f32>,
     pdf_area: f32,
 }
@@ -122,11 +122,17 @@ struct GpuSceneInfo {
     sky: vec3<f32>,
     light_count: u32,
     emitter_count: u32,
-    // Σ luminance(emission) × area over emitters: an emissive point's area pdf is
-    // luminance(emission) / emissive_power
-    emissive_power: f32,
+    grid_clusters: u32,
     tlas_root: u32,
     instance_count: u32,
+    // the emitter grid (scene::emitter_grid): its low corner, cells per unit length, cells a
+    // side, and its texture's row width and first member row
+    grid_min: vec3<f32>,
+    grid_width: u32,
+    grid_inverse_cell: vec3<f32>,
+    grid_member_row: u32,
+    grid_dims: vec3<u32>,
+    _pad: u32,
 }
 
 struct GpuCamera {
