@@ -3,7 +3,8 @@
 # binary before a change (.dev/before, from .dev-before/) against the current one at several
 # [frame.resampling] settings, in one call. `bench`: frame/direct (+ frame/direct_reuse) at
 # 1920×1080, still and with the camera moving, on the many-emitter scenes and on scenes with
-# one emitter or two point lights, and DDGI's passes where its probe rays sample emitters.
+# one emitter or two point lights, the path tracer's sample, and DDGI's passes where its probe
+# rays sample emitters.
 # `quality`: direct light only against a direct-only path-traced reference, in the first frame
 # and after 64 still frames, and full GI with DDGI. Expects .dev/ as tools/device/pack.sh lays
 # it out; writes into $OUT.
@@ -17,7 +18,6 @@ few=(cornell scenes/sibenik/sibenik.toml)
 variants=(
     "balanced|"
     "c16|candidates = 16"
-    "c8|candidates = 8"
     "quality|candidates = 64
 neighbours = 6
 unbiased = true"
@@ -41,7 +41,7 @@ for run in "${runs[@]}"; do
             for motion in still moving; do
                 flag=(); [ $motion = moving ] && flag=(--moving-camera)
                 $bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques none \
-                    "${extra[@]}" "${flag[@]}" 2>&1 | grep -E "^([a-z-]+ +none |scene +technique)" | sed "s|^|$which $motion |" | tee -a "$OUT/bench.txt"
+                    "${extra[@]}" "${flag[@]}" 2>&1 | grep -E "^([a-z-]+ +none |scene +technique)|pathtrace/trace" | sed "s|^|$which $motion |" | tee -a "$OUT/bench.txt"
             done
         done
         [ "$which" = before ] || [ "$which" = balanced ] || continue
