@@ -88,7 +88,9 @@ impl Default for ResamplingSettings {
 impl ResamplingSettings {
     fn balanced() -> Self {
         Self {
-            candidates: 32,
+            // Through the emitter grid 16 converge better than 32 power-picked ones did, in
+            // less time (BENCHMARKS.md, "Emitters picked through a grid").
+            candidates: 16,
             history: 20,
             neighbours: 4,
             radius: 24.0,
@@ -158,7 +160,7 @@ impl FrameSettings {
         }
     }
 
-    /// 32 emitter candidates and four neighbours a pixel (four area-light samples without
+    /// 16 emitter candidates and four neighbours a pixel (four area-light samples without
     /// resampling), TAA at blend 0.1.
     pub fn balanced() -> Self {
         Self {
