@@ -21,17 +21,15 @@ for scene in cornell two-rooms scenes/sponza/sponza.toml scenes/sibenik/sibenik.
     techniques=$small
     case $name in sibenik | stained-glass | many-lights | four-halls) techniques=$large ;; esac
     ../$bin compare --scene "$scene" --techniques "$techniques" --size 320x240 --frames 300 \
-        --reference-spp 4096 --cache "$cache" --out "$OUT/$bin-$name" 2>&1 | grep -E "FLIP|rror" | sed "s|^|$bin $name |" | tee -a "$OUT/table-$bin.txt"
+        --reference-spp 4096 --cache "$cache" --out "/tmp/table/$bin-$name" 2>&1 | grep -E "FLIP|rror" | sed "s|^|$bin $name |" | tee -a "$OUT/table-$bin.txt"
 done
 for scene in "${many[@]}"; do
     name=$(basename "${scene%.*}")
     for frames in 1 64; do
         ../$bin compare --scene "$scene" --techniques none --reference-bounces 0 --size 320x240 \
-            --frames $frames --reference-spp 4096 --cache "$cache" --out "$OUT/$bin-$name-direct" 2>&1 \
+            --frames $frames --reference-spp 4096 --cache "$cache" --out "/tmp/table/$bin-$name-direct" 2>&1 \
             | grep -E "FLIP|rror" | sed "s|^|$bin $name direct, $frames frames: |" | tee -a "$OUT/table-$bin.txt"
     done
     ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques none 2>&1 \
         | grep -E "^([a-z-]+ +none |scene +technique)|pathtrace/trace" | sed "s|^|$bin |" | tee -a "$OUT/table-$bin.txt"
 done
-find "$OUT" -name "*.png" -delete
-find "$OUT" -name "*.html" -delete
