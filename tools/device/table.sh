@@ -11,6 +11,7 @@ source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 bin=${1:-irradiant}
 cache=${CACHE:-/tmp/table-cache}
+mkdir -p /tmp/table
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
 small='none,ddgi,ddgi{preset = "quality"},ssil,ssil+ddgi,lightfield'
 # The light field's default grid of these scenes needs more texture layers than the adapter has.
