@@ -59,9 +59,9 @@ fn relative_variance(images: &[Image]) -> (f64, f64) {
 }
 
 /// The grid's picks find the tiles that light each point: the path tracer's variance at equal
-/// samples falls well under power alone's (1.85× lower on lavapipe), with the same mean. Against
-/// the path tracer before resampling and the grid (one power-picked sample), 4.85× lower: the
-/// notes, 2026-11-27.
+/// samples falls well under power alone's (1.87× lower on lavapipe), with the same mean. Against
+/// the path tracer before resampling and the grid (one power-picked sample), 4.9× lower
+/// (docs/pathtrace.md, "Cost").
 #[test]
 fn the_emitter_grid_lowers_the_path_tracers_noise_under_many_emitters() {
     let Some(ctx) = gpu() else { return };
