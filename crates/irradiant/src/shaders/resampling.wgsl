@@ -91,7 +91,7 @@ fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<fu
     var r = empty_reservoir();
     let cell = emitter_cell(origin);
     for (var i = 0u; i < candidates; i++) {
-        let pick = pick_emitter(cell, rand(rng), rand(rng));
+        let pick = pick_emitter(cell, rand(rng));
         let bary = uniform_triangle(rand2(rng));
         let e = emitter_point(pick.index, bary);
         let value = target_value(s, origin, e);

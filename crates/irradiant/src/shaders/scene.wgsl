@@ -117,15 +117,22 @@ struct EmitterPick {
     cluster_probability: f32,
 }
 
-// Picks an emitter for a point in `cell`: a cluster through the cell's alias table, then a
-// member of it in proportion to power through the cluster's. Two texel reads.
-fn pick_emitter(cell: u32, u_cluster: f32, u_member: f32) -> EmitterPick {
+// Picks an emitter for a point in `cell` with one uniform draw: a cluster through the cell's
+// alias table, then a member of it in proportion to power through the cluster's, by what is
+// left of the draw (uniform again within the branch the keep test took). Two texel reads.
+// One draw, not two: every pass's later random numbers stay where they were before the grid,
+// and a second draw here made DDGI's 64-ray probes read the Cornell box three times too
+// bright on lavapipe (a correlation between streams that was not found).
+fn pick_emitter(cell: u32, u: f32) -> EmitterPick {
     let clusters = scene_info.grid_clusters;
-    let scaled = u_cluster * f32(clusters);
+    let scaled = u * f32(clusters);
     let entry = min(u32(scaled), clusters - 1u);
     let t = textureLoad(emitter_grid, vec2<u32>(entry, cell), 0);
-    let keep = scaled - f32(entry) < bitcast<f32>(t.x);
+    let left = scaled - f32(entry);
+    let keep_chance = bitcast<f32>(t.x);
+    let keep = left < keep_chance;
     let cluster = select(t.y, entry, keep);
+    let u_member = clamp(select((left - keep_chance) / max(1.0 - keep_chance, 1e-7), left / max(keep_chance, 1e-7), keep), 0.0, 0.99999994);
     let n = scene_info.emitter_count;
     let first = cluster * n / clusters;
     let count = (cluster + 1u) * n / clusters - first;
