@@ -3,11 +3,12 @@
 //!
 //! The emissive triangles are split into up to [`MAX_CLUSTERS`] clusters of neighbours facing
 //! alike (median splits along the widest axis of position and normal, so clusters are compact
-//! and of equal count). A grid of cells
-//! over the scene keeps, per cell, an alias table over the clusters weighted by each cluster's
-//! power, its facing towards the cell (a normal cone, after Conty Estevez and Kulla 2018) and
-//! 1/d² over the gap between the two; a pick then takes a triangle within its cluster by power, through a
-//! second alias table. Two table reads a pick, where a light tree's walk took ten levels of
+//! and of equal count). A grid of cells over the scene keeps, per cell, an alias table over
+//! the clusters, each weighted by the sum over its members of power × the best cosine the
+//! triangle can have towards the cell / the squared gap between the triangle's box and the
+//! cell's (past [`MEMBER_EVALUATIONS`], by the cluster's bounds and normal cone instead, after
+//! Conty Estevez and Kulla 2018); a pick then takes a triangle within its cluster by power,
+//! through a second alias table. Two table reads a pick, where a light tree's walk took ten levels of
 //! two children each (docs/notes/light-quality.md); the pdf of any emitter at any point is one
 //! more read, which the path tracer's MIS weights need.
 //!
@@ -40,7 +41,8 @@ pub const POWER_FLOOR: f32 = 0.05;
 
 /// Cells × emitters up to which a cell weighs each cluster by its members one by one (the sum
 /// of what each sends the cell); past it, by the cluster's bounds alone. 16 M evaluations take
-/// about 60 ms on one core, spread over every core (rayon).
+/// about 60 ms on one core (1 000 emitters × 4 096 cells about 15 ms), spread over every core
+/// (rayon).
 pub const MEMBER_EVALUATIONS: usize = 1 << 24;
 
 /// The grid's shape on the GPU, as `GpuSceneInfo` carries it.
@@ -60,12 +62,17 @@ pub struct GridShape {
 
 /// The texture's size for a scene with room for `emitter_capacity` emitters on an adapter
 /// whose 2D textures are at most `max_dimension` texels a side: (width, height, cell budget).
-/// A scene without emitters gets one texel (nothing reads it).
-pub fn texture_size(emitter_capacity: usize, max_dimension: u32) -> (u32, u32, u32) {
+/// A scene without emitters gets one texel (nothing reads it); the grid switched off
+/// (`enabled` false) one cell.
+pub fn texture_size(emitter_capacity: usize, max_dimension: u32, enabled: bool) -> (u32, u32, u32) {
     if emitter_capacity == 0 {
         return (1, 1, 1);
     }
-    let cells = MAX_CELLS.min(max_dimension / 2).max(1);
+    let cells = if enabled {
+        MAX_CELLS.min(max_dimension / 2).max(1)
+    } else {
+        1
+    };
     let rows_left = (max_dimension - cells).max(1) as usize;
     let width = emitter_capacity
         .div_ceil(rows_left)
@@ -267,12 +274,20 @@ fn split(
 impl EmitterGrid {
     /// Builds the grid over `bounds` (the scene's, emitters included) for `emitters` of
     /// `powers` (luminance × area), and sets each emitter's cluster and its area pdf within it.
+    /// Past `member_evaluations` cells × emitters, cells weigh clusters by their bounds
+    /// ([`MEMBER_EVALUATIONS`] but in tests). A power that is not finite counts as none.
     pub fn build(
         emitters: &mut [GpuEmitter],
         powers: &[f32],
         bounds: (Vec3, Vec3),
         (width, cell_budget): (u32, u32),
+        member_evaluations: usize,
     ) -> Self {
+        let powers: Vec<f32> = powers
+            .iter()
+            .map(|&p| if p.is_finite() { p.max(0.0) } else { 0.0 })
+            .collect();
+        let powers = powers.as_slice();
         let n = emitters.len();
         let clusters = n.min(MAX_CLUSTERS);
         if n == 0 {
@@ -319,7 +334,7 @@ impl EmitterGrid {
         let cell = (hi - lo).max(Vec3::splat(1e-6)) / dims.as_vec3();
         let total_power: f32 = groups.iter().map(|g| g.power).sum();
         let cells = dims.x * dims.y * dims.z;
-        let by_member = cells as usize * n <= MEMBER_EVALUATIONS;
+        let by_member = cells as usize * n <= member_evaluations;
         let members: Vec<(Member, usize)> = (0..clusters)
             .flat_map(|k| order[range(k)].iter().map(move |&m| (m, k)))
             .map(|(m, k)| {
@@ -355,19 +370,27 @@ impl EmitterGrid {
             })
             .collect();
         let mut texels = vec![[0u32; 4]; (cells * width) as usize];
-        for (c, importance) in (0..cells).zip(tables) {
+        for (c, mut importance) in (0..cells).zip(tables) {
+            // A weight that is not finite (an emitter of absurd size) counts as none: the power
+            // floor still reaches its cluster.
+            for i in &mut importance {
+                if !i.is_finite() {
+                    *i = 0.0;
+                }
+            }
             let sum: f32 = importance.iter().sum();
             // One cell is the grid switched off (GpuSceneSettings::emitter_grid): power alone.
-            let share = if sum > 0.0 && cells > 1 {
-                1.0 - POWER_FLOOR
-            } else {
-                0.0
-            };
+            let by_importance = sum > 0.0 && sum.is_finite() && cells > 1;
             let probabilities: Vec<f32> = groups
                 .iter()
                 .zip(&importance)
                 .map(|(g, &i)| {
-                    share * i / sum.max(1e-30) + (1.0 - share) * g.power / total_power.max(1e-30)
+                    let by_power = g.power / total_power.max(1e-30);
+                    if by_importance {
+                        (1.0 - POWER_FLOOR) * i / sum + POWER_FLOOR * by_power
+                    } else {
+                        by_power
+                    }
                 })
                 .collect();
             let row = (c * width) as usize;

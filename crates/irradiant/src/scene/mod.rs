@@ -50,9 +50,10 @@ pub struct GpuSceneSettings {
     /// How emitters are picked for next-event estimation and resampling: through the emitter
     /// grid (by power, facing and distance to the point's cell: `scene::emitter_grid`), or by
     /// power alone, the grid of one cell. The grid's picks find the near emitters that light
-    /// a point (the path tracer's noise on `many-lights`: BENCHMARKS.md); it is built again on
-    /// the CPU whenever an emitter moves (a few milliseconds for 1 000 emitters), and power
-    /// alone never needs it.
+    /// a point (the path tracer's noise on `many-lights`: docs/pathtrace.md); it is built again
+    /// on the CPU whenever an emitter moves or the top level reorders the instances (about
+    /// 15 ms of one core for 1 000 emitters, spread over every core), where power alone
+    /// builds one cell's table.
     pub emitter_grid: bool,
 }
 
@@ -241,6 +242,7 @@ impl GpuScene {
         let (grid_width, grid_height, grid_cells) = emitter_grid::texture_size(
             emitter_capacity,
             ctx.device.limits().max_texture_dimension_2d,
+            settings.emitter_grid,
         );
         plan.push(Allocation::texture(
             "scene/emitter_grid",
@@ -323,7 +325,7 @@ impl GpuScene {
             emitters,
             emitter_grid,
             emitter_grid_view,
-            emitter_grid_size: (grid_width, if settings.emitter_grid { grid_cells } else { 1 }),
+            emitter_grid_size: (grid_width, grid_cells),
             grid_built_for: Vec::new(),
             grid_shape: Default::default(),
             info,
@@ -536,8 +538,13 @@ impl GpuScene {
             |(lo, hi), &(a, b)| (lo.min(a), hi.max(b)),
         );
         let unset = emitters.clone();
-        let grid =
-            emitter_grid::EmitterGrid::build(&mut emitters, powers, bounds, self.emitter_grid_size);
+        let grid = emitter_grid::EmitterGrid::build(
+            &mut emitters,
+            powers,
+            bounds,
+            self.emitter_grid_size,
+            emitter_grid::MEMBER_EVALUATIONS,
+        );
         ctx.queue
             .write_buffer(&self.emitters, 0, bytemuck::cast_slice(&emitters));
         let rows = grid.texels.len() as u32 / grid.width;

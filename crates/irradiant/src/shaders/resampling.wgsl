@@ -89,6 +89,10 @@ fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, o
 // the reservoir that keeps one, its W set (no shadow ray yet).
 fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> Reservoir {
     var r = empty_reservoir();
+    // Room for emitters but none placed (a host's scene), or every one removed: no grid to read.
+    if scene_info.emitter_count == 0u || scene_info.grid_clusters == 0u {
+        return r;
+    }
     let cell = emitter_cell(origin);
     for (var i = 0u; i < candidates; i++) {
         let pick = pick_emitter(cell, rand(rng));

@@ -70,13 +70,7 @@ fn tile(centre: Vec3, side: f32, facing_down: bool, radiance: Vec3) -> [GpuEmitt
 /// A hall 20 × 4 × 12 m with tiles on its ceiling, of powers over three orders of magnitude,
 /// and a row of twelve tiles on the ceiling facing up (away from the whole hall).
 fn hall(tiles_x: usize, tiles_z: usize) -> Vec<GpuEmitter> {
-    let mut state = 0x2545_f491u32;
-    let mut random = move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state as f32 / u32::MAX as f32
-    };
+    let mut random = super::super::emitter_alias::test_random(0x2545_f491);
     let mut emitters = Vec::new();
     for i in 0..tiles_x {
         for k in 0..tiles_z {
@@ -96,28 +90,48 @@ fn hall(tiles_x: usize, tiles_z: usize) -> Vec<GpuEmitter> {
     emitters
 }
 
-fn grid_over(emitters: &mut [GpuEmitter]) -> EmitterGrid {
+/// The grid over the hall: `enabled` false is the grid switched off (one cell), and
+/// `member_evaluations` 0 makes every cell weigh clusters by their bounds.
+fn grid_with(emitters: &mut [GpuEmitter], enabled: bool, member_evaluations: usize) -> EmitterGrid {
     let powers: Vec<f32> = emitters
         .iter()
         .map(|e| super::super::build::luminance(e.radiance.into()) * area(e))
         .collect();
-    let (width, _, cells) = texture_size(emitters.len(), 8192);
+    let (width, _, cells) = texture_size(emitters.len(), 8192, enabled);
     EmitterGrid::build(
         emitters,
         &powers,
         (Vec3::ZERO, Vec3::new(20.0, 4.1, 12.0)),
         (width, cells),
+        member_evaluations,
     )
 }
 
+fn grid_over(emitters: &mut [GpuEmitter]) -> EmitterGrid {
+    grid_with(emitters, true, MEMBER_EVALUATIONS)
+}
+
 /// At points all over the hall the pick's probabilities sum to 1, reach every emitter, and are
-/// the pdf the shaders weigh each sample by (else every estimate would be biased).
+/// the pdf the shaders weigh each sample by (else every estimate would be biased): cells that
+/// weigh members one by one, cells that weigh clusters by their bounds, and the grid off.
 #[test]
 fn the_grid_picks_every_emitter_with_the_probability_the_shaders_weigh_it_by() {
-    for (tiles_x, tiles_z) in [(12, 10), (1, 1), (5, 3), (40, 25)] {
+    let layouts = [
+        (true, MEMBER_EVALUATIONS),
+        (true, 0),
+        (false, MEMBER_EVALUATIONS),
+    ];
+    for ((tiles_x, tiles_z), (enabled, member_evaluations)) in [(12, 10), (1, 1), (5, 3), (40, 25)]
+        .into_iter()
+        .flat_map(|hall| layouts.map(|layout| (hall, layout)))
+    {
         let mut emitters = hall(tiles_x, tiles_z);
-        let grid = grid_over(&mut emitters);
+        let grid = grid_with(&mut emitters, enabled, member_evaluations);
         let n = emitters.len();
+        let power = |e: &GpuEmitter| {
+            super::super::build::luminance(e.radiance.into()) as f64 * area(e) as f64
+        };
+        let total: f64 = emitters.iter().map(power).sum();
         for x in 0..9 {
             for z in 0..5 {
                 let p = Vec3::new(
@@ -141,6 +155,13 @@ fn the_grid_picks_every_emitter_with_the_probability_the_shaders_weigh_it_by() {
                         (pdf - chance[i]).abs() <= 1e-4 * chance[i] + 1e-9,
                         "{n} emitters at {p}: emitter {i} picked with {} but weighed as {pdf}",
                         chance[i]
+                    );
+                    // Switched off, the grid is the power pick it replaced.
+                    assert!(
+                        enabled || (chance[i] - power(e) / total).abs() <= 1e-4 * chance[i],
+                        "{n} emitters, grid off: emitter {i} picked with {} against its power's share {}",
+                        chance[i],
+                        power(e) / total
                     );
                 }
             }
@@ -206,7 +227,8 @@ fn the_grid_favours_near_emitters_facing_the_point() {
 /// scene without emitters.
 #[test]
 fn the_grid_texture_fits_the_adapter() {
-    assert_eq!(texture_size(0, 8192), (1, 1, 1));
+    assert_eq!(texture_size(0, 8192, true), (1, 1, 1));
+    assert_eq!(texture_size(960, 8192, false).2, 1);
     for (capacity, side) in [
         (1, 8192),
         (960, 8192),
@@ -214,7 +236,7 @@ fn the_grid_texture_fits_the_adapter() {
         (5_000_000, 16_384),
         (10, 2048),
     ] {
-        let (width, height, cells) = texture_size(capacity, side);
+        let (width, height, cells) = texture_size(capacity, side, true);
         assert!(
             width <= side && height <= side,
             "{capacity} emitters: {width}×{height}"
