@@ -181,14 +181,18 @@ impl Member {
         let gap = (self.lo - hi).max(lo - self.hi).max(Vec3::ZERO);
         let to_cell = centre - self.centroid;
         let distance = to_cell.length();
-        let facing = if distance <= radius {
+        // Directions from any point of the triangle to any of the cell lie within the angle
+        // the two bounding spheres subtend. The cell's alone rated a large glowing wall beside
+        // the cell as facing away, and DDGI read the glowing box 23 % bright.
+        let spread = radius + 0.5 * (self.hi - self.lo).length();
+        let facing = if distance <= spread {
             1.0
         } else {
             let angle = (to_cell / distance)
                 .dot(self.normal)
                 .clamp(-1.0, 1.0)
                 .acos();
-            let least = (angle - (radius / distance).asin()).max(0.0);
+            let least = (angle - (spread / distance).asin()).max(0.0);
             if least >= std::f32::consts::FRAC_PI_2 {
                 0.0
             } else {
