@@ -423,8 +423,10 @@ impl EmitterGrid {
         }
     }
 
-    /// The cell holding `p`, clamped to the grid (`emitter_cell` in shaders/scene.wgsl).
-    pub fn cell(&self, p: Vec3) -> u32 {
+    /// The cell holding `p`, clamped to the grid (`emitter_cell` in shaders/scene.wgsl): the
+    /// oracle's; the GPU alone looks cells up at run time.
+    #[cfg(test)]
+    fn cell(&self, p: Vec3) -> u32 {
         let s = &self.shape;
         let max = (s.dims.as_ivec3() - 1).max(glam::IVec3::ZERO);
         let c = ((p - s.min) * s.inverse_cell)
