@@ -8,6 +8,6 @@ irradiant_gpu::wgsl_constants! {
     /// that clamp.
     TONE_CLAMP: u32 = 1;
     /// The most neighbours `frame.resampling.neighbours` may name: frame/direct_reuse keeps
-    /// each one it merges, to count which could have drawn the winner.
+    /// each one it merges, to weigh every sample by how likely each would have drawn it.
     MAX_REUSE_NEIGHBOURS: u32 = 16;
 }

@@ -78,8 +78,8 @@ fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     var old = unpack_reservoir(textureLoad(direct_reservoirs_final, old_pixel, 0));
     old.m = min(old.m, f32(frame.reservoir_history));
     var r = empty_reservoir();
-    reservoir_add(&r, fresh.emitter, fresh.bary, fresh.target_value, fresh.target_value * fresh.w * fresh.m, fresh.m, rand(&rng));
-    reservoir_merge(&r, s, origin, old, rand(&rng));
+    _ = reservoir_add(&r, fresh.emitter, fresh.bary, fresh.target_value, fresh.target_value * fresh.w * fresh.m, fresh.m, rand(&rng));
+    _ = reservoir_merge(&r, s, origin, old, rand(&rng));
     reservoir_finish(&r);
     return r;
 }

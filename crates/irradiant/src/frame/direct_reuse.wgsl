@@ -1,8 +1,8 @@
 // frame/direct_reuse (with emitter resampling only): each pixel merges its reservoir from
 // frame/direct with `reuse_neighbours` neighbours' whose surfaces agree with its own (ReSTIR
-// DI's spatial reuse, unbiased with `reuse_visibility`), shades the winner with one shadow ray,
-// adds the punctual lights and keeps the running mean. The reservoir it keeps, W zeroed where
-// the shadow ray was blocked, is next frame's history.
+// DI's spatial reuse by generalized RIS, unbiased with `reuse_visibility`), shades the winner
+// with one shadow ray, adds the punctual lights and keeps the running mean. Its own reservoir,
+// W zeroed where it won and the shadow ray was blocked, is next frame's history.
 #import direct_mean
 #import history
 #import resampling
@@ -11,6 +11,9 @@
 @group(2) @binding(1) var direct_reservoirs: texture_2d<u32>;
 @group(2) @binding(2) var direct_reservoirs_final: texture_storage_2d<rgba32uint, write>;
 @group(2) @binding(3) var direct_reservoir_geometry: texture_storage_2d<rgba16float, write>;
+
+// The pixel's own reservoir and its neighbours'.
+const REUSE_INPUTS: u32 = MAX_REUSE_NEIGHBOURS + 1u;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
@@ -28,12 +31,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         let origin = shadow_origin(s);
         var rng = rng_seed(id.y * frame.width + id.x, frame.frame_index, frame.seed ^ 0x68e31da4u);
         let own = unpack_reservoir(textureLoad(direct_reservoirs, id.xy, 0));
-        var r = empty_reservoir();
-        reservoir_merge(&r, s, origin, own, rand(&rng));
-        // The neighbours merged, kept to count which of them could have drawn the winner.
-        var taken: array<vec2<u32>, MAX_REUSE_NEIGHBOURS>;
-        var taken_m: array<f32, MAX_REUSE_NEIGHBOURS>;
-        var count = 0u;
+        // The reservoirs merged (the pixel's own first) and the surfaces that hold them.
+        var inputs: array<Reservoir, REUSE_INPUTS>;
+        var views: array<TargetView, REUSE_INPUTS>;
+        inputs[0] = own;
+        views[0] = TargetView(origin, s.normal, s.geometric_normal);
+        var count = 1u;
         for (var k = 0u; k < min(frame.reuse_neighbours, MAX_REUSE_NEIGHBOURS); k++) {
             let q = neighbour(id.xy, &rng);
             if all(q == id.xy) {
@@ -43,45 +46,72 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
             if other.w < 0.0 || abs(other.w - geometry.w) > REUSE_DEPTH_TOLERANCE * geometry.w || dot(other.xyz, geometry.xyz) < REUSE_NORMAL_TOLERANCE {
                 continue;
             }
-            let theirs = unpack_reservoir(textureLoad(direct_reservoirs, q, 0));
-            reservoir_merge(&r, s, origin, theirs, rand(&rng));
-            taken[count] = q;
-            taken_m[count] = theirs.m;
+            let there = gbuffer_surface(q);
+            inputs[count] = unpack_reservoir(textureLoad(direct_reservoirs, q, 0));
+            views[count] = TargetView(shadow_origin(there), there.normal, there.geometric_normal);
             count++;
         }
-        // Bitterli et al. 2020, Algorithm 6: W divides by the candidates of the pixels that could
-        // have drawn the winner, not by all. With `reuse_visibility` that takes a shadow ray a
-        // neighbour and is unbiased; without, a neighbour that faces the winner but is shadowed
-        // from it still counts, which darkens shadow edges a little.
-        var z = own.m;
-        for (var k = 0u; k < count; k++) {
-            if could_draw(taken[k], r) {
-                z += taken_m[k];
+        // Generalized RIS with the balance heuristic (Lin et al. 2022; Bitterli et al. 2020,
+        // §4.3's MIS weights): the sample y_i of reservoir i weighs
+        // m_i(y_i) · p̂(y_i) · W_i, m_i = M_i p̂_i / Σ_j M_j p̂_j, and W = Σ weights / p̂(y).
+        // A neighbour that drew y rarely (p̂ small there, W large) thus brings it here at the
+        // share it could have drawn it, not at full weight: no firefly where y is bright here.
+        var r = empty_reservoir();
+        var source = 0u;
+        for (var i = 0u; i < count; i++) {
+            let input = inputs[i];
+            if input.emitter >= scene_info.emitter_count || input.w <= 0.0 {
+                r.m += input.m;
+                continue;
+            }
+            let e = emitter_point(input.emitter, input.bary);
+            let brightness = luminance(e.radiance);
+            var everyone = 0.0;
+            var its_own = 0.0;
+            for (var j = 0u; j < count; j++) {
+                let share = inputs[j].m * target_value_seen(views[j], e.position, e.normal, brightness);
+                everyone += share;
+                its_own = select(its_own, share, j == i);
+            }
+            let here = target_value_seen(views[0], e.position, e.normal, brightness);
+            let weight = select(0.0, its_own / everyone * here * input.w, everyone > 0.0);
+            if reservoir_add(&r, input.emitter, input.bary, here, weight, input.m, rand(&rng)) {
+                source = i;
             }
         }
-        r.m = z;
-        reservoir_finish(&r);
+        r.w = select(0.0, r.weight_sum / r.target_value, r.target_value > 0.0);
+        // p̂ leaves out shadows, so a neighbour shadowed from y still takes a share of y's
+        // weight it could never have drawn, which darkens shadow edges a little. With
+        // `reuse_visibility` a shadow ray from each neighbour to the winner finds them, and W
+        // gives their shares back: unbiased (the own pixel's ray is the shading's).
+        if frame.reuse_visibility != 0u && r.w > 0.0 {
+            let e = emitter_point(r.emitter, r.bary);
+            let brightness = luminance(e.radiance);
+            var everyone = own.m * r.target_value;
+            var reaching = everyone;
+            for (var j = 1u; j < count; j++) {
+                let share = inputs[j].m * target_value_seen(views[j], e.position, e.normal, brightness);
+                everyone += share;
+                if share > 0.0 && point_visible(views[j].origin, e) {
+                    reaching += share;
+                }
+            }
+            r.w *= everyone / reaching;
+        }
         let emitted = reservoir_light(s, wo, origin, r);
-        kept = r;
-        if all(emitted.total == vec3<f32>(0.0)) {
+        // Next frame's history is the pixel's own reservoir, not the neighbours' winner: fed
+        // back, a neighbour's sample would spread a little further every frame and come back
+        // through the neighbours' own histories, and what one pixel overrates would grow into
+        // blotches (the many-lights hall's error rose with every frame of a moving view). Its
+        // sample loses its weight when this frame's shadow ray found it blocked.
+        kept = own;
+        if source == 0u && all(emitted.total == vec3<f32>(0.0)) {
             kept.w = 0.0;
         }
         light = add_direct(direct_punctual_split(s, wo), emitted);
     }
     textureStore(direct_reservoirs_final, id.xy, pack_reservoir(kept));
     keep_direct_mean(id.xy, light);
-}
-
-// Whether the surface at pixel q could have drawn r's sample: it faces the sample, and with
-// `reuse_visibility` nothing blocks the way (one shadow ray).
-fn could_draw(q: vec2<u32>, r: Reservoir) -> bool {
-    if r.emitter >= scene_info.emitter_count {
-        return false;
-    }
-    let s = gbuffer_surface(q);
-    let origin = shadow_origin(s);
-    let e = emitter_point(r.emitter, r.bary);
-    return target_value(s, origin, e) > 0.0 && (frame.reuse_visibility == 0u || point_visible(origin, e));
 }
 
 // A pixel in a disc of `reuse_radius` around `pixel`, clamped to the image.

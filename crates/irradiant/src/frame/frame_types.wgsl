@@ -36,7 +36,7 @@ struct GpuFrameParams {
     reuse_neighbours: u32,
     reuse_radius: f32,
     // 1: a shadow ray from each neighbour tells whether it could have drawn the winner
-    // (unbiased); 0: facing it is enough
+    // (unbiased); 0: its unshadowed target value is enough
     reuse_visibility: u32,
     pad0: u32,
     pad1: u32,

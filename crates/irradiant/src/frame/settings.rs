@@ -72,8 +72,8 @@ pub struct ResamplingSettings {
     /// How far those neighbours lie, in pixels.
     pub radius: f32,
     /// A shadow ray from each neighbour to the winner, so that only the neighbours it reaches
-    /// count towards its weight: unbiased. Off: a neighbour facing the winner counts though it
-    /// is shadowed from it, which darkens shadow edges a little and saves a ray a neighbour;
+    /// share its weight: unbiased. Off: a neighbour facing the winner shares it though it is
+    /// shadowed from it, which darkens shadow edges a little and saves a ray a neighbour;
     /// a still view then reuses neighbours in its first frame only, so that its mean converges
     /// to the unbiased light.
     pub unbiased: bool,

@@ -54,7 +54,7 @@ pub struct GpuFrameParams {
     /// How far those neighbours lie, in pixels.
     pub reuse_radius: f32,
     /// 1: a shadow ray from each neighbour tells whether it could have drawn the winner
-    /// (unbiased); 0: facing it is enough.
+    /// (unbiased); 0: its unshadowed target value is enough.
     pub reuse_visibility: u32,
     /// Padding to a 16-byte multiple; 0.
     pub pad0: u32,

@@ -42,30 +42,44 @@ fn empty_reservoir() -> Reservoir {
 // BRDF is left out (a candidate costs no BRDF evaluation); p̂ is positive wherever the light
 // f(y) is, so the estimate stays unbiased, with a little more noise on glossy surfaces.
 fn target_value(s: Surface, origin: vec3<f32>, e: EmitterSample) -> f32 {
-    let to_light = e.position - origin;
+    return target_value_seen(TargetView(origin, s.normal, s.geometric_normal), e.position, e.normal, luminance(e.radiance));
+}
+
+// What target_value reads of a surface: where its shadow rays start and its normals.
+struct TargetView {
+    origin: vec3<f32>,
+    normal: vec3<f32>,
+    geometric_normal: vec3<f32>,
+}
+
+// target_value from an emitter point at `position` facing `normal` of luminance `brightness`.
+fn target_value_seen(v: TargetView, position: vec3<f32>, normal: vec3<f32>, brightness: f32) -> f32 {
+    let to_light = position - v.origin;
     let d2 = dot(to_light, to_light);
-    let cos_light = -dot(e.normal, to_light);
-    let cos_surface = dot(s.normal, to_light);
-    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(s.geometric_normal, to_light) <= 0.0 || d2 <= 0.0 {
+    let cos_light = -dot(normal, to_light);
+    let cos_surface = dot(v.normal, to_light);
+    if cos_light <= 0.0 || cos_surface <= 0.0 || dot(v.geometric_normal, to_light) <= 0.0 || d2 <= 0.0 {
         return 0.0;
     }
     // The cosines of unnormalised vectors: d² twice over.
-    return luminance(e.radiance) * cos_surface * cos_light / (d2 * d2);
+    return brightness * cos_surface * cos_light / (d2 * d2);
 }
 
 // Streams one candidate of resampling weight `weight` into r (Algorithm 2's update); `m` is
-// how many candidates it stands for.
-fn reservoir_add(r: ptr<function, Reservoir>, emitter: u32, bary: vec2<f32>, target_value: f32, weight: f32, m: f32, u: f32) {
+// how many candidates it stands for. Whether r now holds it.
+fn reservoir_add(r: ptr<function, Reservoir>, emitter: u32, bary: vec2<f32>, target_value: f32, weight: f32, m: f32, u: f32) -> bool {
     (*r).m += m;
     if weight <= 0.0 {
-        return;
+        return false;
     }
     (*r).weight_sum += weight;
     if u * (*r).weight_sum < weight {
         (*r).emitter = emitter;
         (*r).bary = bary;
         (*r).target_value = target_value;
+        return true;
     }
+    return false;
 }
 
 // Sets W = (Σ weights) / (M · p̂(y)) once every candidate is in.
@@ -75,14 +89,15 @@ fn reservoir_finish(r: ptr<function, Reservoir>) {
 }
 
 // Merges the reservoir `other` (held at another pixel or frame) into r: its sample at the
-// target value it has here, weighted by p̂ · W · M (Algorithm 4).
-fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, other: Reservoir, u: f32) {
+// target value it has here, weighted by p̂ · W · M (Algorithm 4). Whether r now holds its
+// sample.
+fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, other: Reservoir, u: f32) -> bool {
     if other.emitter >= scene_info.emitter_count || other.w <= 0.0 {
         (*r).m += other.m;
-        return;
+        return false;
     }
     let here = target_value(s, origin, emitter_point(other.emitter, other.bary));
-    reservoir_add(r, other.emitter, other.bary, here, here * other.w * other.m, other.m, u);
+    return reservoir_add(r, other.emitter, other.bary, here, here * other.w * other.m, other.m, u);
 }
 
 // RIS over `candidates` emitter points picked through the emitter grid for the surface's cell:
@@ -99,7 +114,7 @@ fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<fu
         let bary = uniform_triangle(rand2(rng));
         let e = emitter_point(pick.index, bary);
         let value = target_value(s, origin, e);
-        reservoir_add(&r, pick.index, bary, value, value / (e.pdf_area * pick.cluster_probability), 1.0, rand(rng));
+        _ = reservoir_add(&r, pick.index, bary, value, value / (e.pdf_area * pick.cluster_probability), 1.0, rand(rng));
     }
     reservoir_finish(&r);
     return r;
