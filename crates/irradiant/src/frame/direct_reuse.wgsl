@@ -12,9 +12,6 @@
 @group(2) @binding(2) var direct_reservoirs_final: texture_storage_2d<rgba32uint, write>;
 @group(2) @binding(3) var direct_reservoir_geometry: texture_storage_2d<rgba16float, write>;
 
-// The pixel's own reservoir and its neighbours'.
-const REUSE_INPUTS: u32 = MAX_REUSE_NEIGHBOURS + 1u;
-
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
@@ -31,12 +28,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         let origin = shadow_origin(s);
         var rng = rng_seed(id.y * frame.width + id.x, frame.frame_index, frame.seed ^ 0x68e31da4u);
         let own = unpack_reservoir(textureLoad(direct_reservoirs, id.xy, 0));
-        // The reservoirs merged (the pixel's own first) and the surfaces that hold them.
-        var inputs: array<Reservoir, REUSE_INPUTS>;
-        var views: array<TargetView, REUSE_INPUTS>;
-        inputs[0] = own;
-        views[0] = TargetView(origin, s.normal, s.geometric_normal);
-        var count = 1u;
+        // The neighbours whose surfaces agree with this one, and the candidates all count for.
+        var taken: array<vec2<u32>, MAX_REUSE_NEIGHBOURS>;
+        var count = 0u;
+        var total_m = own.m;
         for (var k = 0u; k < min(frame.reuse_neighbours, MAX_REUSE_NEIGHBOURS); k++) {
             let q = neighbour(id.xy, &rng);
             if all(q == id.xy) {
@@ -46,58 +41,58 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
             if other.w < 0.0 || abs(other.w - geometry.w) > REUSE_DEPTH_TOLERANCE * geometry.w || dot(other.xyz, geometry.xyz) < REUSE_NORMAL_TOLERANCE {
                 continue;
             }
-            let there = gbuffer_surface(q);
-            inputs[count] = unpack_reservoir(textureLoad(direct_reservoirs, q, 0));
-            views[count] = TargetView(shadow_origin(there), there.normal, there.geometric_normal);
+            taken[count] = q;
+            total_m += unpack_reservoir(textureLoad(direct_reservoirs, q, 0)).m;
             count++;
         }
-        // Generalized RIS with the balance heuristic (Lin et al. 2022; Bitterli et al. 2020,
-        // §4.3's MIS weights): the sample y_i of reservoir i weighs
-        // m_i(y_i) · p̂(y_i) · W_i, m_i = M_i p̂_i / Σ_j M_j p̂_j, and W = Σ weights / p̂(y).
-        // A neighbour that drew y rarely (p̂ small there, W large) thus brings it here at the
-        // share it could have drawn it, not at full weight: no firefly where y is bright here.
+        // Generalized RIS (Lin et al. 2022) with pairwise MIS weights (Bitterli 2022, his thesis),
+        // confidence-weighted by M: each neighbour i is weighed against this pixel's own
+        // reservoir alone, pair_i(y) = M_i p̂_i(y) / (M_i p̂_i(y) + M_own p̂(y) / k), and
+        // y_i weighs m_i(y_i) · p̂(y_i) · W_i, m_i = (M_i + M_own / k) / ΣM · pair_i; the own
+        // sample takes what the pairs leave, m_own = Σ_i (M_i + M_own / k) / ΣM · (1 − pair_i).
+        // W = Σ weights / p̂(y). A neighbour that drew y rarely (p̂ small there, its W large)
+        // brings y here at the share it could have drawn it: no firefly where y is bright here
+        // (Algorithm 6's 1/Z took it at full weight). 3k target evaluations, no array of
+        // surfaces. p̂ leaves out shadows, so a neighbour shadowed from the own sample still
+        // takes a share of it, which darkens shadow edges a little; with `reuse_visibility` a
+        // shadow ray from each neighbour finds those, and the reuse is unbiased.
         var r = empty_reservoir();
-        var source = 0u;
-        for (var i = 0u; i < count; i++) {
-            let input = inputs[i];
-            if input.emitter >= scene_info.emitter_count || input.w <= 0.0 {
-                r.m += input.m;
+        let own_point = emitter_point(min(own.emitter, scene_info.emitter_count - 1u), own.bary);
+        let own_brightness = luminance(own_point.radiance);
+        let own_valid = own.emitter < scene_info.emitter_count && own.w > 0.0;
+        let own_view = TargetView(origin, s.normal, s.geometric_normal);
+        let own_here = select(0.0, target_value_seen(own_view, own_point.position, own_point.normal, own_brightness), own_valid);
+        let own_share = own.m / f32(max(count, 1u));
+        var own_weight = select(1.0, 0.0, count > 0u);
+        for (var k = 0u; k < count; k++) {
+            let q = taken[k];
+            let theirs = unpack_reservoir(textureLoad(direct_reservoirs, q, 0));
+            let there = gbuffer_surface(q);
+            let view = TargetView(shadow_origin(there), there.normal, there.geometric_normal);
+            let budget = (theirs.m + own_share) / total_m;
+            // The own sample, as this neighbour would have weighed it.
+            if own_here > 0.0 {
+                var own_there = target_value_seen(view, own_point.position, own_point.normal, own_brightness);
+                if own_there > 0.0 && frame.reuse_visibility != 0u && !point_visible(view.origin, own_point) {
+                    own_there = 0.0;
+                }
+                let own_part = own_share * own_here;
+                own_weight += budget * own_part / (theirs.m * own_there + own_part);
+            }
+            // This neighbour's sample.
+            if theirs.emitter >= scene_info.emitter_count || theirs.w <= 0.0 {
+                r.m += theirs.m;
                 continue;
             }
-            let e = emitter_point(input.emitter, input.bary);
+            let e = emitter_point(theirs.emitter, theirs.bary);
             let brightness = luminance(e.radiance);
-            var everyone = 0.0;
-            var its_own = 0.0;
-            for (var j = 0u; j < count; j++) {
-                let share = inputs[j].m * target_value_seen(views[j], e.position, e.normal, brightness);
-                everyone += share;
-                its_own = select(its_own, share, j == i);
-            }
-            let here = target_value_seen(views[0], e.position, e.normal, brightness);
-            let weight = select(0.0, its_own / everyone * here * input.w, everyone > 0.0);
-            if reservoir_add(&r, input.emitter, input.bary, here, weight, input.m, rand(&rng)) {
-                source = i;
-            }
+            let here = target_value_seen(own_view, e.position, e.normal, brightness);
+            let their_part = theirs.m * target_value_seen(view, e.position, e.normal, brightness);
+            let pair = select(0.0, their_part / (their_part + own_share * here), their_part > 0.0);
+            _ = reservoir_add(&r, theirs.emitter, theirs.bary, here, budget * pair * here * theirs.w, theirs.m, rand(&rng));
         }
+        let own_won = reservoir_add(&r, own.emitter, own.bary, own_here, own_weight * own_here * own.w, own.m, rand(&rng));
         r.w = select(0.0, r.weight_sum / r.target_value, r.target_value > 0.0);
-        // p̂ leaves out shadows, so a neighbour shadowed from y still takes a share of y's
-        // weight it could never have drawn, which darkens shadow edges a little. With
-        // `reuse_visibility` a shadow ray from each neighbour to the winner finds them, and W
-        // gives their shares back: unbiased (the own pixel's ray is the shading's).
-        if frame.reuse_visibility != 0u && r.w > 0.0 {
-            let e = emitter_point(r.emitter, r.bary);
-            let brightness = luminance(e.radiance);
-            var everyone = own.m * r.target_value;
-            var reaching = everyone;
-            for (var j = 1u; j < count; j++) {
-                let share = inputs[j].m * target_value_seen(views[j], e.position, e.normal, brightness);
-                everyone += share;
-                if share > 0.0 && point_visible(views[j].origin, e) {
-                    reaching += share;
-                }
-            }
-            r.w *= everyone / reaching;
-        }
         let emitted = reservoir_light(s, wo, origin, r);
         // Next frame's history is the pixel's own reservoir, not the neighbours' winner: fed
         // back, a neighbour's sample would spread a little further every frame and come back
@@ -105,7 +100,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         // blotches (the many-lights hall's error rose with every frame of a moving view). Its
         // sample loses its weight when this frame's shadow ray found it blocked.
         kept = own;
-        if source == 0u && all(emitted.total == vec3<f32>(0.0)) {
+        if own_won && all(emitted.total == vec3<f32>(0.0)) {
             kept.w = 0.0;
         }
         light = add_direct(direct_punctual_split(s, wo), emitted);
