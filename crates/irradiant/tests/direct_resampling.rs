@@ -84,6 +84,15 @@ fn luminance_sum(image: &Image) -> f64 {
     0.2126 * r + 0.7152 * g + 0.0722 * b
 }
 
+/// The scene's camera moved `centimetres` sideways (along x, looking the same way).
+fn sideways(scene: &Scene, centimetres: u32) -> Camera {
+    let mut camera = scene.camera.clone();
+    let step = glam::Vec3::new(0.01 * centimetres as f32, 0.0, 0.0);
+    camera.position += step;
+    camera.target += step;
+    camera
+}
+
 /// Mean luminance over the pixels of `mask`.
 fn masked_luminance(image: &Image, mask: &[bool]) -> f64 {
     let lit = (image.pixels.iter().zip(mask)).filter(|(_, m)| **m);
@@ -168,15 +177,7 @@ fn resampled_direct_light_converges_to_the_path_tracers() {
 fn reservoirs_carried_through_a_moving_view_lower_its_error() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("many-lights").unwrap().scene;
-    let path: Vec<Camera> = (0..12)
-        .map(|i| {
-            let mut camera = scene.camera.clone();
-            let step = glam::Vec3::new(0.01 * i as f32, 0.0, 0.0);
-            camera.position += step;
-            camera.target += step;
-            camera
-        })
-        .collect();
+    let path: Vec<Camera> = (0..12).map(|i| sideways(&scene, i)).collect();
     let reference = direct_reference(&ctx, &scene, path.last().unwrap(), 1024);
     let temporal = ResamplingSettings {
         radius: 4.0,
@@ -238,15 +239,7 @@ fn reuse_across_pixels_lowers_a_single_frames_error() {
 fn reuse_across_pixels_and_frames_stays_clean_through_a_long_moving_view() {
     let Some(ctx) = gpu() else { return };
     let scene = irradiant_scene::load("many-lights").unwrap().scene;
-    let poses: Vec<Camera> = (0..2)
-        .map(|i| {
-            let mut camera = scene.camera.clone();
-            let step = glam::Vec3::new(0.01 * i as f32, 0.0, 0.0);
-            camera.position += step;
-            camera.target += step;
-            camera
-        })
-        .collect();
+    let poses: Vec<Camera> = (0..2).map(|i| sideways(&scene, i)).collect();
     let references: Vec<Image> = (poses.iter())
         .map(|camera| direct_reference(&ctx, &scene, camera, 1024))
         .collect();
