@@ -83,9 +83,9 @@ pub fn builtin(name: &str) -> Option<Scene> {
     }
 }
 
-/// A fixed sequence of numbers in [0, 1] (xorshift32 from `seed`): built-ins placed at random
-/// are the same on every run.
-fn xorshift(seed: u32) -> impl FnMut() -> f32 {
+/// A fixed sequence of numbers in [0, 1] (xorshift32 from `seed`, not 0): built-ins placed at
+/// random are the same on every run, and so are tests' random weights.
+pub fn xorshift(seed: u32) -> impl FnMut() -> f32 {
     let mut state = seed;
     move || {
         state ^= state << 13;

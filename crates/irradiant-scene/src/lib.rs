@@ -22,7 +22,7 @@ mod validate;
 use std::path::Path;
 
 pub use animation::Pose;
-pub use builtin::{BUILTIN_SCENES, GLOWING_BOX_ALBEDO, GLOWING_BOX_EMISSION, builtin};
+pub use builtin::{BUILTIN_SCENES, GLOWING_BOX_ALBEDO, GLOWING_BOX_EMISSION, builtin, xorshift};
 pub use camera_file::{
     FOV_RANGE_DEGREES, camera_desc, camera_file_text, camera_from_desc, read_camera_file,
 };

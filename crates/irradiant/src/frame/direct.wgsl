@@ -79,7 +79,7 @@ fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     old.m = min(old.m, f32(frame.reservoir_history));
     var r = empty_reservoir();
     _ = reservoir_add(&r, fresh.emitter, fresh.bary, fresh.target_value, fresh.target_value * fresh.w * fresh.m, fresh.m, rand(&rng));
-    _ = reservoir_merge(&r, s, origin, old, rand(&rng));
+    reservoir_merge(&r, s, origin, old, rand(&rng));
     reservoir_finish(&r);
     return r;
 }

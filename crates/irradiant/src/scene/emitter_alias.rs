@@ -32,18 +32,6 @@ pub fn table(weights: &[f32]) -> Vec<(f32, u32)> {
     out
 }
 
-/// A xorshift stream of uniform numbers in [0, 1] from `seed` (not 0), for the tests' weights.
-#[cfg(test)]
-pub fn test_random(seed: u32) -> impl FnMut() -> f32 {
-    let mut state = seed;
-    move || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state as f32 / u32::MAX as f32
-    }
-}
-
 /// The probability the table picks each entry: what the GPU's pick does, summed exactly.
 #[cfg(test)]
 pub fn pick_probabilities(table: &[(f32, u32)]) -> Vec<f64> {
@@ -66,7 +54,7 @@ mod tests {
     /// magnitude, equal weights, and a single emitter.
     #[test]
     fn the_alias_table_picks_each_emitter_in_proportion_to_its_power() {
-        let mut random = test_random(0x9e37_79b9);
+        let mut random = irradiant_scene::xorshift(0x9e37_79b9);
         let spread: Vec<f32> = (0..1000)
             .map(|i| {
                 if i % 97 == 0 {

@@ -135,28 +135,40 @@ impl Cluster {
     /// look far from a cell beside one of its members, or the points there pick that member
     /// too rarely and its light arrives as fireflies (the stained-glass Sibenik).
     fn importance(&self, (lo, hi): (Vec3, Vec3)) -> f32 {
-        let centre = 0.5 * (lo + hi);
         let radius = 0.5 * (hi - lo).length();
-        let own_centre = 0.5 * (self.lo + self.hi);
         let own_radius = 0.5 * (self.hi - self.lo).length();
-        let gap = (self.lo - hi).max(lo - self.hi).max(Vec3::ZERO);
-        let d2 = gap.length_squared() + radius * radius / 3.0;
-        let to_cell = centre - own_centre;
+        let to_cell = 0.5 * (lo + hi) - 0.5 * (self.lo + self.hi);
         let distance = to_cell.length();
         let facing = if self.spread >= std::f32::consts::PI || distance <= 1e-6 {
             1.0
         } else {
-            let angle = (to_cell / distance).dot(self.axis).clamp(-1.0, 1.0).acos();
             let subtended = ((radius + own_radius) / distance).min(1.0).asin();
-            let least = (angle - self.spread - subtended).max(0.0);
-            if least >= std::f32::consts::FRAC_PI_2 {
-                0.0
-            } else {
-                least.cos()
-            }
+            best_cosine(to_cell / distance, self.axis, self.spread + subtended)
         };
-        self.power * facing / d2.max(1e-12)
+        self.power * facing / squared_gap((self.lo, self.hi), (lo, hi))
     }
+}
+
+/// The largest cosine between `axis` and any direction within `widening` of `direction` (both
+/// unit), 0 past a right angle: how well an emitter facing `axis` can face a cell seen along
+/// `direction` from it, the cell and the emitter's extent widening that direction to a cone.
+fn best_cosine(direction: Vec3, axis: Vec3, widening: f32) -> f32 {
+    let angle = direction.dot(axis).clamp(-1.0, 1.0).acos();
+    let least = (angle - widening).max(0.0);
+    if least >= std::f32::consts::FRAC_PI_2 {
+        0.0
+    } else {
+        least.cos()
+    }
+}
+
+/// The squared gap between an emitter's box and a cell's, plus a third of the cell's squared
+/// half-diagonal (so that emitters in or touching the cell weigh alike): the d² of a cell's
+/// importance, kept from 0.
+fn squared_gap((own_lo, own_hi): (Vec3, Vec3), (lo, hi): (Vec3, Vec3)) -> f32 {
+    let radius = 0.5 * (hi - lo).length();
+    let gap = (own_lo - hi).max(lo - own_hi).max(Vec3::ZERO);
+    (gap.length_squared() + radius * radius / 3.0).max(1e-12)
 }
 
 /// One emitter as a cell weighs it: its bounds, centroid, unit normal and power.
@@ -177,9 +189,8 @@ impl Member {
     /// arrived as fireflies (the stained-glass Sibenik's final gather: relative MSE 0.020
     /// against 0.003).
     fn importance(&self, (lo, hi): (Vec3, Vec3)) -> f32 {
-        let (centre, radius) = (0.5 * (lo + hi), 0.5 * (hi - lo).length());
-        let gap = (self.lo - hi).max(lo - self.hi).max(Vec3::ZERO);
-        let to_cell = centre - self.centroid;
+        let radius = 0.5 * (hi - lo).length();
+        let to_cell = 0.5 * (lo + hi) - self.centroid;
         let distance = to_cell.length();
         // Directions from any point of the triangle to any of the cell lie within the angle
         // the two bounding spheres subtend. The cell's alone rated a large glowing wall beside
@@ -188,18 +199,9 @@ impl Member {
         let facing = if distance <= spread {
             1.0
         } else {
-            let angle = (to_cell / distance)
-                .dot(self.normal)
-                .clamp(-1.0, 1.0)
-                .acos();
-            let least = (angle - (spread / distance).asin()).max(0.0);
-            if least >= std::f32::consts::FRAC_PI_2 {
-                0.0
-            } else {
-                least.cos()
-            }
+            best_cosine(to_cell / distance, self.normal, (spread / distance).asin())
         };
-        self.power * facing / (gap.length_squared() + radius * radius / 3.0).max(1e-12)
+        self.power * facing / squared_gap((self.lo, self.hi), (lo, hi))
     }
 }
 

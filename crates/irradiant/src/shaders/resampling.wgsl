@@ -89,15 +89,14 @@ fn reservoir_finish(r: ptr<function, Reservoir>) {
 }
 
 // Merges the reservoir `other` (held at another pixel or frame) into r: its sample at the
-// target value it has here, weighted by p̂ · W · M (Algorithm 4). Whether r now holds its
-// sample.
-fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, other: Reservoir, u: f32) -> bool {
+// target value it has here, weighted by p̂ · W · M (Algorithm 4).
+fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, other: Reservoir, u: f32) {
     if other.emitter >= scene_info.emitter_count || other.w <= 0.0 {
         (*r).m += other.m;
-        return false;
+        return;
     }
     let here = target_value(s, origin, emitter_point(other.emitter, other.bary));
-    return reservoir_add(r, other.emitter, other.bary, here, here * other.w * other.m, other.m, u);
+    _ = reservoir_add(r, other.emitter, other.bary, here, here * other.w * other.m, other.m, u);
 }
 
 // RIS over `candidates` emitter points picked through the emitter grid for the surface's cell:

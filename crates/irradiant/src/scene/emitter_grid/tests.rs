@@ -70,7 +70,7 @@ fn tile(centre: Vec3, side: f32, facing_down: bool, radiance: Vec3) -> [GpuEmitt
 /// A hall 20 × 4 × 12 m with tiles on its ceiling, of powers over three orders of magnitude,
 /// and a row of twelve tiles on the ceiling facing up (away from the whole hall).
 fn hall(tiles_x: usize, tiles_z: usize) -> Vec<GpuEmitter> {
-    let mut random = super::super::emitter_alias::test_random(0x2545_f491);
+    let mut random = irradiant_scene::xorshift(0x2545_f491);
     let mut emitters = Vec::new();
     for i in 0..tiles_x {
         for k in 0..tiles_z {
