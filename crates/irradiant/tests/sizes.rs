@@ -54,6 +54,7 @@ fn largest_spec(name: &str, probes_per_group: u32) -> TechniqueSpec {
                 ssil,
                 ddgi,
                 near_field: 4.0,
+                far_field_while_young: true,
             },
         ),
         _ => TechniqueSpec::with_settings(name, &ddgi),

@@ -208,3 +208,49 @@ fn the_hybrid_stays_with_ddgi_on_the_cornell_box() {
         "ssil+ddgi {hybrid:.4} against ddgi {ddgi:.4} and ssil {ssil:.4}"
     );
 }
+
+/// While the probes' light is young the screen reaches past the near field
+/// (`far_field_while_young`): over the first 30 frames the hybrid leads DDGI, where with the
+/// near field alone it follows it; once the probes have settled the reach is the near field's
+/// again, and so is the image.
+#[test]
+fn the_screen_reaches_farther_while_the_probes_are_young() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (64, 64);
+    let reference = path_trace(&ctx, &scene, size, 512);
+    // The mean FLIP of frames 0, 5 and 10, and the image after 120 frames.
+    let run = |spec: TechniqueSpec| {
+        let mut s = session(&ctx, &scene, size, spec);
+        let mut early = Vec::new();
+        for frame in 0..120 {
+            s.render().unwrap();
+            if frame < 30 && frame % 5 == 0 {
+                early.push(flip_mean(&reference, &s.image().unwrap()));
+            }
+        }
+        eprintln!("FLIP at frames 0, 5, …, 25: {early:.4?}");
+        (early[..3].iter().sum::<f64>() / 3.0, s.image().unwrap())
+    };
+    let mut near_only = HybridSettings::balanced();
+    near_only.far_field_while_young = false;
+    let (ddgi, _) = run(spec(Some(&DdgiSettings::balanced())));
+    let (young, settled) = run(TechniqueSpec::with_settings(
+        "ssil+ddgi",
+        &HybridSettings::balanced(),
+    ));
+    let (near, near_settled) = run(TechniqueSpec::with_settings("ssil+ddgi", &near_only));
+    let apart = largest_relative_difference(&near_settled, &settled);
+    eprintln!(
+        "Cornell box, mean FLIP of the first 30 frames: ddgi {ddgi:.4}, ssil+ddgi {young:.4}, \
+         near field only {near:.4}; after 120 frames the two hybrids differ by {apart:e}"
+    );
+    assert!(
+        young < 0.95 * ddgi && young < 0.95 * near,
+        "the first frames: ssil+ddgi {young:.4}, ddgi {ddgi:.4}, near field only {near:.4}"
+    );
+    assert!(
+        apart <= 5e-3,
+        "settled, the hybrid is {apart} from the near field's"
+    );
+}

@@ -268,6 +268,20 @@ impl DdgiVolume {
         self.states_pending = true;
     }
 
+    /// Whether its probes' light is still provisional: in the first `RELOCATION_FRAMES` frames
+    /// after a start or a reset the probes are relocated and classified, and at the end of it
+    /// the ones near geometry drop what they held and start over (the convergence rounds).
+    /// Until then their light comes from unplaced probes, some in walls. ssil+ddgi's screen
+    /// reaches past its near field while this holds.
+    pub fn probes_provisional(&self) -> bool {
+        self.frame < RELOCATION_FRAMES
+    }
+
+    /// The length of the volume's diagonal, in scene units.
+    pub fn diagonal(&self) -> f32 {
+        self.diagonal
+    }
+
     /// Longest probe ray, in scene units: the setting, or 1.5 × the volume's diagonal.
     pub fn max_ray_distance(&self) -> f32 {
         self.max_ray_distance

@@ -30,6 +30,12 @@ pub struct HybridSettings {
     /// wall beside a dark ceiling does not (docs/ssil.md). Higher: more of the screen's detail
     /// and more of that error.
     pub near_field: f32,
+    /// While the probes' light is provisional (the first frames after a start or a reset, as
+    /// they are placed and classified), every sender on screen counts: the screen's first
+    /// bounce is right from the first frame, where unplaced probes leak and miss light, and
+    /// the far field's error (the fill's even-light assumption) is smaller than theirs. Off:
+    /// the near field from the first frame, and the first frames read as DDGI's.
+    pub far_field_while_young: bool,
 }
 
 crate::settings::presets_from_inherent!(HybridSettings);
@@ -49,6 +55,7 @@ impl HybridSettings {
             ssil: SsilSettings::fast(),
             ddgi: DdgiSettings::fast(),
             near_field: NEAR_FIELD,
+            far_field_while_young: true,
         }
     }
     /// Each technique's balanced preset.
@@ -57,6 +64,7 @@ impl HybridSettings {
             ssil: SsilSettings::balanced(),
             ddgi: DdgiSettings::balanced(),
             near_field: NEAR_FIELD,
+            far_field_while_young: true,
         }
     }
     /// Each technique's quality preset: DDGI's final gather traces the near field, so the
@@ -66,6 +74,7 @@ impl HybridSettings {
             ssil: SsilSettings::quality(),
             ddgi: DdgiSettings::quality(),
             near_field: NEAR_FIELD,
+            far_field_while_young: true,
         }
     }
     /// Whether the screen's part runs. With DDGI's final gather (`ddgi.gather.rays_per_pixel`)
@@ -92,6 +101,30 @@ pub struct SsilDdgi {
     /// The screen-space light, built as the hybrid's part (over the probes' light); none
     /// where DDGI gathers at the pixels (`HybridSettings::screen_part`).
     pub ssil: Option<Ssil>,
+    /// The near field's reach (scene units), and whether the screen reaches past it while the
+    /// probes' light is provisional.
+    pub(super) near_reach: f32,
+    pub(super) far_field_while_young: bool,
+    /// Whether the screen's history holds light from past the near field.
+    pub(super) far_in_history: bool,
+}
+
+impl SsilDdgi {
+    /// How far the screen's senders count this frame (scene units), below 0 for no limit: the
+    /// near field, or every sender while the finest volume's probes are provisional
+    /// (`far_field_while_young`). A near field of 0 stays 0: DDGI's light alone.
+    pub fn reach(&self) -> f32 {
+        let young = self
+            .ddgi
+            .volumes
+            .first()
+            .is_some_and(|finest| finest.probes_provisional());
+        if self.far_field_while_young && self.near_reach > 0.0 && young {
+            -1.0
+        } else {
+            self.near_reach
+        }
+    }
 }
 
 impl Technique for SsilDdgi {
@@ -109,7 +142,16 @@ impl Technique for SsilDdgi {
     }
     fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {
         self.ddgi.prepare(ctx, camera);
+        let reach = self.reach();
         if let Some(ssil) = &mut self.ssil {
+            // The far field leaves the screen's history with the near field's first frame: its
+            // temporal filter would carry it on for tens of frames over settled probes.
+            let far = reach < 0.0;
+            if self.far_in_history && !far {
+                ssil.invalidate();
+            }
+            self.far_in_history = far;
+            ssil.reach = reach;
             ssil.prepare(ctx, camera);
         }
     }

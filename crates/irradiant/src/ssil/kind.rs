@@ -152,7 +152,13 @@ impl TechniqueKind for SsilKind {
                 } else {
                     None
                 };
-                Box::new(SsilDdgi { ddgi, ssil })
+                Box::new(SsilDdgi {
+                    ddgi,
+                    ssil,
+                    near_reach: reach,
+                    far_field_while_young: hybrid.far_field_while_young,
+                    far_in_history: false,
+                })
             }
             None => Box::new(Ssil::new(cx, &settings, None)?),
         })
