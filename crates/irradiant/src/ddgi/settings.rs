@@ -282,7 +282,9 @@ pub struct DdgiGatherSettings {
     /// dozen is a firefly that stays for `history_frames` (many small emitters: `quality` read
     /// worse than `balanced`, docs/ddgi.md). Lower removes more of them, and with them the
     /// energy of rare bright paths: at 8 the relative MSE fell on six scenes and FLIP rose on
-    /// four (H200, docs/notes/light-quality.md), so every preset leaves it off; compiled in.
+    /// four, at 16 FLIP rose on three of seven, at 64 (`quality`) on none but two-rooms'
+    /// +0.0001 (docs/notes/light-quality.md); compiled in. Only the gather has it: `fast` and
+    /// `balanced` do not gather.
     pub firefly_clamp: f32,
     /// Passes of an edge-aware filter across the image over the gathered light
     /// (ddgi/gather_filter: 3×3 taps, 1, 2, 4, … pixels apart; 0: none). A mean of a few
@@ -406,6 +408,10 @@ impl DdgiSettings {
         s.gather.pixel_interval = 2;
         s.gather.history_frames = 64;
         s.gather.filter_passes = 3;
+        // Only the rays that bring back over 64× the probes' light: the stained-glass Sibenik's
+        // relative MSE 0.00473 → 0.00295 (under `balanced`'s 0.00442), FLIP unchanged there and
+        // on five other scenes, two-rooms +0.0001 (H100; docs/notes/light-quality.md).
+        s.gather.firefly_clamp = 64.0;
         s.reflections = DdgiReflectionSettings::full();
         s
     }
