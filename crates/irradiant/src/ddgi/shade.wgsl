@@ -96,7 +96,7 @@ fn shade_ray(slot: RaySlot, light_u: f32, shadow: ptr<function, GpuDdgiShadowRay
         return false;
     }
     let origin = probe_position(probe);
-    let tri = triangles[hit.triangle];
+    let tri = triangle_at(hit.triangle);
     let face = to_world_normal(instances[hit.instance], cross(tri.e1, tri.e2));
     let backface = dot(face, dir) > 0.0;
     if backface && (volume.weights & WEIGHT_BACKFACE_HITS) != 0u {

@@ -20,7 +20,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     let hit = trace_ray(lf_probe_position(probe), dir, RAY_FAR, false);
     var packed = pack_geometry(vec3<f32>(0.0, 0.0, 1.0), LF_NO_SURFACE);
     if hit.triangle != INVALID {
-        let tri = triangles[hit.triangle];
+        let tri = triangle_at(hit.triangle);
         let face = normalize(to_world_normal(instances[hit.instance], cross(tri.e1, tri.e2)));
         packed = pack_geometry(face, hit.t);
     }

@@ -28,7 +28,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     var l = scene_info.sky;
     if hit.triangle != INVALID {
         l = vec3<f32>(0.0);
-        let tri = triangles[hit.triangle];
+        let tri = triangle_at(hit.triangle);
         let face = to_world_normal(instances[hit.instance], cross(tri.e1, tri.e2));
         if dot(face, dir) < 0.0 {
             let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);

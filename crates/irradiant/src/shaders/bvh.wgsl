@@ -111,7 +111,7 @@ fn trace_blas(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, mode:
                     if COUNT_WORK == 1u {
                         work_triangles++;
                     }
-                    let tri = triangles[i];
+                    let tri = triangle_at(i);
                     let r = intersect_triangle(tri, origin, dir, (*hit).t);
                     if r.x < (*hit).t {
                         if (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && is_alpha_hole(i, r.yz) {
@@ -220,6 +220,18 @@ fn wide_intersect(n: GpuWideBvhNode, origin: vec3<f32>, inv_dir: vec3<f32>, oct_
     return hits;
 }
 
+// Node `index` of wide_nodes from its five 16-byte words (GpuWideBvhNode's layout): a vector
+// load each, where a load of the struct leaves the split to the compiler.
+fn wide_node(index: u32) -> GpuWideBvhNode {
+    let base = index * 5u;
+    let a = wide_nodes[base];
+    let b = wide_nodes[base + 1u];
+    let c = wide_nodes[base + 2u];
+    let d = wide_nodes[base + 3u];
+    let e = wide_nodes[base + 4u];
+    return GpuWideBvhNode(bitcast<vec3<f32>>(a.xyz), a.w, b.x, b.y, b.zw, c.xy, c.zw, d.xy, d.zw, e.xy, e.zw);
+}
+
 fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, mode: u32, hit: ptr<function, Hit>) -> bool {
     let inv_dir = safe_inverse(dir);
     let oct_inv4 = wide_octant_inv4(dir);
@@ -239,7 +251,7 @@ fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, 
             }
             let slot = (bit - 24u) ^ (oct_inv4 & 0xffu);
             let index = node_group.x + countOneBits(hits_imask & ~(0xffffffffu << slot));
-            let n = wide_nodes[index];
+            let n = wide_node(index);
             if COUNT_WORK == 1u {
                 work_nodes++;
             }
@@ -256,7 +268,7 @@ fn trace_blas_wide(root: u32, instance: u32, origin: vec3<f32>, dir: vec3<f32>, 
             if COUNT_WORK == 1u {
                 work_triangles++;
             }
-            let tri = triangles[i];
+            let tri = triangle_at(i);
             let r = intersect_triangle(tri, origin, dir, (*hit).t);
             if r.x < (*hit).t {
                 if (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && is_alpha_hole(i, r.yz) {

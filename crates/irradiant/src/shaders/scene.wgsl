@@ -5,7 +5,17 @@
 #import surface
 
 @group(0) @binding(0) var<storage, read> bvh_nodes: array<GpuBvhNode>;
-@group(0) @binding(1) var<storage, read> triangles: array<GpuTriangle>;
+// GpuTriangle, three 16-byte words each: read through triangle_at(), three vector loads.
+@group(0) @binding(1) var<storage, read> triangles: array<vec4<u32>>;
+
+// Triangle `i` from its three 16-byte words (GpuTriangle's layout): a vector load each, where
+// a load of the struct leaves the split to the compiler.
+fn triangle_at(i: u32) -> GpuTriangle {
+    let a = triangles[3u * i];
+    let b = triangles[3u * i + 1u];
+    let c = triangles[3u * i + 2u];
+    return GpuTriangle(bitcast<vec3<f32>>(a.xyz), a.w, bitcast<vec3<f32>>(b.xyz), b.w, bitcast<vec3<f32>>(c.xyz), c.w);
+}
 @group(0) @binding(2) var<storage, read> triangle_shading: array<GpuTriangleShading>;
 @group(0) @binding(3) var<storage, read> instances: array<GpuInstance>;
 @group(0) @binding(4) var<storage, read> materials: array<GpuMaterial>;
@@ -14,8 +24,9 @@
 @group(0) @binding(7) var<uniform> scene_info: GpuSceneInfo;
 @group(0) @binding(8) var scene_textures: texture_2d_array<f32>;
 @group(0) @binding(9) var scene_sampler: sampler;
-// Bottom-level trees in the wide layout (BLAS_WIDE == 1); one unused node otherwise.
-@group(0) @binding(10) var<storage, read> wide_nodes: array<GpuWideBvhNode>;
+// Bottom-level trees in the wide layout (BLAS_WIDE == 1); one unused node otherwise. Each
+// GpuWideBvhNode is five 16-byte words, which bvh.wgsl's wide_node() reads as five vector loads.
+@group(0) @binding(10) var<storage, read> wide_nodes: array<vec4<u32>>;
 // The emitter grid (scene::emitter_grid): per cell an alias table over the emitters' clusters,
 // then the clusters' members.
 @group(0) @binding(11) var emitter_grid: texture_2d<u32>;
@@ -58,13 +69,13 @@ fn base_color_at(m: GpuMaterial, uv: vec2<f32>) -> vec4<f32> {
 
 // Whether an alpha-tested triangle is a hole at these barycentrics.
 fn is_alpha_hole(tri_index: u32, bary: vec2<f32>) -> bool {
-    let m = materials[triangles[tri_index].material];
+    let m = materials[triangle_at(tri_index).material];
     let uv = interpolate_uv(triangle_shading[tri_index], bary);
     return base_color_at(m, uv).a < m.alpha_cutoff;
 }
 
 fn surface_at(origin: vec3<f32>, dir: vec3<f32>, t: f32, tri_index: u32, instance_index: u32, bary: vec2<f32>) -> Surface {
-    let tri = triangles[tri_index];
+    let tri = triangle_at(tri_index);
     let shading = triangle_shading[tri_index];
     let inst = instances[instance_index];
     let m = materials[tri.material];
