@@ -277,11 +277,6 @@ impl DdgiVolume {
         self.frame < RELOCATION_FRAMES
     }
 
-    /// The length of the volume's diagonal, in scene units.
-    pub fn diagonal(&self) -> f32 {
-        self.diagonal
-    }
-
     /// Longest probe ray, in scene units: the setting, or 1.5 × the volume's diagonal.
     pub fn max_ray_distance(&self) -> f32 {
         self.max_ray_distance
