@@ -10,6 +10,9 @@ pub struct PassTiming {
     pub label: String,
     /// Time from the pass's beginning timestamp to its end one, in milliseconds.
     pub milliseconds: f64,
+    /// Time from the frame's first pass's beginning to this pass's, in milliseconds: with
+    /// `milliseconds`, the span of several passes, the gaps between them included.
+    pub start_milliseconds: f64,
 }
 
 /// Timestamp queries for the compute passes of a frame, read back as [`PassTiming`]s.
@@ -91,14 +94,14 @@ impl Profiler {
         }
         let bytes = read_buffer(ctx, buffer, 0, labels.len() as u64 * 16)?;
         let ticks: &[u64] = bytemuck::cast_slice(&bytes);
+        let to_ms = |t: u64| t as f64 * self.period_ns * 1e-6;
         Ok(labels
             .into_iter()
             .enumerate()
             .map(|(i, label)| PassTiming {
                 label,
-                milliseconds: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64
-                    * self.period_ns
-                    * 1e-6,
+                milliseconds: to_ms(ticks[2 * i + 1].saturating_sub(ticks[2 * i])),
+                start_milliseconds: to_ms(ticks[2 * i].saturating_sub(ticks[0])),
             })
             .collect())
     }

@@ -125,6 +125,14 @@ impl Truth {
         })
     }
 
+    /// GPU memory its path tracer holds while it renders.
+    pub fn allocations(&self) -> Vec<irradiant_gpu::Allocation> {
+        match &self.stage {
+            Stage::Rendering(tracer) => tracer.allocations(),
+            _ => Vec::new(),
+        }
+    }
+
     /// Samples a pixel done and wanted: the progress bar's.
     pub fn progress(&self) -> (u32, u32) {
         let all = self.settings.samples_per_pixel;

@@ -495,9 +495,7 @@ impl Viewer {
                 .into_iter()
                 .map(|c| (c.name.to_owned(), c.value))
                 .collect();
-            let truth = (self.truth.as_ref())
-                .filter(|t| t.rendering())
-                .map_or(Vec::new(), |t| PathTracer::plan(t.size.0, t.size.1));
+            let truth = (self.truth.as_ref()).map_or(Vec::new(), |t| t.allocations());
             self.memory_bytes = (self.session.allocations()?.iter())
                 .chain(&truth)
                 .map(|a| a.bytes)

@@ -17,6 +17,7 @@ fn truth_settings(samples: u32) -> PathTraceSettings {
         max_bounces: 64,
         seed: 3,
         light_sampling: Default::default(),
+        schedule: Default::default(),
     }
 }
 

@@ -28,6 +28,7 @@ fn renders(ctx: &irradiant::GpuContext, scene: &irradiant_scene::Scene, grid: bo
                 max_bounces: 2,
                 seed: 1 + seed,
                 light_sampling: Default::default(),
+                schedule: Default::default(),
             };
             tracer
                 .render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {})

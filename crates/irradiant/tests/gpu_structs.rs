@@ -6,7 +6,7 @@ use irradiant::gpu_types::all_layouts;
 fn rust_structs_match_wgsl() {
     let sources = [
         include_str!("../src/shaders/types.wgsl"),
-        include_str!("../src/pathtrace/trace.wgsl"),
+        include_str!("../src/pathtrace/params.wgsl"),
         include_str!("../src/pathtrace/gather.wgsl"),
         include_str!("../src/raycast/trace.wgsl"),
         include_str!("../src/frame/frame_types.wgsl"),

@@ -5,7 +5,7 @@ mod common;
 
 use irradiant::GpuScene;
 use irradiant::frame::Image;
-use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+use irradiant::pathtrace::{PathSchedule, PathTraceSettings, PathTracer};
 
 fn render(
     ctx: &irradiant::GpuContext,
@@ -14,18 +14,68 @@ fn render(
     spp: u32,
     seed: u32,
 ) -> Image {
-    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut tracer = PathTracer::new(ctx, &gpu_scene, size, size).unwrap();
     let settings = PathTraceSettings {
         samples_per_pixel: spp,
         samples_per_dispatch: 16,
         max_bounces: 64,
         seed,
         light_sampling: Default::default(),
+        schedule: Default::default(),
     };
-    tracer
-        .render(ctx, &gpu_scene, &scene.camera, &settings, |_, _| {})
-        .unwrap()
+    render_with(ctx, scene, size, &settings)
+}
+
+fn render_with(
+    ctx: &irradiant::GpuContext,
+    scene: &irradiant_scene::Scene,
+    size: u32,
+    settings: &PathTraceSettings,
+) -> Image {
+    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
+    let mut tracer = PathTracer::new(ctx, &gpu_scene, size, size).unwrap();
+    let image = tracer
+        .render(ctx, &gpu_scene, &scene.camera, settings, |_, _| {})
+        .unwrap();
+    assert_eq!(tracer.traced_with(), settings.schedule.on(ctx));
+    image
+}
+
+/// The wavefront traces the megakernel's paths: the same `path_step` from the same random
+/// numbers, one bounce a pass instead of one path a thread. On the Cornell box (its emitter
+/// sampled and hit under MIS, Russian roulette past the third bounce) and cut at two bounces,
+/// every pixel agrees up to the order the samples are summed in.
+#[test]
+fn the_wavefront_traces_the_megakernels_paths() {
+    let Some(ctx) = common::gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    for max_bounces in [64, 2] {
+        let settings = |schedule| PathTraceSettings {
+            samples_per_pixel: 8,
+            max_bounces,
+            seed: 5,
+            schedule,
+            ..PathTraceSettings::fast()
+        };
+        let mega = render_with(&ctx, &scene, 32, &settings(PathSchedule::Megakernel));
+        let wave = render_with(&ctx, &scene, 32, &settings(PathSchedule::Wavefront));
+        let mean = mega.mean();
+        assert!(mean[0] > 0.01, "the megakernel's image is black: {mean:?}");
+        let worst = mega
+            .pixels
+            .iter()
+            .flatten()
+            .zip(wave.pixels.iter().flatten())
+            .map(|(m, w)| (m - w).abs() / m.abs().max(1e-3))
+            .fold(0.0f32, f32::max);
+        println!(
+            "max bounces {max_bounces}: mean {mean:?} against {:?}, worst relative difference {worst:.2e}",
+            wave.mean()
+        );
+        assert!(
+            worst < 1e-4,
+            "a pixel differs by {worst:.2e} (relative) between the schedules"
+        );
+    }
 }
 
 /// A white Lambertian sphere under a uniform sky of radiance 1 must look exactly like the sky:
@@ -112,6 +162,7 @@ fn an_integrating_sphere_counts_its_bounces_exactly() {
         max_bounces: 64,
         seed: 3,
         light_sampling: Default::default(),
+        schedule: Default::default(),
     };
     let mut measured = Vec::new();
     for bounces in [Some(0), Some(1), Some(2), None] {

@@ -42,6 +42,7 @@ fn a_still_view_converges_to_the_antialiased_reference() {
                 max_bounces: 1,
                 seed: 3,
                 light_sampling: Default::default(),
+                schedule: Default::default(),
             },
             |_, _| {},
         )

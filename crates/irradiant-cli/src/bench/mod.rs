@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use clap::Args;
-use irradiant::pathtrace::{PathTraceSettings, PathTracer};
+use irradiant::pathtrace::{PathSchedule, PathTraceSettings, PathTracer};
 use irradiant::raycast::{RayCaster, RayWork};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings, TechniqueSpec};
 use irradiant_gpu::{Profiler, wgpu};
@@ -493,31 +493,46 @@ fn time_rays(
         });
         record.passes.push(pass);
     }
-    let mut tracer = PathTracer::new(ctx, gpu_scene, size.0, size.1)?;
-    let settings = PathTraceSettings {
-        samples_per_pixel: 1,
-        samples_per_dispatch: 1,
-        ..PathTraceSettings::balanced()
-    };
-    let times = time_pass(ctx, timing, |encoder, profiler| {
-        tracer.record(
-            ctx,
-            encoder,
-            gpu_scene,
-            &scene.camera,
-            &settings,
-            1,
-            profiler,
-        )?;
-        Ok(())
-    })?;
-    record.passes.push(pass_record(
-        &scene.name,
-        order,
-        "pathtrace/trace (1 spp)",
-        &times,
-        None,
-    ));
+    // One sample a pixel, as the viewer traces while the camera rests, and sixteen in one
+    // submission, as references are rendered: per sample, the megakernel's idle lanes spread
+    // over more paths.
+    for samples in [1, 16] {
+        for (schedule, label) in [
+            (PathSchedule::Megakernel, "pathtrace/trace"),
+            (PathSchedule::Wavefront, "pathtrace/wavefront"),
+        ] {
+            let mut tracer = PathTracer::new(ctx, gpu_scene, size.0, size.1)?;
+            let settings = PathTraceSettings {
+                samples_per_pixel: samples,
+                samples_per_dispatch: samples,
+                schedule,
+                ..PathTraceSettings::balanced()
+            };
+            let times = time_pass(ctx, timing, |encoder, profiler| {
+                tracer.record(
+                    ctx,
+                    encoder,
+                    gpu_scene,
+                    &scene.camera,
+                    &settings,
+                    samples,
+                    profiler,
+                )?;
+                Ok(())
+            })?;
+            if tracer.traced_with() != schedule {
+                continue;
+            }
+            let per_sample: Vec<f64> = times.iter().map(|t| t / samples as f64).collect();
+            let label = match samples {
+                1 => format!("{label} (1 spp)"),
+                _ => format!("{label} (a sample of {samples})"),
+            };
+            record
+                .passes
+                .push(pass_record(&scene.name, order, &label, &per_sample, None));
+        }
+    }
     Ok(())
 }
 
@@ -531,7 +546,8 @@ fn time_pass(
         Option<&mut Profiler>,
     ) -> Result<(), CliError>,
 ) -> Result<Vec<f64>, CliError> {
-    let mut profiler = Profiler::new(ctx, 1);
+    // Room for every pass of a recording: the wavefront's sixteen samples take 16 × 33.
+    let mut profiler = Profiler::new(ctx, 1024);
     let mut times = Vec::new();
     let warm_start = Instant::now();
     let mut warm_runs = 0;
@@ -559,7 +575,12 @@ fn time_pass(
         if warming {
             warm_runs += 1;
         } else {
-            times.push(gpu.first().map_or(wall, |t| t.milliseconds));
+            // From the first pass's beginning to the last one's end: the gaps count.
+            let span = gpu
+                .iter()
+                .map(|t| t.start_milliseconds + t.milliseconds)
+                .reduce(f64::max);
+            times.push(span.unwrap_or(wall));
         }
     }
     Ok(times)

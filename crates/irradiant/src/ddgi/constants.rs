@@ -58,8 +58,4 @@ irradiant_gpu::wgsl_constants! {
     STATES_CLASSIFY_LAST: u32 = 2;
     /// Classified: sleeping probes wake and sleep with the wake boxes.
     STATES_CLASSIFIED: u32 = 3;
-
-    /// Workgroups in a row of the indirect dispatches the shaders write (the shadow queue's,
-    /// the active probes'), folded as `Workgroups::linear` folds direct ones.
-    WORKGROUP_FOLD: u32 = irradiant_gpu::WORKGROUP_FOLD;
 }

@@ -22,6 +22,7 @@
 // PROBE_* (the state word's fields) and STATES_* (volume.state_phase) come from
 // ddgi::constants.
 #import ddgi_constants
+#import dispatch
 
 fn probe_state(word: u32) -> u32 {
     return word & PROBE_STATE_MASK;
@@ -103,19 +104,6 @@ struct DdgiActiveProbes {
 // The list of every probe that updates, and of the newly vigilant and newly awake ones.
 const LIST_UPDATING: u32 = 0u;
 const LIST_NEWLY: u32 = 1u;
-
-// An indirect dispatch's (x, y) for `workgroups` workgroups in a row, folded as
-// Workgroups::linear folds a direct one.
-fn folded_groups(workgroups: u32) -> vec2<u32> {
-    return vec2<u32>(min(workgroups, WORKGROUP_FOLD), (workgroups + WORKGROUP_FOLD - 1u) / WORKGROUP_FOLD);
-}
-
-// A workgroup's place in a folded dispatch (rows are WORKGROUP_FOLD wide whenever there is
-// more than one): not from num_workgroups, which wgpu leaves 0 on D3D12 for indirect
-// dispatches it does not check.
-fn folded_index(group: vec3<u32>) -> u32 {
-    return group.x + group.y * WORKGROUP_FOLD;
-}
 
 // The convergence pass's round (DdgiResources::convergence): ddgi/converge_step counts the
 // rounds, 1 to `convergence_rounds`, and sets it back to 0 for the normal update.

@@ -5,8 +5,9 @@ use irradiant_gpu::{
 };
 use irradiant_scene::Camera;
 
-use super::PathTraceSettings;
 use super::types::GpuPathTraceParams;
+use super::wavefront::Wavefront;
+use super::{PathSchedule, PathTraceSettings};
 use crate::RenderError;
 use crate::frame::{IMAGE_TILE, Image};
 use crate::scene::GpuScene;
@@ -24,6 +25,11 @@ pub struct PathTracer {
     pub height: u32,
     /// Samples per pixel accumulated since the last reset.
     pub samples_done: u32,
+    /// The wavefront's passes and queues, made at its first use: None inside where they do
+    /// not fit the adapter (the megakernel traces then).
+    wavefront: Option<Option<Wavefront>>,
+    /// The schedule the last samples were traced with.
+    traced_with: PathSchedule,
 }
 
 impl PathTracer {
@@ -36,6 +42,15 @@ impl PathTracer {
             1,
             "the image size (--size)",
         )]
+    }
+
+    /// What it holds now: the accumulation, and the wavefront's queues once made.
+    pub fn allocations(&self) -> Vec<Allocation> {
+        let mut all = Self::plan(self.width, self.height);
+        if let Some(Some(_)) = &self.wavefront {
+            all.extend(Wavefront::plan(self.width, self.height));
+        }
+        all
     }
 
     /// Checks its allocation, compiles the pass with the scene's traversal constants and
@@ -70,6 +85,8 @@ impl PathTracer {
             width,
             height,
             samples_done: 0,
+            wavefront: None,
+            traced_with: PathSchedule::Megakernel,
         })
     }
 
@@ -84,7 +101,8 @@ impl PathTracer {
         self.samples_done = 0;
     }
 
-    /// Records one dispatch of `samples` paths per pixel.
+    /// Records `samples` paths a pixel: one dispatch with the megakernel; with the wavefront,
+    /// a camera pass and a pass a bounce for each sample.
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -107,16 +125,33 @@ impl PathTracer {
             light_sampling: settings.light_sampling.gpu(),
             _pad1: 0,
         };
-        // A fresh uniform per dispatch: write_buffer lands before the whole submission, so
-        // several dispatches in one encoder must not share one.
-        let uniform = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("pathtrace/params"),
-            size: size_of::<GpuPathTraceParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        ctx.queue
-            .write_buffer(&uniform, 0, bytemuck::bytes_of(&params));
+        if settings.schedule.on(ctx) == PathSchedule::Wavefront {
+            if self.wavefront.is_none() {
+                self.wavefront = Some(Wavefront::new(ctx, scene, self.width, self.height)?);
+            }
+            if let Some(Some(wavefront)) = &self.wavefront {
+                let mut profiler = profiler;
+                for sample in 0..samples {
+                    let params = GpuPathTraceParams {
+                        sample_offset: self.samples_done + sample,
+                        samples: 1,
+                        ..params
+                    };
+                    wavefront.record(
+                        ctx,
+                        encoder,
+                        scene,
+                        &self.accumulation_view,
+                        &params,
+                        profiler.as_deref_mut(),
+                    )?;
+                }
+                self.samples_done += samples;
+                self.traced_with = PathSchedule::Wavefront;
+                return Ok(());
+            }
+        }
+        let uniform = params_uniform(ctx, &params);
         let own = ResourceTable::new()
             .buffer("params", &uniform)
             .texture("accumulation", &self.accumulation_view);
@@ -127,7 +162,14 @@ impl PathTracer {
             Workgroups::for_image(self.width, self.height, IMAGE_TILE),
         );
         self.samples_done += samples;
+        self.traced_with = PathSchedule::Megakernel;
         Ok(())
+    }
+
+    /// The schedule the last samples were traced with: the settings' on this adapter, unless
+    /// the wavefront's queues did not fit it.
+    pub fn traced_with(&self) -> PathSchedule {
+        self.traced_with
     }
 
     /// Renders `settings.samples_per_pixel` samples from scratch, reporting progress after each
@@ -185,4 +227,18 @@ impl PathTracer {
             pixels: pixels.collect(),
         })
     }
+}
+
+/// A fresh uniform for one dispatch's params: write_buffer lands before the whole submission,
+/// so several dispatches in one encoder must not share one.
+pub(super) fn params_uniform(ctx: &GpuContext, params: &GpuPathTraceParams) -> wgpu::Buffer {
+    let uniform = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("pathtrace/params"),
+        size: size_of::<GpuPathTraceParams>() as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    ctx.queue
+        .write_buffer(&uniform, 0, bytemuck::bytes_of(params));
+    uniform
 }

@@ -10,62 +10,99 @@
 #import random
 #import pathtrace_constants
 
+// A path between two vertices: where its next ray starts and goes, what it has gathered and
+// what light there still counts for. The megakernel keeps it in a loop; the wavefront stores it
+// between its bounce passes (pathtrace/wavefront, GpuPathState's 64 bytes).
+struct PathState {
+    origin: vec3<f32>,
+    // pdf of the BRDF sample that produced `dir`; 0 for the first ray (no MIS on it)
+    brdf_pdf_prev: f32,
+    dir: vec3<f32>,
+    rng: u32,
+    throughput: vec3<f32>,
+    // the wavefront's pixel, x | y << 16; unused by the megakernel
+    pixel: u32,
+    radiance: vec3<f32>,
+    _pad0: u32,
+}
+
+fn path_start(origin: vec3<f32>, dir: vec3<f32>, rng: u32, pixel: u32) -> PathState {
+    return PathState(origin, 0.0, dir, rng, vec3<f32>(1.0), pixel, vec3<f32>(0.0), 0u);
+}
+
 // Radiance arriving at `origin` from direction -dir, over at most `max_bounces` bounces. With
 // `first_emission` false the emission of the first surface hit is left out: what a probe
 // stores, since the frame's direct pass samples every emitter itself.
 fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first_emission: bool, light_sampling: u32, rng: ptr<function, u32>) -> vec3<f32> {
-    var origin = start;
-    var dir = start_dir;
-    var throughput = vec3<f32>(1.0);
-    var radiance = vec3<f32>(0.0);
-    // pdf of the BRDF sample that produced `dir`; 0 for the first ray (no MIS on it)
-    var brdf_pdf_prev = 0.0;
+    var path = path_start(start, start_dir, *rng, 0u);
     for (var bounce = 0u; bounce <= max_bounces; bounce++) {
-        let hit = trace_ray(origin, dir, RAY_FAR, false);
-        if hit.triangle == INVALID {
-            radiance += throughput * scene_info.sky;
+        if !path_step(&path, bounce, max_bounces, first_emission, light_sampling) {
             break;
-        }
-        let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
-        if max(s.emission.x, max(s.emission.y, s.emission.z)) > 0.0 && (bounce > 0u || first_emission) {
-            var w = 1.0;
-            // The first hit is never an emitter sample's: its emission counts whole.
-            if brdf_pdf_prev > 0.0 && scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
-                let cos_light = abs(dot(s.geometric_normal, dir));
-                let pdf_area = emitter_area_pdf(emitter_cell(origin), hit_emitter(hit.instance, hit.triangle));
-                let light_pdf = pdf_area * hit.t * hit.t / max(cos_light, 1e-8);
-                w = select(power_heuristic(brdf_pdf_prev, light_pdf), 0.0, light_sampling == LIGHT_SAMPLING_EMITTERS);
-            }
-            radiance += throughput * s.emission * w;
-        }
-        if bounce == max_bounces {
-            break;
-        }
-        let wo = -dir;
-        radiance += throughput * direct_punctual(s, wo);
-
-        let origin_next = offset_ray(s.position, s.geometric_normal);
-        if scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
-            radiance += throughput * emitter_sample_light(s, wo, origin_next, light_sampling, rng);
-        }
-
-        let b = brdf_sample(s, wo, rand(rng), rand2(rng));
-        if b.pdf <= 0.0 || dot(b.dir, s.geometric_normal) <= 0.0 {
-            break;
-        }
-        throughput *= b.weight;
-        brdf_pdf_prev = b.pdf;
-        origin = origin_next;
-        dir = b.dir;
-        if bounce >= 3u {
-            let survive = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
-            if rand(rng) >= survive {
-                break;
-            }
-            throughput /= survive;
         }
     }
-    return radiance;
+    *rng = path.rng;
+    return path.radiance;
+}
+
+// One vertex of a path: traces its ray, adds the light found there and picks the next ray.
+// False when the path ends (a miss, the last bounce, a failed sample, Russian roulette).
+fn path_step(path: ptr<function, PathState>, bounce: u32, max_bounces: u32, first_emission: bool, light_sampling: u32) -> bool {
+    let origin = (*path).origin;
+    let dir = (*path).dir;
+    let throughput = (*path).throughput;
+    var rng = (*path).rng;
+    let hit = trace_ray(origin, dir, RAY_FAR, false);
+    if hit.triangle == INVALID {
+        (*path).radiance += throughput * scene_info.sky;
+        return false;
+    }
+    let s = surface_at(origin, dir, hit.t, hit.triangle, hit.instance, hit.bary);
+    var radiance = vec3<f32>(0.0);
+    if max(s.emission.x, max(s.emission.y, s.emission.z)) > 0.0 && (bounce > 0u || first_emission) {
+        var w = 1.0;
+        // The first hit is never an emitter sample's: its emission counts whole.
+        let brdf_pdf_prev = (*path).brdf_pdf_prev;
+        if brdf_pdf_prev > 0.0 && scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
+            let cos_light = abs(dot(s.geometric_normal, dir));
+            let pdf_area = emitter_area_pdf(emitter_cell(origin), hit_emitter(hit.instance, hit.triangle));
+            let light_pdf = pdf_area * hit.t * hit.t / max(cos_light, 1e-8);
+            w = select(power_heuristic(brdf_pdf_prev, light_pdf), 0.0, light_sampling == LIGHT_SAMPLING_EMITTERS);
+        }
+        radiance += s.emission * w;
+    }
+    if bounce == max_bounces {
+        (*path).radiance += throughput * radiance;
+        return false;
+    }
+    let wo = -dir;
+    radiance += direct_punctual(s, wo);
+
+    let origin_next = offset_ray(s.position, s.geometric_normal);
+    if scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
+        radiance += emitter_sample_light(s, wo, origin_next, light_sampling, &rng);
+    }
+    (*path).radiance += throughput * radiance;
+
+    let b = brdf_sample(s, wo, rand(&rng), rand2(&rng));
+    (*path).rng = rng;
+    if b.pdf <= 0.0 || dot(b.dir, s.geometric_normal) <= 0.0 {
+        return false;
+    }
+    var next = throughput * b.weight;
+    if bounce >= 3u {
+        let survive = min(max(next.x, max(next.y, next.z)), 0.95);
+        if rand(&rng) >= survive {
+            (*path).rng = rng;
+            return false;
+        }
+        next /= survive;
+    }
+    (*path).throughput = next;
+    (*path).brdf_pdf_prev = b.pdf;
+    (*path).origin = origin_next;
+    (*path).dir = b.dir;
+    (*path).rng = rng;
+    return true;
 }
 
 // The emitters' light at s by next-event estimation: RIS over HIT_EMITTER_CANDIDATES points the

@@ -5,7 +5,8 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::scene::types::GpuCamera;
 
-/// One dispatch of `pathtrace/trace` (its uniform).
+/// One dispatch of `pathtrace/trace`, or one sample of the wavefront's passes (their uniform,
+/// `pathtrace_params` in WGSL).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuPathTraceParams {

@@ -5,6 +5,15 @@ use std::sync::{Arc, OnceLock};
 
 use irradiant_gpu::{ComputePass, GpuContext, PassDesc, PassError, ShaderLibrary};
 
+mod dispatch_constants {
+    irradiant_gpu::wgsl_constants! {
+        /// Workgroups in a row of the indirect dispatches the shaders write (DDGI's shadow
+        /// queue and active probes, the path tracer's wavefront), folded as
+        /// `Workgroups::linear` folds direct ones.
+        WORKGROUP_FOLD: u32 = irradiant_gpu::WORKGROUP_FOLD;
+    }
+}
+
 /// Every shared WGSL module by its `#import` name, built once.
 pub fn library() -> &'static ShaderLibrary {
     static LIBRARY: OnceLock<ShaderLibrary> = OnceLock::new();
@@ -16,6 +25,8 @@ pub fn library() -> &'static ShaderLibrary {
             .with("ssil_constants", crate::ssil::constants::wgsl())
             .with("pathtrace_constants", crate::pathtrace::constants::wgsl())
             .with("probe_constants", crate::probes::constants::wgsl())
+            .with("dispatch_constants", dispatch_constants::wgsl())
+            .with("dispatch", include_str!("dispatch.wgsl"))
             .with("types", include_str!("types.wgsl"))
             .with("random", include_str!("random.wgsl"))
             .with("sampling", include_str!("sampling.wgsl"))
@@ -26,6 +37,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("resampling", include_str!("resampling.wgsl"))
             .with("camera", include_str!("camera.wgsl"))
             .with("path", include_str!("../pathtrace/path.wgsl"))
+            .with("pathtrace_params", include_str!("../pathtrace/params.wgsl"))
             .with("surface", include_str!("surface.wgsl"))
             .with("octahedral", crate::probes::octahedral::OCTAHEDRAL_WGSL)
             .with("probe_grid", include_str!("../probes/grid.wgsl"))

@@ -139,6 +139,7 @@ pub fn path_trace_view(
         max_bounces,
         seed: 7,
         light_sampling: Default::default(),
+        schedule: Default::default(),
     };
     tracer
         .render(ctx, &gpu_scene, camera, &settings, |_, _| {})

@@ -1,0 +1,15 @@
+// dispatch: indirect dispatches the shaders write, folded as Workgroups::linear folds direct
+// ones so that no dimension passes the 65 535 workgroups every adapter allows.
+#import dispatch_constants
+
+// An indirect dispatch's (x, y) for `workgroups` workgroups in a row.
+fn folded_groups(workgroups: u32) -> vec2<u32> {
+    return vec2<u32>(min(workgroups, WORKGROUP_FOLD), (workgroups + WORKGROUP_FOLD - 1u) / WORKGROUP_FOLD);
+}
+
+// A workgroup's place in a folded dispatch (rows are WORKGROUP_FOLD wide whenever there is
+// more than one): not from num_workgroups, which wgpu leaves 0 on D3D12 for indirect
+// dispatches it does not check.
+fn folded_index(group: vec3<u32>) -> u32 {
+    return group.x + group.y * WORKGROUP_FOLD;
+}
