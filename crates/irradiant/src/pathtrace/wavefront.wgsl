@@ -81,7 +81,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
 }
 
 // Appends the workgroup's live paths to paths_out with one global atomic a workgroup, and
-// raises the next pass's indirect dispatch to cover them.
+// raises the next pass's indirect dispatch to cover them: ddgi/shade's enqueue_shadow for
+// another queue, since WGSL (naga) passes no pointer to storage into a function.
 fn append(alive: bool, path: PathState, next_bounce: u32, local_index: u32) {
     if local_index == 0u {
         atomicStore(&appended_in_group, 0u);
