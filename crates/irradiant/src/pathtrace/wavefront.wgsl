@@ -4,14 +4,15 @@
 // paths the pass before left alive. A path that ends adds its radiance to its pixel; one that
 // goes on is appended to the next pass's queue, which that pass's indirect dispatch covers
 // exactly, so that no warp waits on the longest path of its pixels as the megakernel's do.
-// WAVEFRONT_CAMERA (0 or 1, from PathTracer): which of the two passes this is.
+// WAVEFRONT_CAMERA (0 or 1, from Wavefront::new in wavefront.rs): which of the two passes.
 #import path
 #import pathtrace_params
 #import dispatch
 #import random
 
 // A queue of live paths. Its first 16 bytes are the indirect dispatch that takes them (its
-// count, then the workgroups in x, y, z); the host clears them before a pass appends.
+// count, then the workgroups in x, y, z); the host clears the header (32 bytes, the bounce
+// with it) before a pass appends.
 struct GpuPathQueue {
     count: atomic<u32>,
     groups_x: atomic<u32>,
