@@ -1,8 +1,6 @@
 //! The reference path tracer: the ground truth every technique is measured against.
 //! See docs/pathtrace.md.
 
-use irradiant_gpu::wgpu;
-
 pub mod constants;
 pub mod gather;
 mod passes;
@@ -60,9 +58,8 @@ impl PathSchedule {
     /// The schedule this adapter runs: `Auto` made definite.
     pub fn on(self, ctx: &irradiant_gpu::GpuContext) -> Self {
         match self {
-            Self::Auto if ctx.adapter.get_info().device_type == wgpu::DeviceType::Cpu => {
-                Self::Megakernel
-            }
+            // GpuInfo's device type, as wgpu's Debug writes it: no adapter query a frame.
+            Self::Auto if ctx.info.device_type == "Cpu" => Self::Megakernel,
             Self::Auto => Self::Wavefront,
             definite => definite,
         }

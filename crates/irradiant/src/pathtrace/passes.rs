@@ -130,22 +130,14 @@ impl PathTracer {
                 self.wavefront = Some(Wavefront::new(ctx, scene, self.width, self.height)?);
             }
             if let Some(Some(wavefront)) = &self.wavefront {
-                let mut profiler = profiler;
-                for sample in 0..samples {
-                    let params = GpuPathTraceParams {
-                        sample_offset: self.samples_done + sample,
-                        samples: 1,
-                        ..params
-                    };
-                    wavefront.record(
-                        ctx,
-                        encoder,
-                        scene,
-                        &self.accumulation_view,
-                        &params,
-                        profiler.as_deref_mut(),
-                    )?;
-                }
+                wavefront.record(
+                    ctx,
+                    encoder,
+                    scene,
+                    &self.accumulation_view,
+                    &params,
+                    profiler,
+                )?;
                 self.samples_done += samples;
                 self.traced_with = PathSchedule::Wavefront;
                 return Ok(());

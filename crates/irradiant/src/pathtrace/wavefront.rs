@@ -74,8 +74,10 @@ impl Wavefront {
         }))
     }
 
-    /// Records one sample a pixel: the camera pass, then a bounce pass for each bounce up to
-    /// `max_bounces`, each dispatched over exactly the paths the pass before left alive.
+    /// Records `params.samples` samples a pixel from `params.sample_offset` on: for each, the
+    /// camera pass, then a bounce pass for each bounce up to `max_bounces`, each dispatched
+    /// over exactly the paths the pass before left alive. The bounce passes read nothing of a
+    /// sample's own, so they are bound once; the camera pass once a sample (its offset).
     pub fn record(
         &self,
         ctx: &GpuContext,
@@ -85,8 +87,7 @@ impl Wavefront {
         params: &GpuPathTraceParams,
         mut profiler: Option<&mut Profiler>,
     ) -> Result<(), RenderError> {
-        let uniform = &super::passes::params_uniform(ctx, params);
-        let bound = |pass: &Arc<ComputePass>, from: usize| {
+        let bound = |pass: &Arc<ComputePass>, uniform: &wgpu::Buffer, from: usize| {
             let own = ResourceTable::new()
                 .buffer("params", uniform)
                 .texture("accumulation", accumulation)
@@ -94,24 +95,38 @@ impl Wavefront {
                 .buffer("paths_out", &self.queues[1 - from]);
             pass.bind(ctx, &[&scene.resources(), &own])
         };
-        // Filled from queue 1 (the camera pass reads none); bounces alternate from there.
-        let camera = bound(&self.camera, 1)?;
-        let bounces = [bound(&self.bounce, 0)?, bound(&self.bounce, 1)?];
-        encoder.clear_buffer(&self.queues[0], 0, Some(QUEUE_HEADER_BYTES));
-        camera.dispatch(
-            encoder,
-            profiler.as_deref_mut(),
-            super::PathTracer::workgroups(params.width, params.height),
-        );
-        for bounce in 1..=params.max_bounces as usize {
-            let from = (bounce + 1) % 2;
-            encoder.clear_buffer(&self.queues[1 - from], 0, Some(QUEUE_HEADER_BYTES));
-            bounces[from].dispatch_indirect(
+        let shared = super::passes::params_uniform(ctx, params);
+        let bounces = [
+            bound(&self.bounce, &shared, 0)?,
+            bound(&self.bounce, &shared, 1)?,
+        ];
+        for sample in 0..params.samples {
+            let uniform = super::passes::params_uniform(
+                ctx,
+                &GpuPathTraceParams {
+                    sample_offset: params.sample_offset + sample,
+                    samples: 1,
+                    ..*params
+                },
+            );
+            // Filled from queue 1 (the camera pass reads none); bounces alternate from there.
+            let camera = bound(&self.camera, &uniform, 1)?;
+            encoder.clear_buffer(&self.queues[0], 0, Some(QUEUE_HEADER_BYTES));
+            camera.dispatch(
                 encoder,
                 profiler.as_deref_mut(),
-                &self.queues[from],
-                QUEUE_DISPATCH_OFFSET,
+                super::PathTracer::workgroups(params.width, params.height),
             );
+            for bounce in 1..=params.max_bounces as usize {
+                let from = (bounce + 1) % 2;
+                encoder.clear_buffer(&self.queues[1 - from], 0, Some(QUEUE_HEADER_BYTES));
+                bounces[from].dispatch_indirect(
+                    encoder,
+                    profiler.as_deref_mut(),
+                    &self.queues[from],
+                    QUEUE_DISPATCH_OFFSET,
+                );
+            }
         }
         Ok(())
     }
