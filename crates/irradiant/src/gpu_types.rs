@@ -198,9 +198,9 @@ pub fn all_layouts() -> Vec<Expected> {
             reuse_neighbours,
             reuse_radius,
             reuse_visibility,
-            pad0,
-            pad1,
-            pad2
+            cut_candidates,
+            cut_neighbours,
+            pad0
         }),
         gpu_layout!(GpuDdgiVolume {
             origin,

@@ -506,6 +506,14 @@ mod tests {
             e.contains("frame.taa.blend = 0") && e.contains("0.001 to 1"),
             "{e}"
         );
+        // A cut's neighbours share the reuse pass's fixed array with the steady ones.
+        let mut s = FrameSettings::balanced();
+        s.resampling.cut_neighbours = 17;
+        let e = s.validate().unwrap_err().to_string();
+        assert!(
+            e.contains("frame.resampling.cut_neighbours = 17") && e.contains("0 to 16"),
+            "{e}"
+        );
     }
 
     #[test]

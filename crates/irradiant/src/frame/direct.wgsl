@@ -50,29 +50,24 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
 }
 
 // This frame's candidates, their winner tested for visibility, merged with the reservoir last
-// frame kept for this surface.
+// frame kept for this surface. A pixel with none to take draws `cut_candidates`.
 fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     let s = gbuffer_surface(pixel);
     let origin = shadow_origin(s);
+    let old_pixel = history_pixel(pixel, s);
+    let fresh_only = old_pixel.x < 0;
     var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x2545f491u);
-    var fresh = resample_emitters(s, origin, frame.emitter_candidates, &rng);
+    let candidates = select(frame.emitter_candidates, frame.cut_candidates, fresh_only);
+    var fresh = resample_emitters(s, origin, candidates, &rng);
+    fresh.fresh = fresh_only;
     // Visibility reuse: a winner shadowed here loses its weight before it meets last frame's
     // or the neighbours take it. Where neither happens (a still view's later frames),
     // frame/direct_reuse tests the same sample when it shades it: this ray would be that one.
-    let reused = frame.reuse_neighbours > 0u || frame.reservoir_history > 0u;
+    let reused = frame.reuse_neighbours > 0u || frame.cut_neighbours > 0u || frame.reservoir_history > 0u;
     if reused && !reservoir_visible(origin, fresh) {
         fresh.w = 0.0;
     }
-    if frame.reservoir_history == 0u {
-        return fresh;
-    }
-    let old_pixel = vec2<i32>(floor(history_position(pixel)));
-    let size = vec2<i32>(i32(frame.width), i32(frame.height));
-    if any(old_pixel < vec2<i32>(0)) || any(old_pixel >= size) {
-        return fresh;
-    }
-    let old_geometry = textureLoad(direct_reservoir_geometry, old_pixel, 0);
-    if !same_surface(old_geometry, s.position, s.normal, REUSE_DEPTH_TOLERANCE, REUSE_NORMAL_TOLERANCE) {
+    if fresh_only {
         return fresh;
     }
     var old = unpack_reservoir(textureLoad(direct_reservoirs_final, old_pixel, 0));
@@ -82,4 +77,23 @@ fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     reservoir_merge(&r, s, origin, old, rand(&rng));
     reservoir_finish(&r);
     return r;
+}
+
+// Where last frame's reservoir for the surface at `pixel` lies, or (-1, -1) where there is none
+// to take: no temporal reuse this frame, off the image, or another surface there.
+fn history_pixel(pixel: vec2<u32>, s: Surface) -> vec2<i32> {
+    let none = vec2<i32>(-1);
+    if frame.reservoir_history == 0u {
+        return none;
+    }
+    let old_pixel = vec2<i32>(floor(history_position(pixel)));
+    let size = vec2<i32>(i32(frame.width), i32(frame.height));
+    if any(old_pixel < vec2<i32>(0)) || any(old_pixel >= size) {
+        return none;
+    }
+    let old_geometry = textureLoad(direct_reservoir_geometry, old_pixel, 0);
+    if !same_surface(old_geometry, s.position, s.normal, REUSE_DEPTH_TOLERANCE, REUSE_NORMAL_TOLERANCE) {
+        return none;
+    }
+    return old_pixel;
 }

@@ -32,7 +32,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         var taken: array<vec2<u32>, MAX_REUSE_NEIGHBOURS>;
         var count = 0u;
         var total_m = own.m;
-        for (var k = 0u; k < min(frame.reuse_neighbours, MAX_REUSE_NEIGHBOURS); k++) {
+        let neighbours = select(frame.reuse_neighbours, frame.cut_neighbours, own.fresh);
+        for (var k = 0u; k < min(neighbours, MAX_REUSE_NEIGHBOURS); k++) {
             let q = neighbour(id.xy, &rng);
             if all(q == id.xy) {
                 continue;
@@ -100,6 +101,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         // blotches (the many-lights hall's error rose with every frame of a moving view). Its
         // sample loses its weight when this frame's shadow ray found it blocked.
         kept = own;
+        kept.fresh = false;
         if own_won && all(emitted.total == vec3<f32>(0.0)) {
             kept.w = 0.0;
         }

@@ -38,9 +38,11 @@ struct GpuFrameParams {
     // 1: a shadow ray from each neighbour tells whether it could have drawn the winner
     // (unbiased); 0: its unshadowed target value is enough
     reuse_visibility: u32,
+    // what a pixel with no history takes instead of emitter_candidates and reuse_neighbours:
+    // the first frame after a cut, pixels a moving view uncovers
+    cut_candidates: u32,
+    cut_neighbours: u32,
     pad0: u32,
-    pad1: u32,
-    pad2: u32,
 }
 
 // Pixel coordinates (y down, continuous: pixel centres at .5) of a world point seen by a camera.

@@ -238,6 +238,16 @@ impl Frame {
             .clone()
             .unwrap_or_else(|| camera.clone());
         let s = &self.settings;
+        // Reuse that is not unbiased serves only frames with no mean to join: in a still view
+        // its bias would stay in the mean (FLIP 0.016 against 0.009 unbiased on the Cornell box
+        // after 64 frames, H200), so from the view's second frame on each pixel keeps its own
+        // candidates.
+        let reuse_neighbours = if s.resampling.unbiased || self.accumulated_frames == 0 {
+            s.resampling.neighbours
+        } else {
+            0
+        };
+        let cut_frame = self.accumulated_frames == 0 && s.resampling.history > 0;
         let params = GpuFrameParams {
             camera: GpuCamera::new(camera, w, h),
             previous_camera: GpuCamera::new(&previous, w, h),
@@ -269,20 +279,23 @@ impl Frame {
             } else {
                 0
             },
-            // Reuse that is not unbiased serves only frames with no mean to join: in a still
-            // view its bias would stay in the mean (FLIP 0.016 against 0.009 unbiased on the
-            // Cornell box after 64 frames, H200), so from the view's second frame on each pixel
-            // keeps its own candidates.
-            reuse_neighbours: if s.resampling.unbiased || self.accumulated_frames == 0 {
-                s.resampling.neighbours
-            } else {
-                0
-            },
+            reuse_neighbours,
             reuse_radius: s.resampling.radius,
             reuse_visibility: s.resampling.unbiased as u32,
+            // Where temporal reuse finds no history in a frame with no mean to join, a pixel
+            // draws more. A still view's later frames seek no history and draw what every
+            // pixel draws; so does every pixel with temporal reuse off.
+            cut_candidates: if cut_frame {
+                s.resampling.cut_candidates
+            } else {
+                s.resampling.candidates
+            },
+            cut_neighbours: if cut_frame {
+                s.resampling.cut_neighbours
+            } else {
+                reuse_neighbours
+            },
             pad0: 0,
-            pad1: 0,
-            pad2: 0,
         };
         ctx.queue
             .write_buffer(&self.resources.params, 0, bytemuck::bytes_of(&params));

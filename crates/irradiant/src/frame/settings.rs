@@ -71,6 +71,18 @@ pub struct ResamplingSettings {
     pub neighbours: u32,
     /// How far those neighbours lie, in pixels.
     pub radius: f32,
+    /// Candidates a pixel draws where temporal reuse (`history` > 0) finds no history for it:
+    /// the first frame after a camera cut or a reset, and surfaces a moving view uncovers. Such
+    /// a pixel's reservoir would stand for `candidates` alone against up to `history` times
+    /// more around it, and its speckle would show until the view stops. More: a cleaner first
+    /// frame (64 with `cut_neighbours` 8: many-lights' FLIP 0.111 → 0.087, four-halls' 0.121 →
+    /// 0.092; H100, 320×240), at a few loads a candidate in those pixels only (a frame cut at
+    /// every pixel: `frame/direct` 1.58 ms against 0.44 at 1920×1080; a swaying view 3 to 14 %
+    /// more, docs/frame.md). A still view's later frames draw `candidates`.
+    pub cut_candidates: u32,
+    /// Neighbours such a pixel takes reservoirs from (at most 16): more, a cleaner first frame,
+    /// at three target evaluations each (and a shadow ray, `unbiased`).
+    pub cut_neighbours: u32,
     /// A shadow ray from each neighbour to the winner, so that only the neighbours it reaches
     /// share its weight: unbiased. Off: a neighbour facing the winner shares it though it is
     /// shadowed from it, which darkens shadow edges a little and saves a ray a neighbour;
@@ -94,6 +106,8 @@ impl ResamplingSettings {
             history: 20,
             neighbours: 4,
             radius: 24.0,
+            cut_candidates: 64,
+            cut_neighbours: 8,
             unbiased: false,
         }
     }
@@ -150,6 +164,8 @@ impl FrameSettings {
             resampling: ResamplingSettings {
                 candidates: 16,
                 neighbours: 2,
+                cut_candidates: 32,
+                cut_neighbours: 4,
                 ..ResamplingSettings::balanced()
             },
             taa: TaaSettings {
@@ -185,6 +201,10 @@ impl FrameSettings {
             resampling: ResamplingSettings {
                 candidates: 64,
                 neighbours: 6,
+                // Its candidates already: a cut takes two more neighbours (first frame 0.0925
+                // → 0.0877 on many-lights, 0.0984 → 0.0927 on four-halls; docs/frame.md).
+                cut_candidates: 64,
+                cut_neighbours: 8,
                 unbiased: true,
                 ..ResamplingSettings::balanced()
             },
@@ -215,6 +235,13 @@ impl FrameSettings {
             super::constants::MAX_REUSE_NEIGHBOURS,
         )?;
         check_range("frame.resampling.radius", r.radius, 1.0, 256.0)?;
+        check_range("frame.resampling.cut_candidates", r.cut_candidates, 1, 1024)?;
+        check_range(
+            "frame.resampling.cut_neighbours",
+            r.cut_neighbours,
+            0,
+            super::constants::MAX_REUSE_NEIGHBOURS,
+        )?;
         check_range("frame.taa.blend", self.taa.blend, 0.001, 1.0)?;
         check_range("frame.taa.clip_sigma", self.taa.clip_sigma, 0.1, 16.0)?;
         check_range("frame.tone.exposure", self.tone.exposure, 1e-6, 1e6)?;

@@ -56,11 +56,12 @@ pub struct GpuFrameParams {
     /// 1: a shadow ray from each neighbour tells whether it could have drawn the winner
     /// (unbiased); 0: its unshadowed target value is enough.
     pub reuse_visibility: u32,
+    /// Emitter candidates a pixel with no history draws (`emitter_candidates` where a still
+    /// view joins its mean).
+    pub cut_candidates: u32,
+    /// Neighbours a pixel with no history takes reservoirs from.
+    pub cut_neighbours: u32,
     /// Padding to a 16-byte multiple; 0.
     pub pad0: u32,
-    /// Padding; 0.
-    pub pad1: u32,
-    /// Padding; 0.
-    pub pad2: u32,
 }
 const _: () = assert!(size_of::<GpuFrameParams>() == 224);

@@ -31,10 +31,13 @@ struct Reservoir {
     weight_sum: f32,
     m: f32,
     w: f32,
+    // Drawn this frame where no history was found (frame/direct), so that frame/direct_reuse
+    // takes `cut_neighbours` for it.
+    fresh: bool,
 }
 
 fn empty_reservoir() -> Reservoir {
-    return Reservoir(INVALID, vec2<f32>(0.0), 0.0, 0.0, 0.0, 0.0);
+    return Reservoir(INVALID, vec2<f32>(0.0), 0.0, 0.0, 0.0, 0.0, false);
 }
 
 // The target function p̂ the reservoirs resample towards at a surface: the emitter point's
@@ -150,9 +153,13 @@ fn point_visible(origin: vec3<f32>, e: EmitterSample) -> bool {
     return emitter_visible(origin, to_light / max(distance, 1e-20), distance, e);
 }
 
-// Reservoirs in an rgba32uint texel: the emitter, the barycentrics as two 16-bit unorms, W and M.
+// Reservoirs in an rgba32uint texel: the emitter, the barycentrics as two 16-bit unorms, W and
+// M, whose sign bit (M is never negative) holds `fresh`.
+const RESERVOIR_FRESH_BIT: u32 = 0x80000000u;
+
 fn pack_reservoir(r: Reservoir) -> vec4<u32> {
-    return vec4<u32>(r.emitter, pack2x16unorm(r.bary), bitcast<u32>(r.w), bitcast<u32>(r.m));
+    let m = bitcast<u32>(r.m) | select(0u, RESERVOIR_FRESH_BIT, r.fresh);
+    return vec4<u32>(r.emitter, pack2x16unorm(r.bary), bitcast<u32>(r.w), m);
 }
 
 fn unpack_reservoir(texel: vec4<u32>) -> Reservoir {
@@ -160,7 +167,8 @@ fn unpack_reservoir(texel: vec4<u32>) -> Reservoir {
     r.emitter = texel.x;
     r.bary = unpack2x16unorm(texel.y);
     r.w = bitcast<f32>(texel.z);
-    r.m = bitcast<f32>(texel.w);
+    r.m = bitcast<f32>(texel.w & ~RESERVOIR_FRESH_BIT);
+    r.fresh = (texel.w & RESERVOIR_FRESH_BIT) != 0u;
     return r;
 }
 
