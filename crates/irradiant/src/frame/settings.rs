@@ -78,7 +78,8 @@ pub struct ResamplingSettings {
     /// frame (64 with `cut_neighbours` 8: many-lights' FLIP 0.111 → 0.087, four-halls' 0.121 →
     /// 0.092; H100, 320×240), at a few loads a candidate in those pixels only (a frame cut at
     /// every pixel: `frame/direct` 1.58 ms against 0.44 at 1920×1080; a swaying view 3 to 14 %
-    /// more, docs/frame.md). A still view's later frames draw `candidates`.
+    /// more), and in a pan from a cut the frames after it read 2 to 3 % worse on average
+    /// (docs/frame.md). A still view's later frames draw `candidates`.
     pub cut_candidates: u32,
     /// Neighbours such a pixel takes reservoirs from (at most 16): more, a cleaner first frame,
     /// at three target evaluations each (and a shadow ray, `unbiased`).
