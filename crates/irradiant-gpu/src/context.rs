@@ -450,6 +450,21 @@ impl GpuContext {
         crate::Budget::of(self).check(allocations)
     }
 
+    /// A uniform buffer holding `value`, labelled `label` (it may be written again). A
+    /// dispatch whose values differ from the others' in one encoder needs its own: a queue
+    /// write lands before the whole submission, not before the dispatch that follows it.
+    pub fn uniform_buffer<T: bytemuck::Pod>(&self, label: &str, value: &T) -> wgpu::Buffer {
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: size_of::<T>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.queue
+            .write_buffer(&buffer, 0, bytemuck::bytes_of(value));
+        buffer
+    }
+
     /// An out-of-memory error the device raised since the last check, as an error; taken.
     fn check_memory(&self, what: &str) -> Result<(), GpuError> {
         match self.out_of_memory.lock().unwrap().take() {

@@ -221,16 +221,8 @@ impl PathTracer {
     }
 }
 
-/// A fresh uniform for one dispatch's params: write_buffer lands before the whole submission,
-/// so several dispatches in one encoder must not share one.
+/// A fresh uniform for one dispatch's params (several dispatches in one encoder must not
+/// share one: [`GpuContext::uniform_buffer`]).
 pub(super) fn params_uniform(ctx: &GpuContext, params: &GpuPathTraceParams) -> wgpu::Buffer {
-    let uniform = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("pathtrace/params"),
-        size: size_of::<GpuPathTraceParams>() as u64,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    ctx.queue
-        .write_buffer(&uniform, 0, bytemuck::bytes_of(params));
-    uniform
+    ctx.uniform_buffer("pathtrace/params", params)
 }

@@ -135,7 +135,8 @@ impl Ssil {
         let s = settings.start.level();
         let levels = settings.levels;
         let group = |k: u32| level_groups(size, k);
-        let pass_uniform = |pass: GpuSsilPass| SsilResources::pass_uniform(ctx, pass);
+        // One uniform a dispatch: each holds its own level.
+        let pass_uniform = |pass: GpuSsilPass| ctx.uniform_buffer("ssil/pass", &pass);
         let bind =
             |pipeline: &Arc<ComputePass>, own: ResourceTable| -> Result<BoundPass, RenderError> {
                 Ok(pipeline.bind(ctx, &[&scene_table, &frame_table, &own])?)

@@ -5,7 +5,7 @@
 use irradiant_gpu::{Allocation, GpuContext, wgpu};
 
 use super::settings::SsilSettings;
-use super::types::{GpuSsilParams, GpuSsilPass};
+use super::types::GpuSsilParams;
 use crate::RenderError;
 
 const SETTING: &str = "the image size (--size), technique.start or technique.levels";
@@ -232,18 +232,5 @@ impl SsilResources {
             bounce: needs_bounce_chain(settings, hybrid)
                 .then(|| LevelTexture::new(device, BOUNCE.0, start, BOUNCE.1, settings.levels)),
         })
-    }
-
-    /// A uniform holding one dispatch's level, written once.
-    pub fn pass_uniform(ctx: &GpuContext, pass: GpuSsilPass) -> wgpu::Buffer {
-        let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ssil/pass"),
-            size: size_of::<GpuSsilPass>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        ctx.queue
-            .write_buffer(&buffer, 0, bytemuck::bytes_of(&pass));
-        buffer
     }
 }
