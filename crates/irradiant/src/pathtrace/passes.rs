@@ -143,7 +143,7 @@ impl PathTracer {
                 return Ok(());
             }
         }
-        let uniform = params_uniform(ctx, &params);
+        let uniform = ctx.uniform_buffer("pathtrace/params", &params);
         let own = ResourceTable::new()
             .buffer("params", &uniform)
             .texture("accumulation", &self.accumulation_view);
@@ -219,10 +219,4 @@ impl PathTracer {
             pixels: pixels.collect(),
         })
     }
-}
-
-/// A fresh uniform for one dispatch's params (several dispatches in one encoder must not
-/// share one: [`GpuContext::uniform_buffer`]).
-pub(super) fn params_uniform(ctx: &GpuContext, params: &GpuPathTraceParams) -> wgpu::Buffer {
-    ctx.uniform_buffer("pathtrace/params", params)
 }

@@ -95,14 +95,14 @@ impl Wavefront {
                 .buffer("paths_out", &self.queues[1 - from]);
             pass.bind(ctx, &[&scene.resources(), &own])
         };
-        let shared = super::passes::params_uniform(ctx, params);
+        let shared = ctx.uniform_buffer("pathtrace/params", params);
         let bounces = [
             bound(&self.bounce, &shared, 0)?,
             bound(&self.bounce, &shared, 1)?,
         ];
         for sample in 0..params.samples {
-            let uniform = super::passes::params_uniform(
-                ctx,
+            let uniform = ctx.uniform_buffer(
+                "pathtrace/params",
                 &GpuPathTraceParams {
                     sample_offset: params.sample_offset + sample,
                     samples: 1,
