@@ -161,7 +161,7 @@ pub fn all_layouts() -> Vec<Expected> {
             origin,
             t_max,
             dir,
-            _pad
+            stop
         }),
         gpu_layout!(GpuRayHit {
             t,

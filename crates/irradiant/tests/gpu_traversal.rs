@@ -96,7 +96,7 @@ fn random_rays(rng: &mut StdRng, n: usize) -> Vec<GpuRay> {
                 origin: o.into(),
                 t_max: 1e20,
                 dir: (target - o).normalize().into(),
-                _pad: 0,
+                stop: 0.0,
             }
         })
         .collect()
@@ -275,7 +275,7 @@ fn alpha_masked_holes_let_rays_through() {
         origin: [x, 0.5, 1.0],
         t_max: 1e20,
         dir: [0.0, 0.0, -1.0],
-        _pad: 0,
+        stop: 0.0,
     };
     let hits = caster
         .trace(&ctx, &gpu_scene, &[ray(0.1), ray(0.9)], false)
@@ -311,7 +311,7 @@ fn the_counting_variant_counts_the_traversals_work() {
             origin: [100.0 + i as f32, 100.0, 100.0],
             t_max: 1e20,
             dir: [1.0, 0.0, 0.0],
-            _pad: 0,
+            stop: 0.0,
         })
         .collect();
     rays.extend_from_slice(&away);
@@ -353,5 +353,87 @@ fn the_counting_variant_counts_the_traversals_work() {
         "wide nodes a ray {} should be fewer than binary {}",
         mean_nodes[1],
         mean_nodes[0]
+    );
+}
+
+/// An emitter's shadow ray asks only whether the closest hit lies at or past a distance
+/// (`trace_ray_until`): its search ends at the first hit nearer than that. It must still find a
+/// blocker wherever the closest hit is nearer, the closest hit itself wherever it is not, and do
+/// less work than a closest-hit search where it stops early.
+#[test]
+fn a_search_stopped_short_finds_a_blocker_or_the_closest_hit() {
+    use irradiant::raycast::RayWork;
+    let Some(ctx) = common::gpu() else { return };
+    let mut rng = StdRng::seed_from_u64(15);
+    let scene = test_scene(&mut rng);
+    let (tris, _) = world_triangles(&scene);
+    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
+    let counting = RayCaster::counting(&ctx, &gpu_scene).unwrap();
+    let mut rays = random_rays(&mut rng, 1000);
+    let closest: Vec<_> = rays
+        .iter()
+        .map(|r| brute_force_closest_hit(r.origin.into(), r.dir.into(), &tris, 1e20))
+        .collect();
+    // Half the rays stop past their closest hit (as an emitter's ray stops short of a point
+    // behind a blocker), half short of it (as one reaching the point does).
+    for (i, (ray, hit)) in rays.iter_mut().zip(&closest).enumerate() {
+        let t = hit.map_or(10.0, |h| h.t);
+        ray.stop = if i % 2 == 0 { t * 1.5 } else { t * 0.9 };
+    }
+    let stopped = counting.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+    let mut full_rays = rays.clone();
+    for ray in &mut full_rays {
+        ray.stop = 0.0;
+    }
+    let full = counting.trace(&ctx, &gpu_scene, &full_rays, false).unwrap();
+    let (mut blocked_stopped, mut blocked_full) = (Vec::new(), Vec::new());
+    for (i, ((ray, expected), (s, f))) in rays
+        .iter()
+        .zip(&closest)
+        .zip(stopped.iter().zip(&full))
+        .enumerate()
+    {
+        let Some(e) = expected else {
+            assert!(s.t < 0.0, "ray {i}: no triangle, yet {s:?}");
+            continue;
+        };
+        let tolerance = 1e-4 * e.t.max(1.0);
+        if e.t < ray.stop {
+            // A blocker: any hit nearer than the stop, never one nearer than the closest.
+            assert!(
+                s.t > 0.0 && s.t < ray.stop && s.t >= e.t - tolerance,
+                "ray {i}: closest {} before stop {}, found {s:?}",
+                e.t,
+                ray.stop
+            );
+            blocked_stopped.push(*s);
+            blocked_full.push(*f);
+        } else {
+            assert!(
+                (s.t - e.t).abs() <= tolerance
+                    && (s.triangle, s.instance) == (f.triangle, f.instance),
+                "ray {i}: closest {} at or past stop {}, found {s:?} against {f:?}",
+                e.t,
+                ray.stop
+            );
+        }
+        assert!(
+            s.node_visits() <= f.node_visits(),
+            "ray {i}: {s:?} against {f:?}"
+        );
+    }
+    let (stopped_work, full_work) = (RayWork::of(&blocked_stopped), RayWork::of(&blocked_full));
+    eprintln!(
+        "{} blocked rays: {stopped_work:?} stopping short, {full_work:?} searching on",
+        blocked_stopped.len()
+    );
+    assert!(
+        blocked_stopped.len() > 200,
+        "{} blocked rays",
+        blocked_stopped.len()
+    );
+    assert!(
+        stopped_work.node_visits < full_work.node_visits,
+        "stopping short should visit fewer nodes: {stopped_work:?} against {full_work:?}"
     );
 }

@@ -75,7 +75,7 @@ fn the_baked_maps_hold_what_the_bvh_sees() {
                     origin: origin.to_array(),
                     t_max: 1e5,
                     dir: d.to_array(),
-                    _pad: 0,
+                    stop: 0.0,
                 }
             })
             .collect();

@@ -18,7 +18,7 @@ pub fn primary_rays(scene: &irradiant_scene::Scene, (w, h): (u32, u32)) -> Vec<G
                 dir: cam
                     .ray_dir(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), w, h)
                     .into(),
-                _pad: 0,
+                stop: 0.0,
             });
         }
     }
@@ -57,7 +57,7 @@ pub fn diffuse_rays(
                     origin: ray.origin,
                     t_max: 1e20,
                     dir: unit().into(),
-                    _pad: 0,
+                    stop: 0.0,
                 };
             }
             let instance =
@@ -78,7 +78,7 @@ pub fn diffuse_rays(
                 origin: origin.into(),
                 t_max: 1e20,
                 dir: dir.into(),
-                _pad: 0,
+                stop: 0.0,
             }
         })
         .collect()

@@ -96,7 +96,7 @@ pub fn measure(session: &Session, count: u32, seed: u64) -> Result<Agreement, Re
                 origin: (p + towards_camera * offset).to_array(),
                 t_max: far,
                 dir: d.to_array(),
-                _pad: 0,
+                stop: 0.0,
             }
         })
         .collect();

@@ -13,8 +13,10 @@ pub struct GpuRay {
     pub t_max: f32,
     /// World-space direction (unit length makes `t` a distance).
     pub dir: [f32; 3],
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad: u32,
+    /// In the counting variant ([`crate::raycast::RayCaster::counting`]), a closest-hit ray's
+    /// search ends at the first hit nearer than this, as an emitter's shadow ray's does
+    /// (`trace_ray_until` in shaders/bvh.wgsl); 0: the closest hit. The timed pass ignores it.
+    pub stop: f32,
 }
 
 /// The closest hit of a [`GpuRay`]: triangle and instance are `u32::MAX` on a miss.

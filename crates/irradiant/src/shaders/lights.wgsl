@@ -159,6 +159,8 @@ fn emitter_reach(s: Surface, wo: vec3<f32>, origin: vec3<f32>, e: EmitterSample)
 // closest hit (two-sided walls made of two faces): a glowing Sponza read 16 and 11 % too
 // bright against BRDF sampling, this test 1 % dark (docs/ddgi.md).
 fn emitter_visible(origin: vec3<f32>, wi: vec3<f32>, distance: f32, e: EmitterSample) -> bool {
-    let hit = trace_ray(origin, wi, distance * (1.0 + 1e-3), false);
+    // A surface nearer than the point by more than the margin is nearer than the emitter
+    // whatever else the search would find, so the search ends at the first such hit.
+    let hit = trace_ray_until(origin, wi, distance * (1.0 + 1e-3), distance * (1.0 - 1e-3));
     return hit.triangle == e.triangle && hit.instance == e.instance;
 }
