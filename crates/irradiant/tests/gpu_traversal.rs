@@ -381,10 +381,7 @@ fn a_search_stopped_short_finds_a_blocker_or_the_closest_hit() {
         ray.stop = if i % 2 == 0 { t * 1.5 } else { t * 0.9 };
     }
     let stopped = counting.trace(&ctx, &gpu_scene, &rays, false).unwrap();
-    let mut full_rays = rays.clone();
-    for ray in &mut full_rays {
-        ray.stop = 0.0;
-    }
+    let full_rays: Vec<GpuRay> = rays.iter().map(|r| GpuRay { stop: 0.0, ..*r }).collect();
     let full = counting.trace(&ctx, &gpu_scene, &full_rays, false).unwrap();
     let (mut blocked_stopped, mut blocked_full) = (Vec::new(), Vec::new());
     for (i, ((ray, expected), (s, f))) in rays

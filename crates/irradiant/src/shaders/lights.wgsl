@@ -151,6 +151,10 @@ fn emitter_reach(s: Surface, wo: vec3<f32>, origin: vec3<f32>, e: EmitterSample)
     return out;
 }
 
+// How far around an emitter point, as a share of its distance, emitter_visible takes a hit to
+// be the point's own depth.
+const EMITTER_POINT_MARGIN: f32 = 1e-3;
+
 // Whether the emitter point `e`, `distance` along `wi`, is the first thing a ray from `origin`
 // hits: visible exactly when a BRDF-sampled ray would see it, so that the two ways of finding
 // emitted light agree. A shadow ray stopped short of the point (to keep the emitter from
@@ -159,8 +163,10 @@ fn emitter_reach(s: Surface, wo: vec3<f32>, origin: vec3<f32>, e: EmitterSample)
 // closest hit (two-sided walls made of two faces): a glowing Sponza read 16 and 11 % too
 // bright against BRDF sampling, this test 1 % dark (docs/ddgi.md).
 fn emitter_visible(origin: vec3<f32>, wi: vec3<f32>, distance: f32, e: EmitterSample) -> bool {
-    // A surface nearer than the point by more than the margin is nearer than the emitter
+    // The search reaches past the point by the margin, so that a coincident face is found; a
+    // surface nearer than the point by more than the margin is nearer than the emitter
     // whatever else the search would find, so the search ends at the first such hit.
-    let hit = trace_ray_until(origin, wi, distance * (1.0 + 1e-3), distance * (1.0 - 1e-3));
+    let margin = distance * EMITTER_POINT_MARGIN;
+    let hit = trace_ray_until(origin, wi, distance + margin, distance - margin);
     return hit.triangle == e.triangle && hit.instance == e.instance;
 }
