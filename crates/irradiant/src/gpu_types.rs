@@ -200,7 +200,7 @@ pub fn all_layouts() -> Vec<Expected> {
             reuse_visibility,
             cut_candidates,
             cut_neighbours,
-            pad0
+            direct_in_reuse
         }),
         gpu_layout!(GpuDdgiVolume {
             origin,

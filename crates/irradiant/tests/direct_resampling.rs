@@ -337,3 +337,48 @@ fn a_cut_draws_more_where_no_history_is_found() {
         "the cut's counts {boosted} against the steady ones {plain}"
     );
 }
+
+/// In a still view's frames after its first, no pixel takes another's reservoir or last
+/// frame's, so frame/direct_reuse draws each pixel's candidates and frame/direct does not run;
+/// the first frame, a moved view's frame and every frame with unbiased reuse run both. (The
+/// mean those one-pass frames keep is the path tracer's:
+/// `resampled_direct_light_converges_to_the_path_tracers`, whose 63 later frames are such.)
+#[test]
+fn a_still_views_later_frames_draw_the_candidates_in_one_pass() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("many-lights").unwrap().scene;
+    let passes = |unbiased: bool| {
+        let frame = FrameSettings {
+            resampling: ResamplingSettings {
+                unbiased,
+                ..ResamplingSettings::default()
+            },
+            ..FrameSettings::default().without_taa()
+        };
+        let mut session = session_with(&ctx, &scene, SIZE, spec(None), frame);
+        [
+            scene.camera.clone(),
+            scene.camera.clone(),
+            sideways(&scene, 5),
+        ]
+        .into_iter()
+        .map(|camera| {
+            session.set_camera(camera);
+            let timed = session.render_profiled().unwrap();
+            let ran = |label: &str| timed.iter().any(|t| t.label == label);
+            (ran("frame/direct"), ran("frame/direct_reuse"))
+        })
+        .collect::<Vec<_>>()
+    };
+    let plain = passes(false);
+    if plain.iter().all(|&(direct, reuse)| !direct && !reuse) {
+        eprintln!("skipped: the adapter times no passes");
+        return;
+    }
+    assert_eq!(
+        plain,
+        [(true, true), (false, true), (true, true)],
+        "(frame/direct, frame/direct_reuse) ran in the first, the second still and a moved frame"
+    );
+    assert_eq!(passes(true), [(true, true); 3], "unbiased reuse");
+}

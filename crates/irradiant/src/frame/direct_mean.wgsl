@@ -3,6 +3,8 @@
 // still, which frame/direct or, with emitter resampling, frame/direct_reuse keeps.
 #import gbuffer
 #import lights
+#import resampling
+#import random
 
 @group(2) @binding(0) var direct: texture_storage_2d<rgba32float, read_write>;
 @group(2) @binding(4) var direct_diffuse: texture_storage_2d<rgba32float, read_write>;
@@ -16,4 +18,13 @@ fn keep_direct_mean(pixel: vec2<u32>, light: DirectLight) {
     let diffuse = select(mix(textureLoad(direct_diffuse, pixel).rgb, light.diffuse, 1.0 / (n + 1.0)), light.diffuse, restart);
     textureStore(direct, pixel, vec4<f32>(total, 1.0));
     textureStore(direct_diffuse, pixel, vec4<f32>(diffuse, 1.0));
+}
+
+// A pixel's own reservoir: RIS over `candidates` emitter points (no shadow ray yet), from the
+// one random stream frame/direct and frame/direct_reuse seed alike, so that a frame whose
+// frame/direct_reuse draws it (`direct_in_reuse`) shows what frame/direct would have drawn.
+// `rng` goes on to serve the pixel's later draws.
+fn own_candidates(s: Surface, origin: vec3<f32>, pixel_index: u32, candidates: u32, rng: ptr<function, u32>) -> Reservoir {
+    *rng = rng_seed(pixel_index, frame.frame_index, frame.seed ^ 0x2545f491u);
+    return resample_emitters(s, origin, candidates, rng);
 }

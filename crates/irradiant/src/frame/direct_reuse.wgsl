@@ -2,7 +2,9 @@
 // frame/direct with `reuse_neighbours` neighbours' whose surfaces agree with its own (ReSTIR
 // DI's spatial reuse by generalized RIS, unbiased with `reuse_visibility`), shades the winner
 // with one shadow ray, adds the punctual lights and keeps the running mean. Its own reservoir,
-// W zeroed where it won and the shadow ray was blocked, is next frame's history.
+// W zeroed where it won and the shadow ray was blocked, is next frame's history. In a frame
+// where no pixel takes another's reservoir or last frame's (`direct_in_reuse`: a still view
+// after its first frame) frame/direct does not run and this pass draws the pixel's candidates.
 #import direct_mean
 #import history
 #import resampling
@@ -26,8 +28,20 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         let s = gbuffer_surface(id.xy);
         let wo = view_dir(s.position);
         let origin = shadow_origin(s);
-        var rng = rng_seed(id.y * frame.width + id.x, frame.frame_index, frame.seed ^ 0x68e31da4u);
-        let own = unpack_reservoir(textureLoad(direct_reservoirs, id.xy, 0));
+        let index = id.y * frame.width + id.x;
+        var own: Reservoir;
+        if frame.direct_in_reuse != 0u {
+            // No history and no neighbours: a pixel with none, as frame/direct draws it, and
+            // packed as its texture holds it (barycentrics in 16 bits), so that both ways
+            // make the same image.
+            var stream: u32;
+            var drawn = own_candidates(s, origin, index, frame.cut_candidates, &stream);
+            drawn.fresh = true;
+            own = unpack_reservoir(pack_reservoir(drawn));
+        } else {
+            own = unpack_reservoir(textureLoad(direct_reservoirs, id.xy, 0));
+        }
+        var rng = rng_seed(index, frame.frame_index, frame.seed ^ 0x68e31da4u);
         // The neighbours whose surfaces agree with this one, and the candidates all count for.
         var taken: array<vec2<u32>, MAX_REUSE_NEIGHBOURS>;
         var count = 0u;

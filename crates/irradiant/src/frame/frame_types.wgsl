@@ -42,7 +42,9 @@ struct GpuFrameParams {
     // the first frame after a cut, pixels a moving view uncovers
     cut_candidates: u32,
     cut_neighbours: u32,
-    pad0: u32,
+    // 1: no pixel takes another's reservoir or last frame's, so frame/direct does not run and
+    // frame/direct_reuse draws each pixel's candidates itself
+    direct_in_reuse: u32,
 }
 
 // Pixel coordinates (y down, continuous: pixel centres at .5) of a world point seen by a camera.

@@ -80,6 +80,9 @@ pub struct Frame {
     /// Whether last frame's emitter reservoirs hold samples of this scene's emitters (not after
     /// a reset).
     reservoirs_valid: bool,
+    /// Whether this frame's frame/direct_reuse draws the candidates and frame/direct is left
+    /// out (`GpuFrameParams::direct_in_reuse`), as `prepare` found.
+    direct_in_reuse: bool,
 }
 
 impl Frame {
@@ -170,6 +173,7 @@ impl Frame {
             camera: Camera::default(),
             previous_camera: None,
             reservoirs_valid: false,
+            direct_in_reuse: false,
         })
     }
 
@@ -248,6 +252,24 @@ impl Frame {
             0
         };
         let cut_frame = self.accumulated_frames == 0 && s.resampling.history > 0;
+        let reservoir_history = if self.reservoirs_valid && self.accumulated_frames == 0 {
+            s.resampling.history * s.resampling.candidates
+        } else {
+            0
+        };
+        let cut_neighbours = if cut_frame {
+            s.resampling.cut_neighbours
+        } else {
+            reuse_neighbours
+        };
+        // Where each pixel keeps its own candidates, the reservoir frame/direct would make is
+        // read by that pixel alone: frame/direct_reuse draws it, one pass instead of two (a
+        // still view's frames after its first).
+        self.direct_in_reuse = self.passes.direct_reuse.is_some()
+            && s.resampling.candidates > 0
+            && reservoir_history == 0
+            && reuse_neighbours == 0
+            && cut_neighbours == 0;
         let params = GpuFrameParams {
             camera: GpuCamera::new(camera, w, h),
             previous_camera: GpuCamera::new(&previous, w, h),
@@ -274,11 +296,7 @@ impl Frame {
             // A still view's running mean already averages independent frames; last frame's
             // reservoir would only correlate them (blotches that 64 frames did not smooth on
             // the many-lights hall), so temporal reuse serves moving views.
-            reservoir_history: if self.reservoirs_valid && self.accumulated_frames == 0 {
-                s.resampling.history * s.resampling.candidates
-            } else {
-                0
-            },
+            reservoir_history,
             reuse_neighbours,
             reuse_radius: s.resampling.radius,
             reuse_visibility: s.resampling.unbiased as u32,
@@ -290,12 +308,8 @@ impl Frame {
             } else {
                 s.resampling.candidates
             },
-            cut_neighbours: if cut_frame {
-                s.resampling.cut_neighbours
-            } else {
-                reuse_neighbours
-            },
-            pad0: 0,
+            cut_neighbours,
+            direct_in_reuse: self.direct_in_reuse as u32,
         };
         ctx.queue
             .write_buffer(&self.resources.params, 0, bytemuck::bytes_of(&params));
@@ -360,9 +374,11 @@ impl Frame {
     ) {
         let groups = self.image_groups();
         if direct {
-            self.passes
-                .direct
-                .dispatch(encoder, profiler.as_deref_mut(), groups);
+            if !self.direct_in_reuse {
+                self.passes
+                    .direct
+                    .dispatch(encoder, profiler.as_deref_mut(), groups);
+            }
             if let Some(reuse) = &self.passes.direct_reuse
                 && self.settings.resampling.candidates > 0
             {

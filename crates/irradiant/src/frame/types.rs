@@ -61,7 +61,9 @@ pub struct GpuFrameParams {
     pub cut_candidates: u32,
     /// Neighbours a pixel with no history takes reservoirs from.
     pub cut_neighbours: u32,
-    /// Padding to a 16-byte multiple; 0.
-    pub pad0: u32,
+    /// 1: no pixel takes another's reservoir or last frame's this frame (a still view after
+    /// its first frame), so frame/direct does not run and frame/direct_reuse draws each
+    /// pixel's candidates itself.
+    pub direct_in_reuse: u32,
 }
 const _: () = assert!(size_of::<GpuFrameParams>() == 224);
