@@ -74,10 +74,11 @@ pub fn texture_size(emitter_capacity: usize, max_dimension: u32, enabled: bool) 
         1
     };
     let rows_left = (max_dimension - cells).max(1) as usize;
+    // A power of two, so that a pick finds a member's texel by a mask and a shift.
     let width = emitter_capacity
         .div_ceil(rows_left)
         .max(MAX_CLUSTERS)
-        .next_multiple_of(MAX_CLUSTERS) as u32;
+        .next_power_of_two() as u32;
     let member_rows = emitter_capacity.div_ceil(width as usize) as u32;
     (width, cells + member_rows, cells)
 }

@@ -143,13 +143,23 @@ fn pick_emitter(cell: u32, u: f32) -> EmitterPick {
     let keep_chance = bitcast<f32>(t.x);
     let keep = left < keep_chance;
     let cluster = select(t.y, entry, keep);
-    let u_member = clamp(select((left - keep_chance) / max(1.0 - keep_chance, 1e-7), left / max(keep_chance, 1e-7), keep), 0.0, 0.99999994);
+    // One division: the branch's share of the draw over the branch's width.
+    let u_member = clamp(select(left - keep_chance, left, keep) / max(select(1.0 - keep_chance, keep_chance, keep), 1e-7), 0.0, 0.99999994);
+    // Cluster k holds the members ⌊k·n/K⌋ to ⌊(k+1)·n/K⌋, and ⌊k·n/K⌋ = k·⌊n/K⌋ + ⌊k·r/K⌋
+    // (r = n mod K): the one division by a variable is the same for every pick, and the last
+    // quotient, of numbers below K² ≤ 4096, is exact in floats with half a step's margin.
     let n = scene_info.emitter_count;
-    let first = cluster * n / clusters;
-    let count = (cluster + 1u) * n / clusters - first;
+    let whole = n / clusters;
+    let rest = n - whole * clusters;
+    let step = 1.0 / f32(clusters);
+    let first = cluster * whole + u32((f32(cluster * rest) + 0.5) * step);
+    let next = (cluster + 1u) * whole + u32((f32((cluster + 1u) * rest) + 0.5) * step);
+    let count = next - first;
     let scaled_member = u_member * f32(count);
     let slot = first + min(u32(scaled_member), count - 1u);
-    let m = textureLoad(emitter_grid, vec2<u32>(slot % scene_info.grid_width, scene_info.grid_member_row + slot / scene_info.grid_width), 0);
+    // The texture's rows are a power of two wide (emitter_grid::texture_size).
+    let width = scene_info.grid_width;
+    let m = textureLoad(emitter_grid, vec2<u32>(slot & (width - 1u), scene_info.grid_member_row + (slot >> countTrailingZeros(width))), 0);
     let index = select(m.y, m.x, scaled_member - floor(scaled_member) < bitcast<f32>(m.z));
     return EmitterPick(index, bitcast<f32>(select(t.w, t.z, keep)));
 }
