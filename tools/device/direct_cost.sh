@@ -12,8 +12,7 @@ set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
-bins=(${BINS:-before irradiant})
-reversed=$(printf '%s\n' "${bins[@]}" | tac)
+compared_binaries
 scenes=${SCENES:-many-lights,scenes/many-lights/four-halls.toml,cornell}
 iterations=${ITERATIONS:-15}
 techniques=${TECHNIQUES:-none}

@@ -10,8 +10,7 @@ set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
-bins=(${BINS:-before irradiant})
-reversed=$(printf '%s\n' "${bins[@]}" | tac)
+compared_binaries
 scenes=${SCENES:-cornell,scenes/sponza/sponza.toml,scenes/sibenik/sibenik.toml,many-lights}
 [ -n "${SCALE:-}" ] && scenes+=,scenes/scale/sibenik-grid.toml
 for round in 1 2; do
