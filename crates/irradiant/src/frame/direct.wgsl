@@ -5,7 +5,9 @@
 // (frame.emitter_candidates > 0, a scene with emitters) this pass only makes each pixel's
 // reservoir: RIS over the candidates, a shadow ray for the one kept (where it will be reused),
 // then last frame's reservoir where the motion vectors find the same surface;
-// frame/direct_reuse takes the neighbours', shades and keeps the mean.
+// frame/direct_reuse takes the neighbours', shades and keeps the mean. In a frame where no
+// pixel takes another's reservoir or last frame's (`direct_in_reuse`) this pass does not run
+// and frame/direct_reuse does all of it.
 #import direct_mean
 #import history
 #import resampling

@@ -28,3 +28,12 @@ fn own_candidates(s: Surface, origin: vec3<f32>, pixel_index: u32, candidates: u
     *rng = rng_seed(pixel_index, frame.frame_index, frame.seed ^ 0x2545f491u);
     return resample_emitters(s, origin, candidates, rng);
 }
+
+// The punctual lights' direct light at `pixel` (none where the camera ray left the scene).
+fn punctual_light_at(pixel: vec2<u32>) -> DirectLight {
+    if gbuffer_depth_at(pixel) < 0.0 {
+        return DirectLight(vec3<f32>(0.0), vec3<f32>(0.0));
+    }
+    let s = gbuffer_surface(pixel);
+    return direct_punctual_split(s, view_dir(s.position));
+}

@@ -17,7 +17,15 @@
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
-    if !in_frame(id.xy) || scene_info.emitter_count == 0u || frame.emitter_candidates == 0u {
+    if !in_frame(id.xy) || frame.emitter_candidates == 0u {
+        return;
+    }
+    if scene_info.emitter_count == 0u {
+        // Room for emitters but none placed: frame/direct lights the pixel by the punctual
+        // lights alone, unless this frame left it out, and then this pass does.
+        if frame.direct_in_reuse != 0u {
+            keep_direct_mean(id.xy, punctual_light_at(id.xy));
+        }
         return;
     }
     let geometry = history_geometry(id.xy);

@@ -83,6 +83,8 @@ pub struct Frame {
     /// Whether this frame's frame/direct_reuse draws the candidates and frame/direct is left
     /// out (`GpuFrameParams::direct_in_reuse`), as `prepare` found.
     direct_in_reuse: bool,
+    /// Whether frames that allow it light in one pass ([`Frame::set_one_pass_direct`]).
+    one_pass_direct: bool,
 }
 
 impl Frame {
@@ -174,6 +176,7 @@ impl Frame {
             previous_camera: None,
             reservoirs_valid: false,
             direct_in_reuse: false,
+            one_pass_direct: true,
         })
     }
 
@@ -215,6 +218,15 @@ impl Frame {
     /// its neighbourhood clip adapts.
     pub fn restart_direct(&mut self) {
         self.accumulated_frames = 0;
+    }
+
+    /// Whether a frame in which no pixel takes another's reservoir or last frame's (a still
+    /// view after its first frame) draws the emitter candidates in frame/direct_reuse and
+    /// leaves frame/direct out: on by default. Off, both passes run as in any other frame:
+    /// the same image, one more pass (for the test that holds the two to it, and for timing
+    /// them apart). From the next `prepare` on.
+    pub fn set_one_pass_direct(&mut self, on: bool) {
+        self.one_pass_direct = on;
     }
 
     /// Frames in the current direct-light running mean.
@@ -265,7 +277,8 @@ impl Frame {
         // Where each pixel keeps its own candidates, the reservoir frame/direct would make is
         // read by that pixel alone: frame/direct_reuse draws it, one pass instead of two (a
         // still view's frames after its first).
-        self.direct_in_reuse = self.passes.direct_reuse.is_some()
+        self.direct_in_reuse = self.one_pass_direct
+            && self.passes.direct_reuse.is_some()
             && s.resampling.candidates > 0
             && reservoir_history == 0
             && reuse_neighbours == 0
@@ -351,8 +364,9 @@ impl Frame {
         Workgroups::for_image(w, h, IMAGE_TILE)
     }
 
-    /// Records frame/gbuffer, frame/direct and (where asked for) the G-buffer pyramid: what a
-    /// technique reads.
+    /// Records frame/gbuffer, the direct light (frame/direct and frame/direct_reuse, or the
+    /// latter alone: `GpuFrameParams::direct_in_reuse`) and (where asked for) the G-buffer
+    /// pyramid: what a technique reads.
     pub fn record_inputs(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -364,8 +378,9 @@ impl Frame {
         self.record_lighting(encoder, profiler, true);
     }
 
-    /// Records frame/direct (where `direct`) and the G-buffer pyramid over a G-buffer already
-    /// written (by frame/gbuffer, or a host's through host/import).
+    /// Records the direct light (where `direct`: frame/direct and frame/direct_reuse, or the
+    /// latter alone) and the G-buffer pyramid over a G-buffer already written (by
+    /// frame/gbuffer, or a host's through host/import).
     pub fn record_lighting(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -379,8 +394,9 @@ impl Frame {
                     .direct
                     .dispatch(encoder, profiler.as_deref_mut(), groups);
             }
+            // As `prepare` decided: settings changed since reach the next frame.
             if let Some(reuse) = &self.passes.direct_reuse
-                && self.settings.resampling.candidates > 0
+                && (self.direct_in_reuse || self.settings.resampling.candidates > 0)
             {
                 reuse.dispatch(encoder, profiler.as_deref_mut(), groups);
             }

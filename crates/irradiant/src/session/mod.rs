@@ -215,6 +215,11 @@ impl Session {
         &self.frame
     }
 
+    /// Whether frames that allow it light in one pass: [`Frame::set_one_pass_direct`].
+    pub fn set_one_pass_direct(&mut self, on: bool) {
+        self.frame.set_one_pass_direct(on);
+    }
+
     /// The technique it renders indirect light with.
     pub fn technique(&self) -> &dyn Technique {
         self.technique.as_ref()

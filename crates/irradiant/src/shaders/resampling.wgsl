@@ -31,8 +31,8 @@ struct Reservoir {
     weight_sum: f32,
     m: f32,
     w: f32,
-    // Drawn this frame where no history was found (frame/direct), so that frame/direct_reuse
-    // takes `cut_neighbours` for it.
+    // Drawn this frame where no history was found (frame/direct, or frame/direct_reuse when it
+    // draws the candidates itself), so that frame/direct_reuse takes `cut_neighbours` for it.
     fresh: bool,
 }
 
