@@ -93,6 +93,20 @@ fn sideways(scene: &Scene, centimetres: u32) -> Camera {
     camera
 }
 
+/// The brightest pixel's luminance in `expected`, and each pixel's luminance difference
+/// between the two images.
+fn luminance_differences(expected: &Image, test: &Image) -> (f64, Vec<f64>) {
+    let brightest = expected
+        .pixels
+        .iter()
+        .map(pixel_luminance)
+        .fold(0.0f64, f64::max);
+    let differences = (expected.pixels.iter().zip(&test.pixels))
+        .map(|(a, b)| (pixel_luminance(a) - pixel_luminance(b)).abs())
+        .collect();
+    (brightest, differences)
+}
+
 /// Mean luminance over the pixels of `mask`.
 fn masked_luminance(image: &Image, mask: &[bool]) -> f64 {
     let lit = (image.pixels.iter().zip(mask)).filter(|(_, m)| **m);
@@ -397,13 +411,10 @@ fn a_still_views_later_frames_draw_the_candidates_in_one_pass() {
         direct_after_still_frames(true),
         direct_after_still_frames(false),
     );
-    let brightest = two
-        .pixels
+    let (brightest, differences) = luminance_differences(&two, &one);
+    let differing = differences
         .iter()
-        .map(pixel_luminance)
-        .fold(0.0f64, f64::max);
-    let differing = (one.pixels.iter().zip(&two.pixels))
-        .filter(|(a, b)| (pixel_luminance(a) - pixel_luminance(b)).abs() > 1e-5 * brightest)
+        .filter(|&&d| d > 1e-5 * brightest)
         .count();
     eprintln!("6 still frames in one pass against two: {differing} pixels differ");
     assert!(brightest > 0.0, "the tiles light nothing");
@@ -457,14 +468,8 @@ fn room_for_emitters_without_any_keeps_the_punctual_lights_mean() {
     };
     let expected = direct_after_still_frames(&plain, false);
     let kept = direct_after_still_frames(&with_room, true);
-    let brightest = expected
-        .pixels
-        .iter()
-        .map(pixel_luminance)
-        .fold(0.0f64, f64::max);
-    let worst = (expected.pixels.iter().zip(&kept.pixels))
-        .map(|(a, b)| (pixel_luminance(a) - pixel_luminance(b)).abs())
-        .fold(0.0f64, f64::max);
+    let (brightest, differences) = luminance_differences(&expected, &kept);
+    let worst = differences.into_iter().fold(0.0f64, f64::max);
     eprintln!(
         "direct light after 6 still frames: largest difference {worst:.2e} of {brightest:.3}"
     );
