@@ -58,9 +58,9 @@ fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     let origin = shadow_origin(s);
     let old_pixel = history_pixel(pixel, s);
     let fresh_only = old_pixel.x < 0;
-    var rng: u32;
+    var rng = candidate_stream(index);
     let candidates = select(frame.emitter_candidates, frame.cut_candidates, fresh_only);
-    var fresh = own_candidates(s, origin, index, candidates, &rng);
+    var fresh = resample_emitters(s, origin, candidates, &rng);
     fresh.fresh = fresh_only;
     // Visibility reuse: a winner shadowed here loses its weight before it meets last frame's
     // or the neighbours take it. Where neither happens (a still view's later frames),

@@ -3,7 +3,6 @@
 // still, which frame/direct or, with emitter resampling, frame/direct_reuse keeps.
 #import gbuffer
 #import lights
-#import resampling
 #import random
 
 @group(2) @binding(0) var direct: texture_storage_2d<rgba32float, read_write>;
@@ -20,13 +19,11 @@ fn keep_direct_mean(pixel: vec2<u32>, light: DirectLight) {
     textureStore(direct_diffuse, pixel, vec4<f32>(diffuse, 1.0));
 }
 
-// A pixel's own reservoir: RIS over `candidates` emitter points (no shadow ray yet), from the
-// one random stream frame/direct and frame/direct_reuse seed alike, so that a frame whose
-// frame/direct_reuse draws it (`direct_in_reuse`) shows what frame/direct would have drawn.
-// `rng` goes on to serve the pixel's later draws.
-fn own_candidates(s: Surface, origin: vec3<f32>, pixel_index: u32, candidates: u32, rng: ptr<function, u32>) -> Reservoir {
-    *rng = rng_seed(pixel_index, frame.frame_index, frame.seed ^ 0x2545f491u);
-    return resample_emitters(s, origin, candidates, rng);
+// The random stream a pixel's own candidates are drawn from, which frame/direct and
+// frame/direct_reuse seed alike, so that a frame whose frame/direct_reuse draws them
+// (`direct_in_reuse`) shows what frame/direct would have drawn.
+fn candidate_stream(pixel_index: u32) -> u32 {
+    return rng_seed(pixel_index, frame.frame_index, frame.seed ^ 0x2545f491u);
 }
 
 // The punctual lights' direct light at `pixel` (none where the camera ray left the scene).

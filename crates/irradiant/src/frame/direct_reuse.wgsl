@@ -42,8 +42,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
             // No history and no neighbours: a pixel with none, as frame/direct draws it, and
             // packed as its texture holds it (barycentrics in 16 bits), so that both ways
             // make the same image.
-            var stream: u32;
-            var drawn = own_candidates(s, origin, index, frame.cut_candidates, &stream);
+            var stream = candidate_stream(index);
+            var drawn = resample_emitters(s, origin, frame.cut_candidates, &stream);
             drawn.fresh = true;
             own = unpack_reservoir(pack_reservoir(drawn));
         } else {

@@ -152,9 +152,8 @@ fn pick_emitter(cell: u32, u: f32) -> EmitterPick {
     let whole = n / clusters;
     let rest = n - whole * clusters;
     let step = 1.0 / f32(clusters);
-    let first = cluster * whole + u32((f32(cluster * rest) + 0.5) * step);
-    let next = (cluster + 1u) * whole + u32((f32((cluster + 1u) * rest) + 0.5) * step);
-    let count = next - first;
+    let first = cluster_start(cluster, whole, rest, step);
+    let count = cluster_start(cluster + 1u, whole, rest, step) - first;
     let scaled_member = u_member * f32(count);
     let slot = first + min(u32(scaled_member), count - 1u);
     // The texture's rows are a power of two wide (emitter_grid::texture_size).
@@ -162,6 +161,11 @@ fn pick_emitter(cell: u32, u: f32) -> EmitterPick {
     let m = textureLoad(emitter_grid, vec2<u32>(slot & (width - 1u), scene_info.grid_member_row + (slot >> countTrailingZeros(width))), 0);
     let index = select(m.y, m.x, scaled_member - floor(scaled_member) < bitcast<f32>(m.z));
     return EmitterPick(index, bitcast<f32>(select(t.w, t.z, keep)));
+}
+
+// Cluster k's first member, ⌊k·n/K⌋, from n = whole·K + rest and step = 1/K (pick_emitter).
+fn cluster_start(k: u32, whole: u32, rest: u32, step: f32) -> u32 {
+    return k * whole + u32((f32(k * rest) + 0.5) * step);
 }
 
 // The area pdf with which pick_emitter and a uniform point on the triangle pick a point of
