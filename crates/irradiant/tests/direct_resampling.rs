@@ -183,6 +183,47 @@ fn resampled_direct_light_converges_to_the_path_tracers() {
     assert!(worst < 0.15, "a block reads {worst} off the path tracer's");
 }
 
+/// A still view's candidates picked along each pixel's golden-ratio sequence through its frames
+/// (`pick_sequence`) leave its running mean closer to the path tracer's than independent picks
+/// every frame, after 16 and after 64 frames; the first frame, which shares reservoirs, is the
+/// same either way.
+#[test]
+fn a_still_views_picks_along_a_sequence_lower_its_error() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("many-lights").unwrap().scene;
+    let reference = direct_reference(&ctx, &scene, &scene.camera, 4096);
+    let along = ResamplingSettings::default();
+    let independent = ResamplingSettings {
+        pick_sequence: false,
+        ..along.clone()
+    };
+    for frames in [1, 16, 64] {
+        let still = vec![scene.camera.clone(); frames];
+        let apart = relative_mse(
+            &reference,
+            &direct_light(&ctx, &scene, independent.clone(), &still),
+        );
+        let walked = relative_mse(
+            &reference,
+            &direct_light(&ctx, &scene, along.clone(), &still),
+        );
+        eprintln!(
+            "{frames} still frames, relative MSE: independent picks {apart:.5}, along the sequence {walked:.5}"
+        );
+        if frames == 1 {
+            assert_eq!(
+                walked, apart,
+                "the first frame shares reservoirs and draws independently"
+            );
+        } else {
+            assert!(
+                walked < 0.9 * apart,
+                "{frames} frames: along the sequence {walked} against independent {apart}"
+            );
+        }
+    }
+}
+
 /// While the view moves (here a slow sideways drift, every frame a new camera, so no running
 /// mean), last frame's reservoir where the surface was seen carries its candidates on: the
 /// error of the drift's last frame falls well below the same frame without temporal reuse.

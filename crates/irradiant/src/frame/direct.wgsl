@@ -60,13 +60,12 @@ fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     let fresh_only = old_pixel.x < 0;
     var rng = candidate_stream(index);
     let candidates = select(frame.emitter_candidates, frame.cut_candidates, fresh_only);
-    var fresh = resample_emitters(s, origin, candidates, &rng);
+    var fresh = resample_emitters_drawn(s, origin, candidates, candidate_sequence(index), &rng);
     fresh.fresh = fresh_only;
     // Visibility reuse: a winner shadowed here loses its weight before it meets last frame's
     // or the neighbours take it. Where neither happens (a still view's later frames),
     // frame/direct_reuse tests the same sample when it shades it: this ray would be that one.
-    let reused = frame.reuse_neighbours > 0u || frame.cut_neighbours > 0u || frame.reservoir_history > 0u;
-    if reused && !reservoir_visible(origin, fresh) {
+    if frame_shares_reservoirs() && !reservoir_visible(origin, fresh) {
         fresh.w = 0.0;
     }
     if fresh_only {

@@ -43,7 +43,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
             // packed as its texture holds it (barycentrics in 16 bits), so that both ways
             // make the same image.
             var stream = candidate_stream(index);
-            var drawn = resample_emitters(s, origin, frame.cut_candidates, &stream);
+            var drawn = resample_emitters_drawn(s, origin, frame.cut_candidates, candidate_sequence(index), &stream);
             drawn.fresh = true;
             own = unpack_reservoir(pack_reservoir(drawn));
         } else {

@@ -323,6 +323,8 @@ impl Frame {
             },
             cut_neighbours,
             direct_in_reuse: self.direct_in_reuse as u32,
+            pick_sequence: s.resampling.pick_sequence as u32,
+            _pad: [0; 3],
         };
         ctx.queue
             .write_buffer(&self.resources.params, 0, bytemuck::bytes_of(&params));

@@ -105,6 +105,25 @@ fn reservoir_merge(r: ptr<function, Reservoir>, s: Surface, origin: vec3<f32>, o
 // RIS over `candidates` emitter points picked through the emitter grid for the surface's cell:
 // the reservoir that keeps one, its W set (no shadow ray yet).
 fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> Reservoir {
+    return resample_emitters_drawn(s, origin, candidates, PickSequence(false, 0.0, 0u), rng);
+}
+
+// Where a pixel's candidates take their picks (`pick_emitter`'s one number) when the frames they
+// are drawn in are averaged (a still view's running mean): candidate n of the pixel's run is
+// point n of the golden-ratio sequence, fract(shift + n / φ), so that a frame's candidates, and
+// all of its frames' together, spread evenly over the grid's distribution. Any run of it is as
+// even, whatever its start or length. Each pick alone is still drawn with the grid's pdf, and
+// RIS needs no more for its estimate to stay unbiased (not that the candidates be independent).
+struct PickSequence {
+    on: bool,
+    // The pixel's turn of the sequence, the same every frame.
+    shift: f32,
+    // The sequence's index of this frame's first candidate.
+    first: u32,
+}
+
+// resample_emitters, its picks drawn along `sequence` where it is on.
+fn resample_emitters_drawn(s: Surface, origin: vec3<f32>, candidates: u32, sequence: PickSequence, rng: ptr<function, u32>) -> Reservoir {
     var r = empty_reservoir();
     // Room for emitters but none placed (a host's scene), or every one removed: no grid to read.
     if scene_info.emitter_count == 0u || scene_info.grid_clusters == 0u {
@@ -112,7 +131,12 @@ fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<fu
     }
     let cell = emitter_cell(origin);
     for (var i = 0u; i < candidates; i++) {
-        let pick = pick_emitter(cell, rand(rng));
+        var u = rand(rng);
+        if sequence.on {
+            // n × 2³²/φ, wrapping: the fraction of n/φ in 32 bits, kept to 24.
+            u = fract(sequence.shift + f32(((sequence.first + i) * 2654435769u) >> 8u) * (1.0 / 16777216.0));
+        }
+        let pick = pick_emitter(cell, u);
         let bary = uniform_triangle(rand2(rng));
         let e = emitter_point(pick.index, bary);
         let value = target_value(s, origin, e);
