@@ -200,7 +200,8 @@ pub fn all_layouts() -> Vec<Expected> {
             reuse_visibility,
             cut_candidates,
             cut_neighbours,
-            direct_in_reuse
+            direct_in_reuse,
+            pick_sequence
         }),
         gpu_layout!(GpuDdgiVolume {
             origin,

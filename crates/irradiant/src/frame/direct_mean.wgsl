@@ -32,10 +32,9 @@ fn candidate_stream(pixel_index: u32) -> u32 {
 // frame only adds to the pixel's own mean, and the picks walk one golden-ratio sequence through
 // those frames (PickSequence): frame f's candidates are its points f·c to f·c + c − 1. Each
 // pixel's turn of it follows interleaved gradient noise (Jimenez 2014), turned as a whole by the
-// seed, so that neighbouring
-// pixels pick differently and their noise averages out where the eye blurs them. Where
-// reservoirs are shared the picks stay independent: a neighbour whose sequence runs alongside
-// would hand over the candidates the pixel drew itself.
+// seed, so that neighbouring pixels pick differently and their noise averages out where the eye
+// blurs them. Where reservoirs are shared the picks stay independent: a neighbour whose
+// sequence runs alongside would hand over the candidates the pixel drew itself.
 fn candidate_sequence(pixel_index: u32) -> PickSequence {
     let pixel = vec2<f32>(f32(pixel_index % frame.width), f32(pixel_index / frame.width));
     let seed_turn = f32(pcg_hash(frame.seed ^ 0x9e3779b9u) >> 8u) * (1.0 / 16777216.0);

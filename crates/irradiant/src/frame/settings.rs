@@ -94,9 +94,9 @@ pub struct ResamplingSettings {
     /// pixel's turned by interleaved gradient noise, instead of independently every frame
     /// (docs/frame.md). On: the running mean's noise falls faster and neighbouring pixels' noise
     /// cancels where the eye blurs them (H100, 320×240, direct light after 64 frames:
-    /// many-lights' FLIP 0.0334 → 0.0260, four-halls' 0.0354 → 0.0284), for 0.3 to 1 % more
-    /// time in `frame/direct_reuse`. Frames
-    /// that share reservoirs (a moving view, a cut, `unbiased`) draw independently either way.
+    /// many-lights' FLIP 0.0334 → 0.0260, four-halls' 0.0354 → 0.0284), for 0.3 to 1.1 % more
+    /// time in `frame/direct_reuse`. Frames where pixels share reservoirs (in every preset: a
+    /// cut, a moving view, and every frame with `unbiased`) draw independently either way.
     /// Off: every frame independent, for comparing.
     pub pick_sequence: bool,
 }
@@ -173,8 +173,9 @@ impl FrameSettings {
         Self {
             area_light_samples: 1,
             resampling: ResamplingSettings {
-                // Half of `balanced`'s: along the picks' sequence a still view's mean reaches
-                // about what 16 do by 64 frames, for 15 % less direct light (docs/frame.md).
+                // Half of `balanced`'s: along the picks' sequence a still view's mean comes within
+                // 2–5 % of 16's FLIP by 64 frames, and its direct light takes 15–25 % less time
+                // (docs/frame.md).
                 candidates: 8,
                 neighbours: 2,
                 cut_candidates: 32,

@@ -112,8 +112,10 @@ fn resample_emitters(s: Surface, origin: vec3<f32>, candidates: u32, rng: ptr<fu
 // are drawn in are averaged (a still view's running mean): candidate n of the pixel's run is
 // point n of the golden-ratio sequence, fract(shift + n / φ), so that a frame's candidates, and
 // all of its frames' together, spread evenly over the grid's distribution. Any run of it is as
-// even, whatever its start or length. Each pick alone is still drawn with the grid's pdf, and
-// RIS needs no more for its estimate to stay unbiased (not that the candidates be independent).
+// even, whatever its start or length. Over a random shift each pick is drawn with the grid's
+// pdf, and RIS needs no more for its estimate to stay unbiased (not that the candidates be
+// independent); for a fixed shift the mean over frames converges to the same light, as the
+// sequence fills [0, 1) evenly.
 struct PickSequence {
     on: bool,
     // The pixel's turn of the sequence, the same every frame.
