@@ -65,7 +65,8 @@ fn temporal_reservoir(pixel: vec2<u32>, index: u32) -> Reservoir {
     // Visibility reuse: a winner shadowed here loses its weight before it meets last frame's
     // or the neighbours take it. Where neither happens (a still view's later frames),
     // frame/direct_reuse tests the same sample when it shades it: this ray would be that one.
-    if frame_shares_reservoirs() && !reservoir_visible(origin, fresh) {
+    let reused = frame.reuse_neighbours > 0u || frame.cut_neighbours > 0u || frame.reservoir_history > 0u;
+    if reused && !reservoir_visible(origin, fresh) {
         fresh.w = 0.0;
     }
     if fresh_only {

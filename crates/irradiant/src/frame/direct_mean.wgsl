@@ -28,24 +28,18 @@ fn candidate_stream(pixel_index: u32) -> u32 {
 }
 
 // Where a pixel's own candidates take their picks. In a frame where no pixel takes another's
-// reservoir or last frame's (a still view's frames after its first, unless `unbiased`), each
-// frame only adds to the pixel's own mean, and the picks walk one golden-ratio sequence through
-// those frames (PickSequence): frame f's candidates are its points f·c to f·c + c − 1. Each
-// pixel's turn of it follows interleaved gradient noise (Jimenez 2014), turned as a whole by the
-// seed, so that neighbouring pixels pick differently and their noise averages out where the eye
-// blurs them. Where reservoirs are shared the picks stay independent: a neighbour whose
-// sequence runs alongside would hand over the candidates the pixel drew itself.
+// reservoir or last frame's (a still view's frames after its first, unless `unbiased`; the host
+// decides, `pick_sequence`), each frame only adds to the pixel's own mean, and the picks walk one
+// golden-ratio sequence through those frames (PickSequence): frame f's candidates are its points
+// f·c to f·c + c − 1. Each pixel's turn of it follows interleaved gradient noise (Jimenez 2014),
+// turned as a whole by the seed, so that neighbouring pixels pick differently and their noise
+// averages out where the eye blurs them. Where reservoirs are shared the picks stay independent: a
+// neighbour whose sequence runs alongside would hand over the candidates the pixel drew itself.
 fn candidate_sequence(pixel_index: u32) -> PickSequence {
     let pixel = vec2<f32>(f32(pixel_index % frame.width), f32(pixel_index / frame.width));
     let seed_turn = f32(pcg_hash(frame.seed ^ 0x9e3779b9u) >> 8u) * (1.0 / 16777216.0);
     let shift = fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))) + seed_turn);
-    let on = frame.pick_sequence != 0u && !frame_shares_reservoirs();
-    return PickSequence(on, shift, frame.frame_index * frame.cut_candidates);
-}
-
-// Whether any pixel takes another's reservoir or last frame's this frame.
-fn frame_shares_reservoirs() -> bool {
-    return frame.reuse_neighbours > 0u || frame.cut_neighbours > 0u || frame.reservoir_history > 0u;
+    return PickSequence(frame.pick_sequence != 0u, shift, frame.frame_index * frame.cut_candidates);
 }
 
 // The punctual lights' direct light at `pixel` (none where the camera ray left the scene).

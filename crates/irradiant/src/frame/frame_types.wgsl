@@ -45,7 +45,8 @@ struct GpuFrameParams {
     // 1: no pixel takes another's reservoir or last frame's, so frame/direct does not run and
     // frame/direct_reuse draws each pixel's candidates itself
     direct_in_reuse: u32,
-    // 1: frames that share no reservoirs pick their candidates along each pixel's sequence
+    // 1: no pixel takes another's reservoir or last frame's, and the candidates pick along
+    // each pixel's sequence
     pick_sequence: u32,
 }
 

@@ -274,15 +274,14 @@ impl Frame {
         } else {
             reuse_neighbours
         };
+        let shares_reservoirs = reservoir_history > 0 || reuse_neighbours > 0 || cut_neighbours > 0;
         // Where each pixel keeps its own candidates, the reservoir frame/direct would make is
         // read by that pixel alone: frame/direct_reuse draws it, one pass instead of two (a
         // still view's frames after its first).
         self.direct_in_reuse = self.one_pass_direct
             && self.passes.direct_reuse.is_some()
             && s.resampling.candidates > 0
-            && reservoir_history == 0
-            && reuse_neighbours == 0
-            && cut_neighbours == 0;
+            && !shares_reservoirs;
         let params = GpuFrameParams {
             camera: GpuCamera::new(camera, w, h),
             previous_camera: GpuCamera::new(&previous, w, h),
@@ -323,7 +322,8 @@ impl Frame {
             },
             cut_neighbours,
             direct_in_reuse: self.direct_in_reuse as u32,
-            pick_sequence: s.resampling.pick_sequence as u32,
+            // A pixel's frames that only add to its own mean may pick along its sequence.
+            pick_sequence: (s.resampling.pick_sequence && !shares_reservoirs) as u32,
             _pad: [0; 3],
         };
         ctx.queue

@@ -65,8 +65,8 @@ pub struct GpuFrameParams {
     /// its first frame), so frame/direct does not run and frame/direct_reuse draws each
     /// pixel's candidates itself.
     pub direct_in_reuse: u32,
-    /// 1: frames that share no reservoirs pick their candidates along each pixel's sequence
-    /// (`ResamplingSettings::pick_sequence`).
+    /// 1: no pixel takes another's reservoir or last frame's this frame, and the candidates
+    /// pick along each pixel's sequence (`ResamplingSettings::pick_sequence`).
     pub pick_sequence: u32,
     /// Padding to WGSL's size of the struct (a multiple of 16 bytes); 0.
     pub _pad: [u32; 3],
