@@ -60,6 +60,12 @@ impl MeshTree {
 
 impl SceneBuild {
     pub fn new(scene: &Scene, settings: &GpuSceneSettings) -> Result<Self, RenderError> {
+        // The top-level tree needs a leaf; a host's session keeps one instance at least too.
+        if scene.instances.is_empty() {
+            return Err(RenderError::Scene(
+                "the scene places no instance of any mesh: place one (a manifest's [mesh] or [[place]], or Scene::instances)".into(),
+            ));
+        }
         let start = Instant::now();
         let mut nodes: Vec<GpuBvhNode> = Vec::new();
         let mut wide_nodes: Vec<GpuWideBvhNode> = Vec::new();
