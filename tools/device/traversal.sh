@@ -3,7 +3,7 @@
 # path tracer's sample and DDGI's GI at the paper's Sibenik grid, 1920×1080, for each binary in
 # BINS (default "before irradiant", from .dev/), then again in the reverse order, so that a
 # kernel change is measured against the code before in one call. SCALE=1 adds the 10.8M-triangle
-# instanced grid; SCENES replaces the scene list. Each scene's row of the frame's passes (with
+# instanced grid; SCENES replaces the scene list; DDGI=0 leaves out DDGI. Each scene's row of the frame's passes (with
 # frame/direct and frame/direct_reuse) is kept too. Expects .dev/ as tools/device/pack.sh lays
 # it out; writes into $OUT.
 set -euo pipefail
@@ -18,6 +18,7 @@ for round in 1 2; do
     for bin in "${order[@]}"; do
         ../$bin bench --scene "$scenes" --size 1920x1080 --iterations 30 --techniques none 2>&1 \
             | grep -E "raycast|pathtrace|^[a-z-]+ +none " | sed "s|^|$round $bin |" | tee -a "$OUT/traversal.txt"
+        [ "${DDGI:-1}" = 0 ] && continue
         ../$bin bench --scene scenes/sibenik/sibenik.toml --size 1920x1080 --iterations 30 \
             --techniques 'ddgi{volume.probe_counts = [32, 8, 32], volume.rays_per_probe = 256}' 2>&1 \
             | grep -E "^sibenik +ddgi" | sed "s|^|$round $bin |" | tee -a "$OUT/traversal.txt"

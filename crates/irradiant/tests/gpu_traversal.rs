@@ -120,14 +120,25 @@ fn gpu_hits_match_cpu_brute_force_over_instanced_meshes() {
 }
 
 fn hits_match_brute_force(settings: irradiant::GpuSceneSettings) {
-    let Some(ctx) = common::gpu() else { return };
     let mut rng = StdRng::seed_from_u64(11);
     let scene = test_scene(&mut rng);
-    let gpu_scene = GpuScene::new(&ctx, &scene, &settings).unwrap();
+    hits_in_scene_match_brute_force(&scene, &settings, &mut rng, 500);
+}
+
+/// 2 000 random rays over `scene`: the GPU's closest hits are the CPU's, and more than
+/// `least_hits` of them hit something.
+fn hits_in_scene_match_brute_force(
+    scene: &Scene,
+    settings: &irradiant::GpuSceneSettings,
+    rng: &mut StdRng,
+    least_hits: usize,
+) {
+    let Some(ctx) = common::gpu() else { return };
+    let gpu_scene = GpuScene::new(&ctx, scene, settings).unwrap();
     let caster = RayCaster::new(&ctx, &gpu_scene).unwrap();
-    let rays = random_rays(&mut rng, 2000);
+    let rays = random_rays(rng, 2000);
     let hits = caster.trace(&ctx, &gpu_scene, &rays, false).unwrap();
-    let (tris, ids) = world_triangles(&scene);
+    let (tris, ids) = world_triangles(scene);
     let mut hit_count = 0;
     for (ray, hit) in rays.iter().zip(&hits) {
         let expected = brute_force_closest_hit(ray.origin.into(), ray.dir.into(), &tris, 1e20);
@@ -161,9 +172,55 @@ fn hits_match_brute_force(settings: irradiant::GpuSceneSettings) {
         }
     }
     assert!(
-        hit_count > 500,
+        hit_count > least_hits,
         "too few rays hit ({hit_count}) for the test to mean much"
     );
+}
+
+/// The wide layout walks both levels in one loop (bvh.wgsl, `trace_levels_wide`) unless the
+/// scene holds one instance for good. One instance with room for a host's more takes that loop
+/// with no top level to walk; sixty overlapping instances give it a deep top level, its stack
+/// and rays that cross many instances. A scene of no instance is refused by name.
+#[test]
+fn one_loop_over_both_levels_finds_the_closest_hits() {
+    let mut rng = StdRng::seed_from_u64(23);
+    let with_room = irradiant::GpuSceneSettings {
+        instance_headroom: 3,
+        ..Default::default()
+    };
+    let mut one = test_scene(&mut rng);
+    one.instances.truncate(1);
+    hits_in_scene_match_brute_force(&one, &with_room, &mut rng, 200);
+
+    let mut many = test_scene(&mut rng);
+    for i in 0..60 {
+        let at = Vec3::new(
+            rng.random_range(-5.0..5.0),
+            rng.random_range(-3.0..4.0),
+            rng.random_range(-5.0..5.0),
+        );
+        many.instances.push(Instance {
+            name: format!("m{i}"),
+            mesh: 1 + (i % 2),
+            transform: Mat4::from_translation(at)
+                * Mat4::from_rotation_y(rng.random_range(0.0..6.0))
+                * Mat4::from_scale(Vec3::splat(rng.random_range(0.2..0.6))),
+        });
+    }
+    hits_in_scene_match_brute_force(
+        &many,
+        &irradiant::GpuSceneSettings::default(),
+        &mut rng,
+        1000,
+    );
+
+    let Some(ctx) = common::gpu() else { return };
+    let mut none = test_scene(&mut rng);
+    none.instances.clear();
+    let error = GpuScene::new(&ctx, &none, &with_room)
+        .err()
+        .expect("a scene of no instance was accepted");
+    assert!(error.to_string().contains("no instance"), "{error}");
 }
 
 #[test]

@@ -404,6 +404,11 @@ impl GpuScene {
                 "BLAS_WIDE",
                 format!("{}u", (self.blas_layout == BlasLayout::Wide) as u32),
             ),
+            // One instance for good (no room left for a host's): the traversal needs no top level.
+            (
+                "ONE_INSTANCE",
+                format!("{}u", (self.instance_capacity <= 1) as u32),
+            ),
             (
                 "SCENE_HAS_EMITTERS",
                 format!("{}u", self.has_emitters() as u32),

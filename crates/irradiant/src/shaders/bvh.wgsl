@@ -7,6 +7,7 @@
 // exactly as deep as the scene's trees, which keeps per-thread memory small. BLAS_WIDE (0 or
 // 1, from there too) picks the bottom level's layout: binary nodes in bvh_nodes, or
 // compressed 8-wide nodes in wide_nodes.
+// ONE_INSTANCE (0 or 1, from there too) is 1 where the scene holds one instance for good.
 // STACK_IN_WORKGROUP (0 or 1, also from there) puts the bottom-level stack in workgroup memory,
 // a slice per thread; every tracing kernel runs 64 threads a workgroup and calls
 // bvh_thread(local_invocation_index) first.
@@ -335,6 +336,13 @@ fn trace(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, mode: u32) -> Hit {
         work_nodes = 0u;
         work_triangles = 0u;
     }
+    // Instances with wide trees: both levels in one loop. A scene of one instance for good (no
+    // room for a host's) keeps the bottom level's loop alone: single-mesh scenes' rays ran 2–3 %
+    // slower in the one loop, and their G-buffer 11 % (H100, notes/traversal.md).
+    if BLAS_WIDE == 1u && ONE_INSTANCE == 0u {
+        trace_levels_wide(origin, dir, mode, &hit);
+        return hit;
+    }
     // One instance (a static OBJ scene): skip the top level.
     if scene_info.instance_count == 1u {
         let inst = instances[0];
@@ -387,6 +395,146 @@ fn trace(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, mode: u32) -> Hit {
         }
     }
     return hit;
+}
+
+// Both levels in one loop (BLAS_WIDE == 1): each turn visits one top-level node, or one wide node
+// and its leaf's triangles in the instance the ray is in, so that a warp's rays advance together
+// whichever level each is at. A loop over the top level with the bottom level's inside it made
+// the lanes between instances wait for those in one, and ran each instance a warp's rays entered
+// at a different turn in a round of its own. A top-level entry is (node, 0) or (first instance,
+// count) of a leaf; updates `hit` as trace_blas does.
+fn trace_levels_wide(world_origin: vec3<f32>, world_dir: vec3<f32>, mode: u32, hit: ptr<function, Hit>) -> bool {
+    let world_inv_dir = safe_inverse(world_dir);
+    var top_stack: array<vec2<u32>, TLAS_STACK_SIZE>;
+    var top_sp = 0u;
+    // The next top-level entry; x = INVALID: the next comes off the stack. One instance (a host's
+    // scene with room for more) has no top level to walk: its one leaf is the first entry.
+    var top_next = select(vec2<u32>(scene_info.tlas_root, 0u), vec2<u32>(0u, 1u), scene_info.instance_count == 1u);
+    // The instance the ray is in, and the ray in its object space (a ray's t is the same there).
+    var instance = INVALID;
+    var origin = world_origin;
+    var dir = world_dir;
+    var inv_dir = world_inv_dir;
+    var oct_inv4 = 0u;
+    var stack: array<vec2<u32>, BLAS_STACK_SIZE>;
+    var sp = 0u;
+    var node_group = vec2<u32>(0u);
+    var triangle_group = vec2<u32>(0u);
+    loop {
+        if instance == INVALID {
+            // The top level, in a loop of its own, until a leaf's instance is entered: a lane
+            // between instances reaches the next in one turn of the outer loop.
+            loop {
+                if top_next.x == INVALID {
+                    if top_sp == 0u {
+                        break;
+                    }
+                    top_sp--;
+                    top_next = top_stack[top_sp];
+                }
+                if top_next.y != 0u {
+                    break;
+                }
+                let n = bvh_nodes[top_next.x];
+                if COUNT_WORK == 1u {
+                    work_nodes++;
+                }
+                let ta = slab(world_origin, world_inv_dir, n.a_min, n.a_max, (*hit).t);
+                let tb = slab(world_origin, world_inv_dir, n.b_min, n.b_max, (*hit).t);
+                let a = vec2<u32>(n.a_first, n.a_count);
+                let b = vec2<u32>(n.b_first, n.b_count);
+                let go_a = ta < (*hit).t && n.a_first != INVALID;
+                let go_b = tb < (*hit).t && n.b_first != INVALID;
+                if go_a && go_b {
+                    let a_first = ta <= tb;
+                    top_next = select(b, a, a_first);
+                    if top_sp < TLAS_STACK_SIZE {
+                        top_stack[top_sp] = select(a, b, a_first);
+                        top_sp++;
+                    }
+                } else if go_a {
+                    top_next = a;
+                } else if go_b {
+                    top_next = b;
+                } else {
+                    top_next.x = INVALID;
+                }
+            }
+            if top_next.x == INVALID {
+                break;
+            }
+            // A leaf: enter its first instance, the rest of it back on the stack.
+            instance = top_next.x;
+            if top_next.y > 1u && top_sp < TLAS_STACK_SIZE {
+                top_stack[top_sp] = top_next + vec2<u32>(1u, 0xffffffffu);
+                top_sp++;
+            }
+            top_next.x = INVALID;
+            let m = mat3x4<f32>(instances[instance].world_to_object0, instances[instance].world_to_object1, instances[instance].world_to_object2);
+            origin = vec4<f32>(world_origin, 1.0) * m;
+            dir = vec4<f32>(world_dir, 0.0) * m;
+            inv_dir = safe_inverse(dir);
+            oct_inv4 = wide_octant_inv4(dir);
+            // The root as a group of one hit inner child at slot 0 of "node" root: bit 24 + (0 ^ oct).
+            node_group = vec2<u32>(instances[instance].blas_root, 1u << (24u + (oct_inv4 & 7u)));
+        }
+        if (node_group.y & 0xff000000u) != 0u {
+            let hits_imask = node_group.y;
+            let bit = firstLeadingBit(hits_imask);
+            node_group.y &= ~(1u << bit);
+            if (node_group.y & 0xff000000u) != 0u && sp < BLAS_STACK_SIZE {
+                stack[sp] = node_group;
+                sp++;
+            }
+            let slot = (bit - 24u) ^ (oct_inv4 & 0xffu);
+            let index = node_group.x + countOneBits(hits_imask & ~(0xffffffffu << slot));
+            let n = wide_node(index);
+            if COUNT_WORK == 1u {
+                work_nodes++;
+            }
+            let hits = wide_intersect(n, origin, inv_dir, oct_inv4, (*hit).t);
+            node_group = vec2<u32>(n.child_base, (hits & 0xff000000u) | (n.exponents_imask >> 24u));
+            triangle_group = vec2<u32>(n.primitive_base, hits & 0x00ffffffu);
+        }
+        // The leaf test repeats trace_blas's by hand: as a shared function it made ddgi/shade
+        // 6 % and binary-BVH rays 4.5 % slower on an H200 (BENCHMARKS.md).
+        while triangle_group.y != 0u {
+            let bit = firstLeadingBit(triangle_group.y);
+            triangle_group.y &= ~(1u << bit);
+            let i = triangle_group.x + bit;
+            if COUNT_WORK == 1u {
+                work_triangles++;
+            }
+            let tri = triangle_at(i);
+            let r = intersect_triangle(tri, origin, dir, (*hit).t);
+            if r.x < (*hit).t {
+                if (tri.flags & TRIANGLE_ALPHA_TESTED) != 0u && is_alpha_hole(i, r.yz) {
+                    continue;
+                }
+                if mode == TRACE_ALL {
+                    record_crossing(r.x);
+                    continue;
+                }
+                (*hit).t = r.x;
+                (*hit).triangle = i;
+                (*hit).instance = instance;
+                (*hit).bary = r.yz;
+                if mode == TRACE_ANY || (mode == TRACE_UNTIL && r.x < trace_stop) {
+                    return true;
+                }
+            }
+        }
+        if (node_group.y & 0xff000000u) == 0u {
+            if sp == 0u {
+                // The instance is done: back to the top level.
+                instance = INVALID;
+            } else {
+                sp--;
+                node_group = stack[sp];
+            }
+        }
+    }
+    return false;
 }
 
 // Whether anything blocks the segment from `origin` along `dir` up to `distance`.
