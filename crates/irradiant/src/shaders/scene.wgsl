@@ -20,7 +20,8 @@ fn triangle_at(i: u32) -> GpuTriangle {
 @group(0) @binding(3) var<storage, read> instances: array<GpuInstance>;
 @group(0) @binding(4) var<storage, read> materials: array<GpuMaterial>;
 @group(0) @binding(5) var<storage, read> lights: array<GpuLight>;
-@group(0) @binding(6) var<storage, read> emitters: array<GpuEmitter>;
+// Each GpuEmitter is five 16-byte words, which emitter_at() reads as five vector loads.
+@group(0) @binding(6) var<storage, read> emitters: array<vec4<u32>>;
 @group(0) @binding(7) var<uniform> scene_info: GpuSceneInfo;
 @group(0) @binding(8) var scene_textures: texture_2d_array<f32>;
 @group(0) @binding(9) var scene_sampler: sampler;
@@ -171,8 +172,9 @@ fn cluster_start(k: u32, whole: u32, rest: u32, step: f32) -> u32 {
 // The area pdf with which pick_emitter and a uniform point on the triangle pick a point of
 // emitter `index` for `cell`.
 fn emitter_area_pdf(cell: u32, index: u32) -> f32 {
-    let e = emitters[index];
-    return bitcast<f32>(textureLoad(emitter_grid, vec2<u32>(e.cluster, cell), 0).z) * e.pdf_area;
+    let cluster = emitters[5u * index + 2u].w;
+    let pdf_area = bitcast<f32>(emitters[5u * index + 4u].w);
+    return bitcast<f32>(textureLoad(emitter_grid, vec2<u32>(cluster, cell), 0).z) * pdf_area;
 }
 
 // The entry of the emitters buffer of a hit's triangle (an emissive one).
@@ -180,10 +182,21 @@ fn hit_emitter(instance: u32, triangle: u32) -> u32 {
     return instances[instance].emitter_base + triangle_shading[triangle].emitter_ordinal;
 }
 
+// Emitter `index` from its five 16-byte words (GpuEmitter's layout): a vector load each, where
+// a load of the struct leaves the split to the compiler (as wide_node() does for the nodes).
+fn emitter_at(index: u32) -> GpuEmitter {
+    let a = emitters[5u * index];
+    let b = emitters[5u * index + 1u];
+    let c = emitters[5u * index + 2u];
+    let d = emitters[5u * index + 3u];
+    let e = emitters[5u * index + 4u];
+    return GpuEmitter(bitcast<vec3<f32>>(a.xyz), a.w, bitcast<vec3<f32>>(b.xyz), b.w, bitcast<vec3<f32>>(c.xyz), c.w, bitcast<vec3<f32>>(d.xyz), d.w, bitcast<vec3<f32>>(e.xyz), bitcast<f32>(e.w));
+}
+
 // The point of emitter `index` at barycentrics b (along its triangle's e1 and e2), with its
 // area pdf given its cluster: how a reservoir's sample is found again in later frames.
 fn emitter_point(index: u32, b: vec2<f32>) -> EmitterSample {
-    let e = emitters[index];
+    let e = emitter_at(index);
     var s: EmitterSample;
     s.position = e.v0 + e.e1 * b.x + e.e2 * b.y;
     s.normal = e.normal;
