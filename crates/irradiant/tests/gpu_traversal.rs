@@ -7,7 +7,7 @@ use glam::{Mat4, Vec3, Vec4};
 use irradiant::GpuScene;
 use irradiant::gpu_types::GpuRay;
 use irradiant::raycast::RayCaster;
-use irradiant_bvh::brute_force_closest_hit;
+use irradiant_bvh::{brute_force_closest_hit, intersect_triangle};
 use irradiant_scene::{AlphaMode, Instance, Material, Mesh, Scene, Texture};
 use rand::{Rng, SeedableRng, rngs::StdRng};
 
@@ -152,6 +152,20 @@ fn hits_in_scene_match_brute_force(
                 assert!(hit.t > 0.0, "GPU missed a hit at t = {}", e.t);
                 let instance = gpu_scene.instance_order[hit.instance as usize];
                 let (_, mesh_triangle) = gpu_scene.triangle_sources[hit.triangle as usize];
+                // The hit names a triangle the ray meets at the hit's distance: a wrong
+                // instance or triangle at the right distance fails here.
+                let named = ids
+                    .iter()
+                    .position(|&id| id == (instance, mesh_triangle))
+                    .expect("the hit names a triangle the scene places");
+                let origin = Vec3::from(ray.origin);
+                let t_named = intersect_triangle(origin, ray.dir.into(), &tris[named], 0.0, 1e20);
+                assert!(
+                    t_named.is_some_and(|t| (t - hit.t).abs() <= 1e-4 * hit.t.max(1.0)),
+                    "the hit's instance and triangle {:?} are not met at t = {}: {t_named:?}",
+                    (instance, mesh_triangle),
+                    hit.t
+                );
                 // Same triangle, or (in a near tie) one at the same distance.
                 let same = ids[e.triangle as usize] == (instance, mesh_triangle);
                 assert!(
@@ -179,8 +193,8 @@ fn hits_in_scene_match_brute_force(
 
 /// The wide layout walks both levels in one loop (bvh.wgsl, `trace_levels_wide`) unless the
 /// scene holds one instance for good. One instance with room for a host's more takes that loop
-/// with no top level to walk; sixty overlapping instances give it a deep top level, its stack
-/// and rays that cross many instances. A scene of no instance is refused by name.
+/// with no top level to walk; sixty more overlapping instances give it a deeper top level, its
+/// stack and rays that cross many instances. A scene of no instance is refused by name.
 #[test]
 fn one_loop_over_both_levels_finds_the_closest_hits() {
     let mut rng = StdRng::seed_from_u64(23);

@@ -337,8 +337,8 @@ fn trace(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, mode: u32) -> Hit {
         work_triangles = 0u;
     }
     // Instances with wide trees: both levels in one loop. A scene of one instance for good (no
-    // room for a host's) keeps the bottom level's loop alone: single-mesh scenes' rays ran 2–3 %
-    // slower in the one loop, and their G-buffer 11 % (H100, notes/traversal.md).
+    // room for a host's) keeps the bottom level's loop alone: in the one loop single-mesh scenes'
+    // G-buffer ran 7–11 % slower and their path-traced sample 2–3 % (H100, notes/traversal.md).
     if BLAS_WIDE == 1u && ONE_INSTANCE == 0u {
         trace_levels_wide(origin, dir, mode, &hit);
         return hit;
@@ -397,12 +397,14 @@ fn trace(origin: vec3<f32>, dir: vec3<f32>, t_max: f32, mode: u32) -> Hit {
     return hit;
 }
 
-// Both levels in one loop (BLAS_WIDE == 1): each turn visits one top-level node, or one wide node
-// and its leaf's triangles in the instance the ray is in, so that a warp's rays advance together
-// whichever level each is at. A loop over the top level with the bottom level's inside it made
-// the lanes between instances wait for those in one, and ran each instance a warp's rays entered
-// at a different turn in a round of its own. A top-level entry is (node, 0) or (first instance,
-// count) of a leaf; updates `hit` as trace_blas does.
+// Both levels in one loop (BLAS_WIDE == 1 and ONE_INSTANCE == 0): each turn visits one wide
+// node and its leaf's triangles in the instance the ray is in; a lane not in an instance first
+// walks the top level, in a loop of its own, to its next leaf. A warp's rays thus advance
+// together whichever level each is at, where a loop over the top level with the bottom level's
+// inside it made the lanes between instances wait for those in one, and ran each instance a
+// warp's rays entered at a different turn in a round of its own. A top-level entry is (node, 0)
+// or (first instance, count) of a leaf; build_tlas puts one instance in a leaf, and a count past
+// one would be walked within the stack's room. Updates `hit` as trace_blas does.
 fn trace_levels_wide(world_origin: vec3<f32>, world_dir: vec3<f32>, mode: u32, hit: ptr<function, Hit>) -> bool {
     let world_inv_dir = safe_inverse(world_dir);
     var top_stack: array<vec2<u32>, TLAS_STACK_SIZE>;
