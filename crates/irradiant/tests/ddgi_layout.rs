@@ -50,3 +50,28 @@ fn coherent_order_converges_to_the_same_light() {
     // paired with the wrong directions would be off by far more.
     assert!((a - b).abs() < 0.05 * a, "fibonacci {a} vs coherent {b}");
 }
+
+/// ddgi/trace's and ddgi/shadow's lanes fetch their next ray (`speed.fetch_rays`) on a scene of
+/// one wide tree: the same hits, so the same light to the bit. `two-rooms`' point light sends
+/// the probe rays' hits shadow rays through ddgi/shadow's queue.
+#[test]
+fn lanes_that_fetch_their_rays_give_the_same_light() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("two-rooms").unwrap().scene;
+    assert!(
+        !scene.lights.is_empty(),
+        "no punctual light: no queued shadow rays"
+    );
+    let gpu_scene = irradiant::GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
+    let fetching = settings(true, 1);
+    assert!(
+        fetching.fetches_probe_rays(&gpu_scene),
+        "the scene does not take the fetching loop"
+    );
+    let mut one_a_thread = fetching.clone();
+    one_a_thread.speed.fetch_rays = false;
+    let a = render_frames(&ctx, &scene, (24, 24), Some(&fetching), 3).indirect;
+    let b = render_frames(&ctx, &scene, (24, 24), Some(&one_a_thread), 3).indirect;
+    assert!(luminance(&a) > 0.01, "no indirect light to compare");
+    assert_eq!(a.pixels, b.pixels, "fetching changed the light");
+}

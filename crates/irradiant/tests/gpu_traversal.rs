@@ -237,6 +237,43 @@ fn one_loop_over_both_levels_finds_the_closest_hits() {
     assert!(error.to_string().contains("no instance"), "{error}");
 }
 
+/// A scene of one wide tree for good hands raycast/trace's workgroups runs of 256 rays whose
+/// lanes fetch the next ray as theirs ends (bvh_fetch.wgsl). 2 000 rays end in a short run;
+/// the instance is moved and scaled, so its rays go to object space. Any-hit rays agree.
+#[test]
+fn lanes_that_fetch_their_next_ray_find_the_closest_and_any_hits() {
+    let mut rng = StdRng::seed_from_u64(29);
+    let mut one = test_scene(&mut rng);
+    one.instances.truncate(1);
+    one.instances[0].transform = Mat4::from_translation(Vec3::new(0.5, 0.5, -0.5))
+        * Mat4::from_rotation_y(0.6)
+        * Mat4::from_scale(Vec3::splat(1.3));
+    let settings = irradiant::GpuSceneSettings::default();
+    let Some(ctx) = common::gpu() else { return };
+    let gpu_scene = GpuScene::new(&ctx, &one, &settings).unwrap();
+    assert!(
+        gpu_scene.fetches_rays(),
+        "the scene does not take the fetching loop"
+    );
+    hits_in_scene_match_brute_force(&one, &settings, &mut rng, 200);
+
+    let caster = RayCaster::new(&ctx, &gpu_scene).unwrap();
+    let mut rays = random_rays(&mut rng, 1000);
+    for r in &mut rays {
+        r.t_max = 5.0;
+    }
+    let closest = caster.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+    let any = caster.trace(&ctx, &gpu_scene, &rays, true).unwrap();
+    let blocked = closest.iter().filter(|c| c.t > 0.0).count();
+    assert!(blocked > 100, "too few rays blocked ({blocked})");
+    for (c, a) in closest.iter().zip(&any) {
+        assert_eq!(c.t < 0.0, a.t < 0.0, "{c:?} {a:?}");
+        if c.t > 0.0 {
+            assert!(a.t >= c.t - 1e-5 && a.t <= 5.0, "{c:?} {a:?}");
+        }
+    }
+}
+
 #[test]
 fn any_hit_agrees_with_closest_hit_on_occlusion() {
     let Some(ctx) = common::gpu() else { return };

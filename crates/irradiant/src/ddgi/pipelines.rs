@@ -16,6 +16,9 @@ pub struct DdgiPipelines {
     pub ray_directions: Arc<ComputePass>,
     /// ddgi/trace; absent when shade traces its own rays (`fuse_trace_and_shade`).
     pub trace: Option<Arc<ComputePass>>,
+    /// ddgi/trace takes a workgroup a listed probe, whose lanes fetch its rays in turn
+    /// (`DdgiSettings::fetches_probe_rays`): dispatched as the blends are.
+    pub trace_per_probe: bool,
     /// ddgi/shade, or ddgi/trace_shade when fused.
     pub shade: Arc<ComputePass>,
     /// Present when shadow rays are queued (`DdgiSettings::queues_shadow_rays`).
@@ -56,6 +59,14 @@ impl DdgiPipelines {
     ) -> Result<Self, RenderError> {
         let mut common = scene.shader_constants();
         common.extend(shader_constants(settings));
+        common.push((
+            "FETCH_RAYS",
+            format!("{}u", settings.fetches_probe_rays(scene) as u32),
+        ));
+        common.push((
+            "SHADOW_GROUP_RAYS",
+            format!("{}u", settings.shadow_group_rays(scene)),
+        ));
         let compile = |label: &'static str, source: &str, extra: Vec<(&'static str, String)>| {
             let desc = PassDesc::new(label, source)
                 .constants(common.clone())
@@ -98,6 +109,7 @@ impl DdgiPipelines {
                 include_str!("ray_directions.wgsl"),
                 vec![],
             )?,
+            trace_per_probe: settings.fetches_probe_rays(scene),
             trace: if fused {
                 None
             } else {

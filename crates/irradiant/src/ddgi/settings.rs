@@ -7,6 +7,7 @@ use documented::DocumentedFields;
 use serde::{Deserialize, Serialize};
 
 pub use super::reflections::DdgiReflectionSettings;
+use crate::scene::GpuScene;
 use crate::settings::TechniqueSpec;
 use crate::settings::{Presets, SettingsError, check_range, overlay};
 
@@ -250,6 +251,12 @@ pub struct DdgiSpeedSettings {
     /// 5 % faster with probe states on, 4 is 5 % faster with every probe tracing, and 4 is
     /// 30 % faster at 32 rays a probe (BENCHMARKS.md).
     pub probes_per_group: u32,
+    /// ddgi/trace and ddgi/shadow hand a workgroup a run of rays (a probe's, or 256 queued
+    /// shadow rays) whose lanes fetch the next ray as theirs ends, so that a warp keeps walking
+    /// while its longest ray does, instead of a ray a thread. Applies where the scene is one
+    /// wide tree for good (no room for a host's instances) and with one probe a workgroup;
+    /// costs a workgroup atomic a ray. The same hits.
+    pub fetch_rays: bool,
 }
 
 /// The traced final gather at the pixels (`[technique.gather]`).
@@ -377,6 +384,7 @@ impl DdgiSettings {
                 probe_states: true,
                 coherent_rays: true,
                 probes_per_group: 1,
+                fetch_rays: true,
             },
             gather: DdgiGatherSettings {
                 rays_per_pixel: 0,
@@ -430,6 +438,21 @@ impl DdgiSettings {
         )?;
         settings.validate()?;
         Ok(settings)
+    }
+
+    /// Whether ddgi/trace's lanes fetch a probe's rays in turn (`speed.fetch_rays`) in `scene`.
+    pub fn fetches_probe_rays(&self, scene: &GpuScene) -> bool {
+        self.speed.fetch_rays && self.speed.probes_per_group == 1 && scene.fetches_rays()
+    }
+
+    /// The queued shadow rays a workgroup of ddgi/shadow takes: a run whose lanes fetch
+    /// (`speed.fetch_rays`, FETCH_GROUP_RAYS of raycast/trace), else one a thread.
+    pub fn shadow_group_rays(&self, scene: &GpuScene) -> u32 {
+        if self.speed.fetch_rays && scene.fetches_rays() {
+            crate::raycast::FETCH_GROUP_RAYS
+        } else {
+            64
+        }
     }
 
     /// Whether ddgi/shade queues shadow rays for ddgi/shadow: `shadow_queue`, with one light

@@ -167,7 +167,7 @@ fn enqueue_shadow(queued: bool, ray: GpuDdgiShadowRay, local_index: u32) {
         var base = 0u;
         if count > 0u {
             base = atomicAdd(&shadow_queue.count, count);
-            let groups = folded_groups((base + count + 63u) / 64u);
+            let groups = folded_groups((base + count + SHADOW_GROUP_RAYS - 1u) / SHADOW_GROUP_RAYS);
             atomicMax(&shadow_queue.groups_x, groups.x);
             atomicMax(&shadow_queue.groups_y, groups.y);
             atomicMax(&shadow_queue.groups_z, 1u);

@@ -1,9 +1,12 @@
-// ddgi/shadow: the shadow rays ddgi/shade queued (DdgiSettings::shadow_queue), one a thread
-// with no idle lanes; each adds its light to its probe ray's sample where nothing blocks it.
+// ddgi/shadow: the shadow rays ddgi/shade queued (DdgiSettings::shadow_queue), densely with no
+// idle lanes; each adds its light to its probe ray's sample where nothing blocks it.
+// SHADOW_GROUP_RAYS (DdgiSettings::shadow_group_rays): the queued rays a workgroup takes; past
+// 64 its lanes walk them and fetch the next as theirs ends (bvh_fetch).
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
 #import lights
+#import bvh_fetch
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
 @group(2) @binding(6) var<storage, read_write> samples: array<GpuDdgiRaySample>;
@@ -21,6 +24,12 @@ struct DdgiShadowQueueRead {
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
+    if SHADOW_GROUP_RAYS > 64u {
+        run_first = folded_index(group) * SHADOW_GROUP_RAYS;
+        let left = shadow_queue.count - min(run_first, shadow_queue.count);
+        trace_fetching(min(left, SHADOW_GROUP_RAYS), TRACE_ANY, local_index);
+        return;
+    }
     let i = folded_index(group) * 64u + local_index;
     if i >= shadow_queue.count {
         return;
@@ -28,6 +37,22 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
     let ray = shadow_queue.rays[i];
     let light = light_ray(ray.light, ray.origin);
     if !occluded(ray.origin, light.wi, light.distance) {
+        samples[ray.sample].radiance += ray.contribution;
+    }
+}
+
+// The workgroup's first queued ray, with SHADOW_GROUP_RAYS past 64.
+var<private> run_first: u32;
+
+fn fetched_ray(k: u32) -> FetchedRay {
+    let ray = shadow_queue.rays[run_first + k];
+    let light = light_ray(ray.light, ray.origin);
+    return FetchedRay(ray.origin, light.distance, light.wi);
+}
+
+fn fetched_hit(k: u32, hit: Hit) {
+    if hit.triangle == INVALID {
+        let ray = shadow_queue.rays[run_first + k];
         samples[ray.sample].radiance += ray.contribution;
     }
 }

@@ -83,6 +83,8 @@ impl Round {
 struct VolumePasses {
     ray_directions: BoundPass,
     trace: Option<BoundPass>,
+    /// DdgiPipelines::trace_per_probe: trace is dispatched as the blends are.
+    trace_per_probe: bool,
     shade: BoundPass,
     shadow: Option<BoundPass>,
     relocate: BoundPass,
@@ -198,6 +200,7 @@ impl DdgiVolume {
             VolumePasses {
                 ray_directions: bind(&pipelines.ray_directions)?,
                 trace: pipelines.trace.as_ref().map(bind).transpose()?,
+                trace_per_probe: pipelines.trace_per_probe,
                 shade: bind_shading(&pipelines.shade)?,
                 shadow: pipelines.shadow.as_ref().map(bind).transpose()?,
                 relocate: bind(&pipelines.relocate)?,
@@ -554,7 +557,11 @@ impl DdgiVolume {
         p.ray_directions
             .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
         if let Some(trace) = &p.trace {
-            trace.dispatch_indirect(encoder, profiler.as_deref_mut(), groups, offset);
+            let trace_offset = match p.trace_per_probe {
+                true => round.list() + ACTIVE_BLEND_GROUPS,
+                false => offset,
+            };
+            trace.dispatch_indirect(encoder, profiler.as_deref_mut(), groups, trace_offset);
         }
         if p.shadow.is_some() {
             encoder.clear_buffer(&r.shadow_queue, 0, Some(SHADOW_QUEUE_HEADER));

@@ -2,7 +2,10 @@
 // against a CPU oracle and to measure rays per second; its counting variant (COUNT_WORK 1)
 // also returns each ray's node visits and triangle tests, and ends a closest-hit ray's search
 // at its `stop` (trace_ray_until), which the timed pass leaves out.
-#import bvh
+// FETCH_GROUP_RAYS (0, or rays a workgroup takes; RayCaster::fetch_group_rays): where the scene
+// is one wide tree, a workgroup's lanes walk a run of rays and fetch the next as theirs ends
+// (bvh_fetch); 0 traces a ray a thread.
+#import bvh_fetch
 
 struct GpuRay {
     origin: vec3<f32>,
@@ -32,8 +35,14 @@ struct GpuRayCastParams {
 @group(1) @binding(2) var<storage, read_write> hits: array<GpuRayHit>;
 
 @compute @workgroup_size(64, 1, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) group: vec3<u32>) {
     bvh_thread(local_index);
+    if FETCH_GROUP_RAYS > 0u {
+        run_first = (group.x + group.y * groups.x) * FETCH_GROUP_RAYS;
+        let left = params.ray_count - min(run_first, params.ray_count);
+        trace_fetching(min(left, FETCH_GROUP_RAYS), select(TRACE_CLOSEST, TRACE_ANY, params.any_hit != 0u), local_index);
+        return;
+    }
     // 2D dispatch for ray counts above 65535 × 64.
     let index = id.x + id.y * groups.x * 64u;
     if index >= params.ray_count {
@@ -46,6 +55,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
     } else {
         hit = trace_ray(ray.origin, ray.dir, ray.t_max, params.any_hit != 0u);
     }
+    write_hit(index, hit);
+}
+
+fn write_hit(index: u32, hit: Hit) {
     var out: GpuRayHit;
     out.t = select(hit.t, -1.0, hit.triangle == INVALID);
     out.triangle = hit.triangle;
@@ -54,4 +67,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         out.work = min(work_nodes, 0xffffu) | (min(work_triangles, 0xffffu) << 16u);
     }
     hits[index] = out;
+}
+
+// The workgroup's first ray, with FETCH_GROUP_RAYS.
+var<private> run_first: u32;
+
+fn fetched_ray(k: u32) -> FetchedRay {
+    let ray = rays[run_first + k];
+    return FetchedRay(ray.origin, ray.t_max, ray.dir);
+}
+
+fn fetched_hit(k: u32, hit: Hit) {
+    write_hit(run_first + k, hit);
 }

@@ -418,6 +418,12 @@ impl GpuScene {
         ]
     }
 
+    /// Whether ray kernels can walk a workgroup's rays with lanes that fetch the next ray as
+    /// theirs ends (shaders/bvh_fetch.wgsl): the scene is one wide tree for good.
+    pub fn fetches_rays(&self) -> bool {
+        self.blas_layout == BlasLayout::Wide && self.instance_capacity <= 1
+    }
+
     /// Whether the scene can hold an emissive triangle: an instance's mesh has one, or room
     /// was left for a host to add one (shaders compiled without emitters skip them; animation
     /// moves emitters but never makes one).

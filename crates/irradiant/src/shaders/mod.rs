@@ -32,6 +32,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("sampling", include_str!("sampling.wgsl"))
             .with("scene", include_str!("scene.wgsl"))
             .with("bvh", include_str!("bvh.wgsl"))
+            .with("bvh_fetch", include_str!("bvh_fetch.wgsl"))
             .with("brdf", include_str!("brdf.wgsl"))
             .with("lights", include_str!("lights.wgsl"))
             .with("resampling", include_str!("resampling.wgsl"))
