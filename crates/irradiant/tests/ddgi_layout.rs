@@ -65,7 +65,7 @@ fn lanes_that_fetch_their_rays_give_the_same_light() {
     let gpu_scene = irradiant::GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
     let fetching = settings(true, 1);
     assert!(
-        fetching.fetches_probe_rays(&gpu_scene),
+        fetching.fetches_rays(&gpu_scene),
         "the scene does not take the fetching loop"
     );
     let mut one_a_thread = fetching.clone();

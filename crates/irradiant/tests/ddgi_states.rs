@@ -165,14 +165,16 @@ fn with_probe_states_off_every_probe_blends() {
 /// Trace, shade and the blends run only for the probes that update: ddgi/probe_states lists
 /// them for the next frame, with the indirect dispatches that cover them. The list must hold
 /// each updating probe once and nothing else, in grid order within each 64 probes, and the
-/// dispatches must cover it exactly, with one probe a workgroup and with four.
+/// dispatches must cover it exactly, with one probe a workgroup and with four, with trace's
+/// lanes fetching their rays and without.
 #[test]
 fn only_the_probes_that_update_are_listed_and_dispatched() {
     use irradiant::ddgi::constants::{PROBE_AWAKE, PROBE_STATE_MASK, PROBE_VIGILANT};
     let Some(ctx) = gpu() else { return };
     let (scene, mut settings) = dense_cornell();
-    for probes_per_group in [1, 4] {
+    for (probes_per_group, fetch_rays) in [(1, true), (4, true), (1, false)] {
         settings.speed.probes_per_group = probes_per_group;
+        settings.speed.fetch_rays = fetch_rays;
         let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
         for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
             session.render().unwrap();
@@ -217,6 +219,16 @@ fn only_the_probes_that_update_are_listed_and_dispatched() {
         assert_eq!(
             at(irradiant::ddgi::ACTIVE_BLEND_GROUPS),
             [count as u32, 1, 1]
+        );
+        // Fetching (the box is one wide tree), a workgroup takes a run of 64 of the listed
+        // probes' rays at this size; else trace takes shade's dispatch.
+        let trace_groups = match fetch_rays {
+            true => (count as u32 * settings.volume.rays_per_probe).div_ceil(64),
+            false => ray_groups,
+        };
+        assert_eq!(
+            at(irradiant::ddgi::ACTIVE_TRACE_GROUPS),
+            [trace_groups, 1, 1]
         );
     }
 }

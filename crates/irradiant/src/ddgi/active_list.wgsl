@@ -29,10 +29,21 @@ fn list_if(list: u32, probe: u32, listed: bool, li: u32) {
         if count > 0u {
             base = atomicAdd(&active_probes.lists[list].count, count);
             let listed = base + count;
-            let rays = folded_groups((listed + PROBES_PER_GROUP - 1u) / PROBES_PER_GROUP * ray_blocks(volume.rays_per_probe));
+            let ray_groups = (listed + PROBES_PER_GROUP - 1u) / PROBES_PER_GROUP * ray_blocks(volume.rays_per_probe);
+            let rays = folded_groups(ray_groups);
             atomicMax(&active_probes.lists[list].rays_x, rays.x);
             atomicMax(&active_probes.lists[list].rays_y, rays.y);
             atomicMax(&active_probes.lists[list].rays_z, 1u);
+            // The last workgroup to append counts the whole list; the maximum covers it (excess
+            // workgroups of ddgi/trace find no rays left).
+            var trace = rays;
+            if FETCH_RAYS == 1u {
+                let probe_rays = listed * volume.rays_per_probe;
+                trace = folded_groups((probe_rays + fetch_run(probe_rays) - 1u) / fetch_run(probe_rays));
+            }
+            atomicMax(&active_probes.lists[list].trace_x, trace.x);
+            atomicMax(&active_probes.lists[list].trace_y, trace.y);
+            atomicMax(&active_probes.lists[list].trace_z, 1u);
             let blends = folded_groups(listed);
             atomicMax(&active_probes.lists[list].blends_x, blends.x);
             atomicMax(&active_probes.lists[list].blends_y, blends.y);

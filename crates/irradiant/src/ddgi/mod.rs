@@ -26,8 +26,8 @@ pub mod types;
 mod volume;
 
 pub use resources::{
-    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES,
-    MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER,
+    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ACTIVE_TRACE_GROUPS,
+    ATLAS_TEXEL_BYTES, MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER,
 };
 pub use settings::{
     DdgiGatherSettings, DdgiReflectionSettings, DdgiSettings, DdgiSpeedSettings,
@@ -176,7 +176,9 @@ impl TechniqueKind for DdgiKind {
         let mut all: Vec<(&'static str, Workgroups)> = volume_descs(scene, &settings)
             .iter()
             .flat_map(|desc| {
-                DdgiDispatches::new(&crate::probes::ProbeGrid::new(desc), &settings, size).all()
+                // A ray a thread: the most workgroups ddgi/trace can take.
+                let grid = crate::probes::ProbeGrid::new(desc);
+                DdgiDispatches::new(&grid, &settings, size, false).all()
             })
             .collect();
         if settings.gather.rays_per_pixel > 0 {

@@ -16,9 +16,9 @@ pub struct DdgiPipelines {
     pub ray_directions: Arc<ComputePass>,
     /// ddgi/trace; absent when shade traces its own rays (`fuse_trace_and_shade`).
     pub trace: Option<Arc<ComputePass>>,
-    /// ddgi/trace takes a workgroup a listed probe, whose lanes fetch its rays in turn
-    /// (`DdgiSettings::fetches_probe_rays`): dispatched as the blends are.
-    pub trace_per_probe: bool,
+    /// ddgi/trace's and ddgi/shadow's lanes fetch their workgroup's next ray
+    /// (`DdgiSettings::fetches_rays`).
+    pub fetches_rays: bool,
     /// ddgi/shade, or ddgi/trace_shade when fused.
     pub shade: Arc<ComputePass>,
     /// Present when shadow rays are queued (`DdgiSettings::queues_shadow_rays`).
@@ -61,11 +61,7 @@ impl DdgiPipelines {
         common.extend(shader_constants(settings));
         common.push((
             "FETCH_RAYS",
-            format!("{}u", settings.fetches_probe_rays(scene) as u32),
-        ));
-        common.push((
-            "SHADOW_GROUP_RAYS",
-            format!("{}u", settings.shadow_group_rays(scene)),
+            format!("{}u", settings.fetches_rays(scene) as u32),
         ));
         let compile = |label: &'static str, source: &str, extra: Vec<(&'static str, String)>| {
             let desc = PassDesc::new(label, source)
@@ -109,7 +105,7 @@ impl DdgiPipelines {
                 include_str!("ray_directions.wgsl"),
                 vec![],
             )?,
-            trace_per_probe: settings.fetches_probe_rays(scene),
+            fetches_rays: settings.fetches_rays(scene),
             trace: if fused {
                 None
             } else {

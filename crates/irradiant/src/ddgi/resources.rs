@@ -17,17 +17,20 @@ use crate::probes::{AtlasLayout, ProbeGrid, atlas};
 /// at byte 4.
 pub const SHADOW_QUEUE_HEADER: u64 = 16;
 
-/// Bytes before the probe indices in `active_probes`: two list headers of 32 bytes (every
-/// updating probe, then the newly ones), each the count, the indirect dispatch of trace and
-/// shade (x, y, z at its byte 4) and of the blends (at its byte 16). The lists' probes follow,
-/// each `probe_count` long.
-pub const ACTIVE_PROBES_HEADER: u64 = 64;
-/// Where `active_probes` holds the indirect dispatch of ddgi/trace and ddgi/shade.
+/// Bytes before the probe indices in `active_probes`: two list headers of 48 bytes (every
+/// updating probe, then the newly ones), each the count, the indirect dispatch of shade (x, y,
+/// z at its byte 4), of the blends (at its byte 16) and of trace (at its byte 28). The lists'
+/// probes follow, each `probe_count` long.
+pub const ACTIVE_PROBES_HEADER: u64 = 96;
+/// Where `active_probes` holds the indirect dispatch of ddgi/shade (a thread a probe ray).
 pub const ACTIVE_RAY_GROUPS: u64 = 4;
 /// Where `active_probes` holds the indirect dispatch of the blends.
 pub const ACTIVE_BLEND_GROUPS: u64 = 16;
+/// Where `active_probes` holds the indirect dispatch of ddgi/trace (shade's, or runs of rays
+/// where its lanes fetch: `DdgiSettings::fetches_rays`).
+pub const ACTIVE_TRACE_GROUPS: u64 = 28;
 /// Where `active_probes` holds the newly probes' list (the convergence rounds').
-pub const NEWLY_LIST: u64 = 32;
+pub const NEWLY_LIST: u64 = 48;
 
 /// Bytes of `convergence` (DdgiConvergence): the round, padded.
 pub const CONVERGENCE_BYTES: u64 = 16;
@@ -393,8 +396,9 @@ fn every_probe_list(
     let mut words = vec![grid.probe_count];
     words.extend(dispatches.rays.counts());
     words.extend(dispatches.blends.counts());
-    words.push(0);
-    words.extend([0; 8]);
+    words.extend(dispatches.trace.counts());
+    words.extend([0; 2]);
+    words.extend([0; 12]);
     words.extend(0..grid.probe_count);
     words.extend(std::iter::repeat_n(0, grid.probe_count as usize));
     let buffer = storage_buffer(&ctx.device, label, words.len() as u64 * 4, extra);

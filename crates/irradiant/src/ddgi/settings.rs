@@ -251,11 +251,11 @@ pub struct DdgiSpeedSettings {
     /// 5 % faster with probe states on, 4 is 5 % faster with every probe tracing, and 4 is
     /// 30 % faster at 32 rays a probe (BENCHMARKS.md).
     pub probes_per_group: u32,
-    /// ddgi/trace and ddgi/shadow hand a workgroup a run of rays (a probe's, or 256 queued
-    /// shadow rays) whose lanes fetch the next ray as theirs ends, so that a warp keeps walking
-    /// while its longest ray does, instead of a ray a thread. Applies where the scene is one
-    /// wide tree for good (no room for a host's instances) and with one probe a workgroup;
-    /// costs a workgroup atomic a ray. The same hits.
+    /// ddgi/trace and ddgi/shadow hand a workgroup a run of rays whose lanes fetch the next
+    /// ray as theirs ends, so that a warp keeps walking while its longest ray does, instead of
+    /// a ray a thread. Runs grow past 64 rays only where the rays would fill more than 8 192
+    /// workgroups (so the GPU stays full). Applies where the scene is one wide tree for good
+    /// (no room for a host's instances); costs a workgroup atomic a ray. The same hits.
     pub fetch_rays: bool,
 }
 
@@ -440,19 +440,10 @@ impl DdgiSettings {
         Ok(settings)
     }
 
-    /// Whether ddgi/trace's lanes fetch a probe's rays in turn (`speed.fetch_rays`) in `scene`.
-    pub fn fetches_probe_rays(&self, scene: &GpuScene) -> bool {
-        self.speed.fetch_rays && self.speed.probes_per_group == 1 && scene.fetches_rays()
-    }
-
-    /// The queued shadow rays a workgroup of ddgi/shadow takes: a run whose lanes fetch
-    /// (`speed.fetch_rays`, FETCH_GROUP_RAYS of raycast/trace), else one a thread.
-    pub fn shadow_group_rays(&self, scene: &GpuScene) -> u32 {
-        if self.speed.fetch_rays && scene.fetches_rays() {
-            crate::raycast::FETCH_GROUP_RAYS
-        } else {
-            64
-        }
+    /// Whether ddgi/trace's and ddgi/shadow's lanes fetch their workgroup's next ray
+    /// (`speed.fetch_rays`) in `scene`: it is one wide tree for good.
+    pub fn fetches_rays(&self, scene: &GpuScene) -> bool {
+        self.speed.fetch_rays && scene.fetches_rays()
     }
 
     /// Whether ddgi/shade queues shadow rays for ddgi/shadow: `shadow_queue`, with one light

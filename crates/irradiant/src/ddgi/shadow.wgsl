@@ -1,7 +1,7 @@
 // ddgi/shadow: the shadow rays ddgi/shade queued (DdgiSettings::shadow_queue), densely with no
 // idle lanes; each adds its light to its probe ray's sample where nothing blocks it.
-// SHADOW_GROUP_RAYS (DdgiSettings::shadow_group_rays): the queued rays a workgroup takes; past
-// 64 its lanes walk them and fetch the next as theirs ends (bvh_fetch).
+// FETCH_RAYS (0 or 1, DdgiSettings::fetches_rays): a workgroup takes a run of fetch_run(count)
+// queued rays, and its lanes fetch the next as theirs ends (bvh_fetch).
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
@@ -24,10 +24,11 @@ struct DdgiShadowQueueRead {
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
-    if SHADOW_GROUP_RAYS > 64u {
-        run_first = folded_index(group) * SHADOW_GROUP_RAYS;
+    if FETCH_RAYS == 1u {
+        let run = fetch_run(shadow_queue.count);
+        run_first = folded_index(group) * run;
         let left = shadow_queue.count - min(run_first, shadow_queue.count);
-        trace_fetching(min(left, SHADOW_GROUP_RAYS), TRACE_ANY, local_index);
+        trace_fetching(min(left, run), TRACE_ANY, local_index);
         return;
     }
     let i = folded_index(group) * 64u + local_index;
@@ -41,7 +42,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
     }
 }
 
-// The workgroup's first queued ray, with SHADOW_GROUP_RAYS past 64.
+// The workgroup's first queued ray, with FETCH_RAYS.
 var<private> run_first: u32;
 
 fn fetched_ray(k: u32) -> FetchedRay {

@@ -61,8 +61,9 @@ fn probe_blends(word: u32) -> u32 {
 
 // The probes that update, listed by ddgi/probe_states at the end of each frame for the next
 // (DdgiResources::active_probes): two lists, each a header — its count, the indirect dispatch
-// of ddgi/trace and ddgi/shade (a workgroup a ray block of PROBES_PER_GROUP listed probes),
-// that of the blends (a workgroup a listed probe) — and its probes in grid order within each
+// of ddgi/shade (a workgroup a ray block of PROBES_PER_GROUP listed probes), that of the blends
+// (a workgroup a listed probe), that of ddgi/trace (shade's, or with FETCH_RAYS a workgroup a
+// run of fetch_run(rays) of the listed probes' rays) — and its probes in grid order within each
 // 64 of the states pass. List 0 holds every probe that updates; list 1 the newly vigilant and
 // newly awake among them, which the convergence rounds update (ddgi_convergence); list l's
 // probes start at l × probe_count. Workgroups then start only for probes that update: on
@@ -76,7 +77,11 @@ struct DdgiProbeListWrite {
     blends_x: atomic<u32>,
     blends_y: atomic<u32>,
     blends_z: atomic<u32>,
-    padding: u32,
+    trace_x: atomic<u32>,
+    trace_y: atomic<u32>,
+    trace_z: atomic<u32>,
+    padding0: u32,
+    padding1: u32,
 }
 
 struct DdgiActiveProbesWrite {
@@ -93,7 +98,11 @@ struct DdgiProbeList {
     blends_x: u32,
     blends_y: u32,
     blends_z: u32,
-    padding: u32,
+    trace_x: u32,
+    trace_y: u32,
+    trace_z: u32,
+    padding0: u32,
+    padding1: u32,
 }
 
 struct DdgiActiveProbes {

@@ -1,7 +1,7 @@
 // ddgi/trace: m rays from every probe that updates, closest hit, into the hit buffer.
-// FETCH_RAYS (0 or 1, DdgiSettings::fetches_rays): a workgroup a listed probe (the blends'
-// dispatch) whose lanes walk all its rays and fetch the next as theirs ends (bvh_fetch);
-// else a thread a ray (ray_slot).
+// FETCH_RAYS (0 or 1, DdgiSettings::fetches_rays): a workgroup takes a run of the listed
+// probes' rays, fetch_run of them in listed-probe-major order, and its lanes fetch the next as
+// theirs ends (bvh_fetch); else a thread a ray (ray_slot).
 #import ddgi_probes
 #import ddgi_rays
 #import ddgi_active
@@ -15,10 +15,11 @@
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
     if FETCH_RAYS == 1u {
-        fetching_probe = listed_probe(group);
-        let rays = select(volume.rays_per_probe, 0u, fetching_probe == NOT_LISTED);
-        fetching_origin = probe_position(min(fetching_probe, volume.probe_count - 1u));
-        trace_fetching(rays, TRACE_CLOSEST, local_index);
+        let probe_rays = listed_count() * volume.rays_per_probe;
+        let run = fetch_run(probe_rays);
+        run_first = folded_index(group) * run;
+        let left = probe_rays - min(run_first, probe_rays);
+        trace_fetching(min(left, run), TRACE_CLOSEST, local_index);
         return;
     }
     let slot = ray_slot(group, local_index);
@@ -38,14 +39,19 @@ fn write_hit(index: u32, hit: Hit) {
     hits[index] = out;
 }
 
-// The workgroup's probe and its position, with FETCH_RAYS.
-var<private> fetching_probe: u32;
-var<private> fetching_origin: vec3<f32>;
+// With FETCH_RAYS: the workgroup's first ray (in listed-probe-major order), and the hit slot of
+// the lane's ray, kept from fetched_ray for fetched_hit.
+var<private> run_first: u32;
+var<private> fetched_slot: u32;
 
 fn fetched_ray(k: u32) -> FetchedRay {
-    return FetchedRay(fetching_origin, volume.max_ray_distance, directions[k].xyz);
+    let listed_ray = run_first + k;
+    let ray = listed_ray % volume.rays_per_probe;
+    let probe = listed_at(listed_ray / volume.rays_per_probe);
+    fetched_slot = probe * volume.rays_per_probe + ray;
+    return FetchedRay(probe_position(probe), volume.max_ray_distance, directions[ray].xyz);
 }
 
 fn fetched_hit(k: u32, hit: Hit) {
-    write_hit(fetching_probe * volume.rays_per_probe + k, hit);
+    write_hit(fetched_slot, hit);
 }

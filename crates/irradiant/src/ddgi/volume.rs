@@ -10,8 +10,8 @@ use irradiant_scene::ProbeVolumeDesc;
 use super::constants::*;
 use super::pipelines::DdgiPipelines;
 use super::resources::{
-    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ATLAS_TEXEL_BYTES, DdgiResources,
-    MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER, tile_sides,
+    ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ACTIVE_TRACE_GROUPS,
+    ATLAS_TEXEL_BYTES, DdgiResources, MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER, tile_sides,
 };
 use super::settings::{DdgiSettings, ProbeWeights, RELOCATION_FRAMES};
 use super::types::GpuDdgiVolume;
@@ -83,8 +83,6 @@ impl Round {
 struct VolumePasses {
     ray_directions: BoundPass,
     trace: Option<BoundPass>,
-    /// DdgiPipelines::trace_per_probe: trace is dispatched as the blends are.
-    trace_per_probe: bool,
     shade: BoundPass,
     shadow: Option<BoundPass>,
     relocate: BoundPass,
@@ -177,7 +175,7 @@ impl DdgiVolume {
     ) -> Result<Self, RenderError> {
         let grid = ProbeGrid::new(desc);
         let atlas = AtlasLayout::new(grid.probe_count, &tile_sides(settings));
-        let dispatches = DdgiDispatches::new(&grid, settings, frame_size);
+        let dispatches = DdgiDispatches::new(&grid, settings, frame_size, pipelines.fetches_rays);
         let resources = DdgiResources::new(
             ctx,
             &grid,
@@ -200,7 +198,6 @@ impl DdgiVolume {
             VolumePasses {
                 ray_directions: bind(&pipelines.ray_directions)?,
                 trace: pipelines.trace.as_ref().map(bind).transpose()?,
-                trace_per_probe: pipelines.trace_per_probe,
                 shade: bind_shading(&pipelines.shade)?,
                 shadow: pipelines.shadow.as_ref().map(bind).transpose()?,
                 relocate: bind(&pipelines.relocate)?,
@@ -557,10 +554,7 @@ impl DdgiVolume {
         p.ray_directions
             .dispatch(encoder, profiler.as_deref_mut(), d.ray_directions);
         if let Some(trace) = &p.trace {
-            let trace_offset = match p.trace_per_probe {
-                true => round.list() + ACTIVE_BLEND_GROUPS,
-                false => offset,
-            };
+            let trace_offset = round.list() + ACTIVE_TRACE_GROUPS;
             trace.dispatch_indirect(encoder, profiler.as_deref_mut(), groups, trace_offset);
         }
         if p.shadow.is_some() {

@@ -42,13 +42,9 @@ impl RayWork {
 /// The compiled `raycast/trace` pass, for one scene's traversal settings.
 pub struct RayCaster {
     pass: Arc<ComputePass>,
-    group_rays: u32,
+    /// The scene is one wide tree: lanes fetch their workgroup's next ray (bvh_fetch.wgsl).
+    fetches: bool,
 }
-
-/// Rays a workgroup of `raycast/trace` takes where its lanes fetch (`FETCH_GROUP_RAYS`): four
-/// a lane. On an H200 (BENCHMARKS.md), two a lane left diffuse rays 6 % and any-hit rays 10 %
-/// slower than four; eight or sixteen slowed primary rays by 12–32 % for no diffuse gain.
-pub(crate) const FETCH_GROUP_RAYS: u32 = 4 * 64;
 
 /// Rays and hits resident on the GPU, for repeated timed traces.
 pub struct RayBatch {
@@ -84,17 +80,13 @@ impl RayCaster {
             }
         }
         // The counting variant counts a ray a thread: its counters live in trace()'s loops.
-        let group_rays = if scene.fetches_rays() && !count_work {
-            FETCH_GROUP_RAYS
-        } else {
-            0
-        };
-        constants.push(("FETCH_GROUP_RAYS", format!("{group_rays}u")));
+        let fetches = scene.fetches_rays() && !count_work;
+        constants.push(("FETCH_RAYS", format!("{}u", fetches as u32)));
         let pass = crate::shaders::pass(
             ctx,
             &PassDesc::new(label, include_str!("trace.wgsl")).constants(constants),
         )?;
-        Ok(Self { pass, group_rays })
+        Ok(Self { pass, fetches })
     }
 
     /// Uploads `rays` and binds them with a hit buffer, ready for [`RayCaster::record`];
@@ -152,9 +144,9 @@ impl RayCaster {
     /// The workgroups this pass dispatches for `rays` rays: a run of rays each where its lanes
     /// fetch.
     fn dispatched_workgroups(&self, rays: u64) -> Workgroups {
-        match self.group_rays {
-            0 => Self::workgroups(rays),
-            run => Workgroups::linear(rays.div_ceil(u64::from(run))),
+        match self.fetches {
+            true => Workgroups::linear(rays.div_ceil(crate::shaders::fetch_run(rays))),
+            false => Self::workgroups(rays),
         }
     }
 

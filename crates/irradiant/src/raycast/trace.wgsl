@@ -2,9 +2,9 @@
 // against a CPU oracle and to measure rays per second; its counting variant (COUNT_WORK 1)
 // also returns each ray's node visits and triangle tests, and ends a closest-hit ray's search
 // at its `stop` (trace_ray_until), which the timed pass leaves out.
-// FETCH_GROUP_RAYS (0, or rays a workgroup takes; RayCaster::fetch_group_rays): where the scene
-// is one wide tree, a workgroup's lanes walk a run of rays and fetch the next as theirs ends
-// (bvh_fetch); 0 traces a ray a thread.
+// FETCH_RAYS (0 or 1; 1 where GpuScene::fetches_rays): a workgroup's lanes walk a run of
+// fetch_run(ray_count) rays and fetch the next as theirs ends (bvh_fetch); 0 traces a ray a
+// thread.
 #import bvh_fetch
 
 struct GpuRay {
@@ -37,10 +37,11 @@ struct GpuRayCastParams {
 @compute @workgroup_size(64, 1, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) group: vec3<u32>) {
     bvh_thread(local_index);
-    if FETCH_GROUP_RAYS > 0u {
-        run_first = (group.x + group.y * groups.x) * FETCH_GROUP_RAYS;
+    if FETCH_RAYS == 1u {
+        let run = fetch_run(params.ray_count);
+        run_first = (group.x + group.y * groups.x) * run;
         let left = params.ray_count - min(run_first, params.ray_count);
-        trace_fetching(min(left, FETCH_GROUP_RAYS), select(TRACE_CLOSEST, TRACE_ANY, params.any_hit != 0u), local_index);
+        trace_fetching(min(left, run), select(TRACE_CLOSEST, TRACE_ANY, params.any_hit != 0u), local_index);
         return;
     }
     // 2D dispatch for ray counts above 65535 × 64.
@@ -69,7 +70,7 @@ fn write_hit(index: u32, hit: Hit) {
     hits[index] = out;
 }
 
-// The workgroup's first ray, with FETCH_GROUP_RAYS.
+// The workgroup's first ray, with FETCH_RAYS.
 var<private> run_first: u32;
 
 fn fetched_ray(k: u32) -> FetchedRay {

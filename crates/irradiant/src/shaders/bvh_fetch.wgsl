@@ -8,10 +8,15 @@
 // loop repeats trace_blas_wide's step by hand: a step shared as a function has cost the
 // traversal 4.5–6 % before (notes/traversal.md).
 //
+// A dispatch of such workgroups gives each a run of fetch_run(rays) (dispatch.wgsl): a run grows
+// only once the rays would fill more than FETCH_WORKGROUPS workgroups, so that the GPU stays full.
+//
 // The importing kernel defines
 //   fn fetched_ray(k: u32) -> FetchedRay   the run's ray k (k < count), in world space;
-//   fn fetched_hit(k: u32, hit: Hit)       what to do with its hit (hit.triangle INVALID: none).
+//   fn fetched_hit(k: u32, hit: Hit)       what to do with its hit (hit.triangle INVALID: none);
+// a lane calls fetched_hit(k) for the ray k of its last fetched_ray, before its next.
 #import bvh
+#import dispatch
 
 struct FetchedRay {
     origin: vec3<f32>,

@@ -13,3 +13,9 @@ fn folded_groups(workgroups: u32) -> vec2<u32> {
 fn folded_index(group: vec3<u32>) -> u32 {
     return group.x + group.y * WORKGROUP_FOLD;
 }
+
+// Rays a workgroup takes where its lanes fetch (bvh_fetch), for `rays` rays in all: 64 while
+// they fit in FETCH_WORKGROUPS workgroups, then as many more 64s as it takes (shaders::fetch_run).
+fn fetch_run(rays: u32) -> u32 {
+    return 64u * max(1u, (rays + 64u * FETCH_WORKGROUPS - 1u) / (64u * FETCH_WORKGROUPS));
+}

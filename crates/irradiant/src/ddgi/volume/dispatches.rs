@@ -22,18 +22,33 @@ pub struct DdgiDispatches {
     pub blend_weights: Workgroups,
     /// The blends: one workgroup a probe (as `rays`, the most of an indirect dispatch).
     pub blends: Workgroups,
+    /// ddgi/trace when every probe updates: `rays`, or where its lanes fetch a workgroup a run
+    /// of the probe rays (`crate::shaders::fetch_run`; at most `rays`).
+    pub trace: Workgroups,
     /// ddgi/resolve and ddgi/visualize over the image.
     pub image: Workgroups,
 }
 
 impl DdgiDispatches {
-    /// The dispatches of a volume of this grid, with these settings, at this image size.
-    pub fn new(grid: &ProbeGrid, settings: &DdgiSettings, (width, height): (u32, u32)) -> Self {
+    /// The dispatches of a volume of this grid, with these settings, at this image size;
+    /// `fetches`: ddgi/trace's lanes fetch their rays (`DdgiSettings::fetches_rays`).
+    pub fn new(
+        grid: &ProbeGrid,
+        settings: &DdgiSettings,
+        (width, height): (u32, u32),
+        fetches: bool,
+    ) -> Self {
         let v = &settings.volume;
         let per_group = settings.speed.probes_per_group;
         let ray_groups = grid.probe_count.div_ceil(per_group) as u64
             * v.rays_per_probe.div_ceil(64 / per_group) as u64;
+        let probe_rays = grid.probe_count as u64 * v.rays_per_probe as u64;
+        let trace = match fetches {
+            true => Workgroups::linear(probe_rays.div_ceil(crate::shaders::fetch_run(probe_rays))),
+            false => Workgroups::linear(ray_groups),
+        };
         Self {
+            trace,
             ray_directions: Workgroups::for_threads(v.rays_per_probe as u64, 64),
             rays: Workgroups::linear(ray_groups),
             probes: Workgroups::for_threads(grid.probe_count as u64, 64),
@@ -49,7 +64,7 @@ impl DdgiDispatches {
     pub fn all(&self) -> Vec<(&'static str, Workgroups)> {
         vec![
             ("ddgi/ray_directions", self.ray_directions),
-            ("ddgi/trace", self.rays),
+            ("ddgi/trace", self.trace),
             ("ddgi/shade", self.rays),
             ("ddgi/between_volumes", self.rays),
             ("ddgi/relocate", self.probes),
