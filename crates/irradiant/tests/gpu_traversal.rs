@@ -6,7 +6,7 @@ mod common;
 use glam::{Mat4, Vec3, Vec4};
 use irradiant::GpuScene;
 use irradiant::gpu_types::GpuRay;
-use irradiant::raycast::RayCaster;
+use irradiant::raycast::{RayCaster, RayOrder};
 use irradiant_bvh::{brute_force_closest_hit, intersect_triangle};
 use irradiant_scene::{AlphaMode, Instance, Material, Mesh, Scene, Texture};
 use rand::{Rng, SeedableRng, rngs::StdRng};
@@ -126,7 +126,8 @@ fn hits_match_brute_force(settings: irradiant::GpuSceneSettings) {
 }
 
 /// 2 000 random rays over `scene`: the GPU's closest hits are the CPU's, and more than
-/// `least_hits` of them hit something.
+/// `least_hits` of them hit something. Where the scene is one wide tree, the rays are traced by
+/// lanes that fetch them in three runs (bvh_fetch.wgsl) and a ray a thread, with the same hits.
 fn hits_in_scene_match_brute_force(
     scene: &Scene,
     settings: &irradiant::GpuSceneSettings,
@@ -135,9 +136,19 @@ fn hits_in_scene_match_brute_force(
 ) {
     let Some(ctx) = common::gpu() else { return };
     let gpu_scene = GpuScene::new(&ctx, scene, settings).unwrap();
-    let caster = RayCaster::new(&ctx, &gpu_scene).unwrap();
+    let caster = RayCaster::with_fetch_workgroups(&ctx, &gpu_scene, 3).unwrap();
     let rays = random_rays(rng, 2000);
-    let hits = caster.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+    let hits = caster
+        .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Incoherent)
+        .unwrap();
+    // A ray a thread (RayOrder::Coherent) and lanes that fetch where the scene allows: the
+    // same hits.
+    let in_order = caster
+        .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Coherent)
+        .unwrap();
+    for (a, b) in hits.iter().zip(&in_order) {
+        assert_eq!((a.t, a.triangle, a.instance), (b.t, b.triangle, b.instance));
+    }
     let (tris, ids) = world_triangles(scene);
     let mut hit_count = 0;
     for (ray, hit) in rays.iter().zip(&hits) {
@@ -237,8 +248,8 @@ fn one_loop_over_both_levels_finds_the_closest_hits() {
     assert!(error.to_string().contains("no instance"), "{error}");
 }
 
-/// A scene of one wide tree for good hands raycast/trace's workgroups runs of 256 rays whose
-/// lanes fetch the next ray as theirs ends (bvh_fetch.wgsl). 2 000 rays end in a short run;
+/// A scene of one wide tree for good hands raycast/trace's workgroups runs of rays whose lanes
+/// fetch the next ray as theirs ends (bvh_fetch.wgsl): three runs, the last a short one, and
 /// the instance is moved and scaled, so its rays go to object space. Any-hit rays agree.
 #[test]
 fn lanes_that_fetch_their_next_ray_find_the_closest_and_any_hits() {
@@ -257,13 +268,17 @@ fn lanes_that_fetch_their_next_ray_find_the_closest_and_any_hits() {
     );
     hits_in_scene_match_brute_force(&one, &settings, &mut rng, 200);
 
-    let caster = RayCaster::new(&ctx, &gpu_scene).unwrap();
+    let caster = RayCaster::with_fetch_workgroups(&ctx, &gpu_scene, 3).unwrap();
     let mut rays = random_rays(&mut rng, 1000);
     for r in &mut rays {
         r.t_max = 5.0;
     }
-    let closest = caster.trace(&ctx, &gpu_scene, &rays, false).unwrap();
-    let any = caster.trace(&ctx, &gpu_scene, &rays, true).unwrap();
+    let closest = caster
+        .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Incoherent)
+        .unwrap();
+    let any = caster
+        .trace(&ctx, &gpu_scene, &rays, true, RayOrder::Incoherent)
+        .unwrap();
     let blocked = closest.iter().filter(|c| c.t > 0.0).count();
     assert!(blocked > 100, "too few rays blocked ({blocked})");
     for (c, a) in closest.iter().zip(&any) {
@@ -285,8 +300,12 @@ fn any_hit_agrees_with_closest_hit_on_occlusion() {
     for r in &mut rays {
         r.t_max = 5.0;
     }
-    let closest = caster.trace(&ctx, &gpu_scene, &rays, false).unwrap();
-    let any = caster.trace(&ctx, &gpu_scene, &rays, true).unwrap();
+    let closest = caster
+        .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Incoherent)
+        .unwrap();
+    let any = caster
+        .trace(&ctx, &gpu_scene, &rays, true, RayOrder::Incoherent)
+        .unwrap();
     for (c, a) in closest.iter().zip(&any) {
         assert_eq!(c.t < 0.0, a.t < 0.0);
         if c.t > 0.0 {
@@ -309,7 +328,9 @@ fn moving_an_instance_moves_its_hits_without_rebuilding_meshes() {
     let mut moved = scene.clone();
     moved.instances[0].transform = pose.instance_transforms[0];
     let rays = random_rays(&mut rng, 500);
-    let hits = caster.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+    let hits = caster
+        .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Incoherent)
+        .unwrap();
     let (tris, _) = world_triangles(&moved);
     for (ray, hit) in rays.iter().zip(&hits) {
         let expected = brute_force_closest_hit(ray.origin.into(), ray.dir.into(), &tris, 1e20);
@@ -386,7 +407,13 @@ fn alpha_masked_holes_let_rays_through() {
         stop: 0.0,
     };
     let hits = caster
-        .trace(&ctx, &gpu_scene, &[ray(0.1), ray(0.9)], false)
+        .trace(
+            &ctx,
+            &gpu_scene,
+            &[ray(0.1), ray(0.9)],
+            false,
+            RayOrder::Incoherent,
+        )
         .unwrap();
     assert!(
         (hits[0].t - 1.0).abs() < 1e-5,
@@ -432,9 +459,15 @@ fn the_counting_variant_counts_the_traversals_work() {
         let gpu_scene = GpuScene::new(&ctx, &scene, &settings).unwrap();
         let timed = RayCaster::new(&ctx, &gpu_scene).unwrap();
         let counting = RayCaster::counting(&ctx, &gpu_scene).unwrap();
-        let closest = counting.trace(&ctx, &gpu_scene, &rays, false).unwrap();
-        let any = counting.trace(&ctx, &gpu_scene, &rays, true).unwrap();
-        let plain = timed.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+        let closest = counting
+            .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Incoherent)
+            .unwrap();
+        let any = counting
+            .trace(&ctx, &gpu_scene, &rays, true, RayOrder::Incoherent)
+            .unwrap();
+        let plain = timed
+            .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Incoherent)
+            .unwrap();
         for (c, p) in closest.iter().zip(&plain) {
             assert_eq!((c.t, c.triangle, c.instance), (p.t, p.triangle, p.instance));
             assert_eq!(p.work, 0, "the timed pass counts nothing");
@@ -488,9 +521,13 @@ fn a_search_stopped_short_finds_a_blocker_or_the_closest_hit() {
         let t = hit.map_or(10.0, |h| h.t);
         ray.stop = if i % 2 == 0 { t * 1.5 } else { t * 0.9 };
     }
-    let stopped = counting.trace(&ctx, &gpu_scene, &rays, false).unwrap();
+    let stopped = counting
+        .trace(&ctx, &gpu_scene, &rays, false, RayOrder::Incoherent)
+        .unwrap();
     let full_rays: Vec<GpuRay> = rays.iter().map(|r| GpuRay { stop: 0.0, ..*r }).collect();
-    let full = counting.trace(&ctx, &gpu_scene, &full_rays, false).unwrap();
+    let full = counting
+        .trace(&ctx, &gpu_scene, &full_rays, false, RayOrder::Incoherent)
+        .unwrap();
     let (mut blocked_stopped, mut blocked_full) = (Vec::new(), Vec::new());
     for (i, ((ray, expected), (s, f))) in rays
         .iter()

@@ -9,8 +9,8 @@ use common::*;
 use glam::{UVec2, Vec3};
 use irradiant::frame::Image;
 use irradiant::lightfield::{Lightfield, LightfieldSettings, agreement};
-use irradiant::raycast::RayCaster;
 use irradiant::raycast::types::GpuRay;
+use irradiant::raycast::{RayCaster, RayOrder};
 use irradiant::{Preset, Session, SessionSettings, TechniqueSpec};
 
 /// Bakes lavapipe can afford: 3×3×3 probes, 128² maps, two bounces.
@@ -79,7 +79,9 @@ fn the_baked_maps_hold_what_the_bvh_sees() {
                 }
             })
             .collect();
-        let hits = caster.trace(&ctx, s.gpu_scene(), &rays, false).unwrap();
+        let hits = caster
+            .trace(&ctx, s.gpu_scene(), &rays, false, RayOrder::Incoherent)
+            .unwrap();
         for (i, (texel, hit)) in texels.iter().zip(&hits).enumerate() {
             // f16 keeps 11 significant bits.
             let same = if hit.t < 0.0 {

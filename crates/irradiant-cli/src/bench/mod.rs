@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use irradiant::pathtrace::{PathSchedule, PathTraceSettings, PathTracer};
-use irradiant::raycast::{RayCaster, RayWork};
+use irradiant::raycast::{RayCaster, RayOrder, RayWork};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings, TechniqueSpec};
 use irradiant_gpu::{Profiler, wgpu};
 use serde::Serialize;
@@ -462,28 +462,44 @@ fn time_rays(
     let caster = RayCaster::new(ctx, gpu_scene)?;
     let counting = RayCaster::counting(ctx, gpu_scene)?;
     let primary = rays::primary_rays(scene, size);
-    let hits = caster.trace(ctx, gpu_scene, &primary, false)?;
+    let hits = caster.trace(ctx, gpu_scene, &primary, false, RayOrder::Coherent)?;
     let diffuse = rays::diffuse_rays(scene, gpu_scene, &primary, &hits);
     if let Some(dir) = dump {
-        let diffuse_hits = caster.trace(ctx, gpu_scene, &diffuse, false)?;
+        let diffuse_hits = caster.trace(ctx, gpu_scene, &diffuse, false, RayOrder::Incoherent)?;
         let sets = [
             ("primary", primary.as_slice(), hits.as_slice()),
             ("diffuse", diffuse.as_slice(), diffuse_hits.as_slice()),
         ];
         rays::dump(dir, scene, &sets)?;
     }
-    for (label, rays, any_hit) in [
-        ("raycast/trace (primary)", &primary, false),
-        ("raycast/trace (diffuse)", &diffuse, false),
-        ("raycast/trace (diffuse, any hit)", &diffuse, true),
+    // Primary rays in pixel order trace a ray a thread; the bounces' lanes fetch (RayOrder).
+    for (label, rays, any_hit, ray_order) in [
+        (
+            "raycast/trace (primary)",
+            &primary,
+            false,
+            RayOrder::Coherent,
+        ),
+        (
+            "raycast/trace (diffuse)",
+            &diffuse,
+            false,
+            RayOrder::Incoherent,
+        ),
+        (
+            "raycast/trace (diffuse, any hit)",
+            &diffuse,
+            true,
+            RayOrder::Incoherent,
+        ),
     ] {
-        let batch = caster.upload(ctx, gpu_scene, rays, any_hit)?;
+        let batch = caster.upload(ctx, gpu_scene, rays, any_hit, ray_order)?;
         let times = time_pass(ctx, timing, |encoder, profiler| {
             caster.record(encoder, &batch, profiler);
             Ok(())
         })?;
         let mut pass = pass_record(&scene.name, order, label, &times, Some(rays.len() as u64));
-        let work = RayWork::of(&counting.trace(ctx, gpu_scene, rays, any_hit)?);
+        let work = RayWork::of(&counting.trace(ctx, gpu_scene, rays, any_hit, ray_order)?);
         pass.work = Some(RayWorkRecord {
             node_visits_per_ray: work.node_visits,
             triangle_tests_per_ray: work.triangle_tests,

@@ -39,7 +39,8 @@ fn list_if(list: u32, probe: u32, listed: bool, li: u32) {
             var trace = rays;
             if FETCH_RAYS == 1u {
                 let probe_rays = listed * volume.rays_per_probe;
-                trace = folded_groups((probe_rays + fetch_run(probe_rays) - 1u) / fetch_run(probe_rays));
+                let run = fetch_run(probe_rays, FETCH_WORKGROUPS);
+                trace = folded_groups((probe_rays + run - 1u) / run);
             }
             atomicMax(&active_probes.lists[list].trace_x, trace.x);
             atomicMax(&active_probes.lists[list].trace_y, trace.y);

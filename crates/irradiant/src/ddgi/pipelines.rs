@@ -63,6 +63,10 @@ impl DdgiPipelines {
             "FETCH_RAYS",
             format!("{}u", settings.fetches_rays(scene) as u32),
         ));
+        common.push((
+            "FETCH_WORKGROUPS",
+            format!("{}u", settings.speed.fetch_workgroups),
+        ));
         let compile = |label: &'static str, source: &str, extra: Vec<(&'static str, String)>| {
             let desc = PassDesc::new(label, source)
                 .constants(common.clone())

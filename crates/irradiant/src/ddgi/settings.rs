@@ -257,6 +257,11 @@ pub struct DdgiSpeedSettings {
     /// workgroups (so the GPU stays full). Applies where the scene is one wide tree for good
     /// (no room for a host's instances); costs a workgroup atomic a ray. The same hits.
     pub fetch_rays: bool,
+    /// With `fetch_rays`: the workgroups a dispatch of rays holds at most before each takes
+    /// more than 64 rays. Fewer give longer runs, whose lanes idle less, but can leave part of
+    /// a large GPU empty; 8 192 suits an H200 (132 multiprocessors), a GPU with fewer may gain
+    /// from less.
+    pub fetch_workgroups: u32,
 }
 
 /// The traced final gather at the pixels (`[technique.gather]`).
@@ -385,6 +390,7 @@ impl DdgiSettings {
                 coherent_rays: true,
                 probes_per_group: 1,
                 fetch_rays: true,
+                fetch_workgroups: crate::shaders::FETCH_WORKGROUPS,
             },
             gather: DdgiGatherSettings {
                 rays_per_pixel: 0,
@@ -561,6 +567,13 @@ impl DdgiSettings {
             u.blind_threshold,
             0.0,
             1.0,
+        )?;
+        // One workgroup a dispatch at least; past a million no GPU is filled any better.
+        check_range(
+            "technique.speed.fetch_workgroups",
+            self.speed.fetch_workgroups,
+            1,
+            1 << 20,
         )?;
         let g = &self.gather;
         check_range("technique.gather.rays_per_pixel", g.rays_per_pixel, 0, 64)?;

@@ -167,10 +167,10 @@ fn enqueue_shadow(queued: bool, ray: GpuDdgiShadowRay, local_index: u32) {
         var base = 0u;
         if count > 0u {
             base = atomicAdd(&shadow_queue.count, count);
-            // A thread a ray, or with FETCH_RAYS runs of fetch_run(queued) rays (bvh_fetch); the
-            // last workgroup to append counts every queued ray, and the maximum covers it.
+            // A thread a ray, or with FETCH_RAYS runs of fetch_run rays (bvh_fetch); the last
+            // workgroup to append counts every queued ray, and the maximum covers it.
             let in_queue = base + count;
-            let run = select(64u, fetch_run(in_queue), FETCH_RAYS == 1u);
+            let run = select(64u, fetch_run(in_queue, FETCH_WORKGROUPS), FETCH_RAYS == 1u);
             let groups = folded_groups((in_queue + run - 1u) / run);
             atomicMax(&shadow_queue.groups_x, groups.x);
             atomicMax(&shadow_queue.groups_y, groups.y);

@@ -1,7 +1,7 @@
 // ddgi/shadow: the shadow rays ddgi/shade queued (DdgiSettings::shadow_queue), densely with no
 // idle lanes; each adds its light to its probe ray's sample where nothing blocks it.
-// FETCH_RAYS (0 or 1, DdgiSettings::fetches_rays): a workgroup takes a run of fetch_run(count)
-// queued rays, and its lanes fetch the next as theirs ends (bvh_fetch).
+// FETCH_RAYS (0 or 1, DdgiSettings::fetches_rays): a workgroup takes a run of fetch_run queued
+// rays, and its lanes fetch the next as theirs ends (bvh_fetch).
 #import ddgi_volume
 #import ddgi_rays
 #import ddgi_states
@@ -25,10 +25,10 @@ struct DdgiShadowQueueRead {
 fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
     if FETCH_RAYS == 1u {
-        let run = fetch_run(shadow_queue.count);
+        let run = fetch_run(shadow_queue.count, FETCH_WORKGROUPS);
         run_first = folded_index(group) * run;
         let left = shadow_queue.count - min(run_first, shadow_queue.count);
-        trace_fetching(min(left, run), TRACE_ANY, local_index);
+        trace_run(min(left, run), TRACE_ANY, local_index);
         return;
     }
     let i = folded_index(group) * 64u + local_index;

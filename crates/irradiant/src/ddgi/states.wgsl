@@ -63,7 +63,7 @@ fn probe_blends(word: u32) -> u32 {
 // (DdgiResources::active_probes): two lists, each a header — its count, the indirect dispatch
 // of ddgi/shade (a workgroup a ray block of PROBES_PER_GROUP listed probes), that of the blends
 // (a workgroup a listed probe), that of ddgi/trace (shade's, or with FETCH_RAYS a workgroup a
-// run of fetch_run(rays) of the listed probes' rays) — and its probes in grid order within each
+// run of fetch_run of the listed probes' rays) — and its probes in grid order within each
 // 64 of the states pass. List 0 holds every probe that updates; list 1 the newly vigilant and
 // newly awake among them, which the convergence rounds update (ddgi_convergence); list l's
 // probes start at l × probe_count. Workgroups then start only for probes that update: on

@@ -16,10 +16,10 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
     bvh_thread(local_index);
     if FETCH_RAYS == 1u {
         let probe_rays = listed_count() * volume.rays_per_probe;
-        let run = fetch_run(probe_rays);
+        let run = fetch_run(probe_rays, FETCH_WORKGROUPS);
         run_first = folded_index(group) * run;
         let left = probe_rays - min(run_first, probe_rays);
-        trace_fetching(min(left, run), TRACE_CLOSEST, local_index);
+        trace_run(min(left, run), TRACE_CLOSEST, local_index);
         return;
     }
     let slot = ray_slot(group, local_index);

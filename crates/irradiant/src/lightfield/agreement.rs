@@ -8,8 +8,8 @@ use glam::Vec3;
 use super::Lightfield;
 use crate::RenderError;
 use crate::Session;
-use crate::raycast::RayCaster;
 use crate::raycast::types::GpuRay;
+use crate::raycast::{RayCaster, RayOrder};
 
 /// How many rays agreed, and how the others failed.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -100,8 +100,13 @@ pub fn measure(session: &Session, count: u32, seed: u64) -> Result<Agreement, Re
             }
         })
         .collect();
-    let bvh =
-        RayCaster::new(ctx, session.gpu_scene())?.trace(ctx, session.gpu_scene(), &rays, false)?;
+    let bvh = RayCaster::new(ctx, session.gpu_scene())?.trace(
+        ctx,
+        session.gpu_scene(),
+        &rays,
+        false,
+        RayOrder::Incoherent,
+    )?;
     let lf = lightfield.trace_rays(ctx, session.gpu_scene(), session.frame(), &rays)?;
     let grid = lightfield.grid();
     let texel_angle =

@@ -41,9 +41,25 @@ impl RayWork {
 
 /// The compiled `raycast/trace` pass, for one scene's traversal settings.
 pub struct RayCaster {
+    /// A ray a thread.
     pass: Arc<ComputePass>,
-    /// The scene is one wide tree: lanes fetch their workgroup's next ray (bvh_fetch.wgsl).
-    fetches: bool,
+    /// Where the scene is one wide tree: lanes that fetch their workgroup's next ray
+    /// (bvh_fetch.wgsl).
+    fetching: Option<Arc<ComputePass>>,
+    /// The most workgroups a fetching dispatch holds before its runs pass 64 rays.
+    fetch_workgroups: u32,
+}
+
+/// How a batch's rays lie, which picks how they are traced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayOrder {
+    /// Neighbouring rays walk the same nodes (a camera's rays in pixel order): a ray a thread.
+    /// Fetching would scatter a warp's lanes over rays at different depths of the tree: 6–7 %
+    /// slower on primary rays (H200, BENCHMARKS.md).
+    Coherent,
+    /// Rays in no useful order (bounces, shadow rays): where the scene is one wide tree, a
+    /// workgroup's lanes fetch its next ray as theirs ends (15–36 % faster, H200).
+    Incoherent,
 }
 
 /// Rays and hits resident on the GPU, for repeated timed traces.
@@ -51,6 +67,8 @@ pub struct RayBatch {
     /// Rays in the batch.
     pub count: u32,
     bound: BoundPass,
+    /// Traced by lanes that fetch: a run of rays a workgroup.
+    fetching: bool,
     /// One [`GpuRayHit`] a ray, written by each trace.
     pub hits: wgpu::Buffer,
 }
@@ -58,13 +76,35 @@ pub struct RayBatch {
 impl RayCaster {
     /// Compiles the pass with the scene's traversal constants.
     pub fn new(ctx: &GpuContext, scene: &GpuScene) -> Result<Self, RenderError> {
-        Self::compile(ctx, scene, "raycast/trace", false)
+        Self::compile(
+            ctx,
+            scene,
+            "raycast/trace",
+            false,
+            crate::shaders::FETCH_WORKGROUPS,
+        )
+    }
+
+    /// As [`RayCaster::new`], with fetching dispatches of at most `workgroups` workgroups
+    /// (a run of rays each; a test's few rays then take runs past 64).
+    pub fn with_fetch_workgroups(
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        workgroups: u32,
+    ) -> Result<Self, RenderError> {
+        Self::compile(ctx, scene, "raycast/trace", false, workgroups.max(1))
     }
 
     /// The counting variant: the same traversal, each hit's `work` holding the ray's node
     /// visits and triangle tests (slower; for the work per ray, not for timing).
     pub fn counting(ctx: &GpuContext, scene: &GpuScene) -> Result<Self, RenderError> {
-        Self::compile(ctx, scene, "raycast/count", true)
+        Self::compile(
+            ctx,
+            scene,
+            "raycast/count",
+            true,
+            crate::shaders::FETCH_WORKGROUPS,
+        )
     }
 
     fn compile(
@@ -72,31 +112,44 @@ impl RayCaster {
         scene: &GpuScene,
         label: &'static str,
         count_work: bool,
+        fetch_workgroups: u32,
     ) -> Result<Self, RenderError> {
-        let mut constants = scene.shader_constants();
-        for (name, value) in &mut constants {
-            if *name == "COUNT_WORK" {
-                *value = format!("{}u", count_work as u32);
+        let pass = |fetch: bool| {
+            let mut constants = scene.shader_constants();
+            for (name, value) in &mut constants {
+                if *name == "COUNT_WORK" {
+                    *value = format!("{}u", count_work as u32);
+                }
             }
-        }
+            constants.push(("FETCH_RAYS", format!("{}u", fetch as u32)));
+            constants.push(("FETCH_WORKGROUPS", format!("{fetch_workgroups}u")));
+            crate::shaders::pass(
+                ctx,
+                &PassDesc::new(label, include_str!("trace.wgsl")).constants(constants),
+            )
+        };
         // The counting variant counts a ray a thread: its counters live in trace()'s loops.
-        let fetches = scene.fetches_rays() && !count_work;
-        constants.push(("FETCH_RAYS", format!("{}u", fetches as u32)));
-        let pass = crate::shaders::pass(
-            ctx,
-            &PassDesc::new(label, include_str!("trace.wgsl")).constants(constants),
-        )?;
-        Ok(Self { pass, fetches })
+        let fetching = match scene.fetches_rays() && !count_work {
+            true => Some(pass(true)?),
+            false => None,
+        };
+        Ok(Self {
+            pass: pass(false)?,
+            fetching,
+            fetch_workgroups,
+        })
     }
 
     /// Uploads `rays` and binds them with a hit buffer, ready for [`RayCaster::record`];
-    /// `any_hit` stops each ray at its first hit (shadow rays).
+    /// `any_hit` stops each ray at its first hit (shadow rays); `order` picks how they are
+    /// traced.
     pub fn upload(
         &self,
         ctx: &GpuContext,
         scene: &GpuScene,
         rays: &[GpuRay],
         any_hit: bool,
+        order: RayOrder,
     ) -> Result<RayBatch, RenderError> {
         let params = GpuRayCastParams {
             ray_count: rays.len() as u32,
@@ -128,10 +181,14 @@ impl RayCaster {
             .buffer("params", &params)
             .buffer("rays", &ray_buffer)
             .buffer("hits", &hits);
-        let bound = self.pass.bind(ctx, &[&scene.resources(), &own])?;
+        let (pass, fetching) = match (&self.fetching, order) {
+            (Some(pass), RayOrder::Incoherent) => (pass, true),
+            _ => (&self.pass, false),
+        };
         Ok(RayBatch {
             count: rays.len() as u32,
-            bound,
+            bound: pass.bind(ctx, &[&scene.resources(), &own])?,
+            fetching,
             hits,
         })
     }
@@ -141,11 +198,13 @@ impl RayCaster {
         Workgroups::for_threads(rays, 64)
     }
 
-    /// The workgroups this pass dispatches for `rays` rays: a run of rays each where its lanes
-    /// fetch.
-    fn dispatched_workgroups(&self, rays: u64) -> Workgroups {
-        match self.fetches {
-            true => Workgroups::linear(rays.div_ceil(crate::shaders::fetch_run(rays))),
+    /// The workgroups a batch takes: a run of rays each where its lanes fetch.
+    fn batch_workgroups(&self, batch: &RayBatch) -> Workgroups {
+        let rays = u64::from(batch.count);
+        match batch.fetching {
+            true => Workgroups::linear(
+                rays.div_ceil(crate::shaders::fetch_run(rays, self.fetch_workgroups)),
+            ),
             false => Self::workgroups(rays),
         }
     }
@@ -157,11 +216,9 @@ impl RayCaster {
         batch: &RayBatch,
         profiler: Option<&mut Profiler>,
     ) {
-        batch.bound.dispatch(
-            encoder,
-            profiler,
-            self.dispatched_workgroups(batch.count as u64),
-        );
+        batch
+            .bound
+            .dispatch(encoder, profiler, self.batch_workgroups(batch));
     }
 
     /// Traces `rays` and returns their hits.
@@ -171,8 +228,9 @@ impl RayCaster {
         scene: &GpuScene,
         rays: &[GpuRay],
         any_hit: bool,
+        order: RayOrder,
     ) -> Result<Vec<GpuRayHit>, RenderError> {
-        let batch = self.upload(ctx, scene, rays, any_hit)?;
+        let batch = self.upload(ctx, scene, rays, any_hit, order)?;
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {

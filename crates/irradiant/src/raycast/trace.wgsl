@@ -3,8 +3,8 @@
 // also returns each ray's node visits and triangle tests, and ends a closest-hit ray's search
 // at its `stop` (trace_ray_until), which the timed pass leaves out.
 // FETCH_RAYS (0 or 1; 1 where GpuScene::fetches_rays): a workgroup's lanes walk a run of
-// fetch_run(ray_count) rays and fetch the next as theirs ends (bvh_fetch); 0 traces a ray a
-// thread.
+// fetch_run(ray_count, FETCH_WORKGROUPS) rays and fetch the next as theirs ends (bvh_fetch);
+// 0 traces a ray a thread.
 #import bvh_fetch
 
 struct GpuRay {
@@ -38,10 +38,10 @@ struct GpuRayCastParams {
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) group: vec3<u32>) {
     bvh_thread(local_index);
     if FETCH_RAYS == 1u {
-        let run = fetch_run(params.ray_count);
+        let run = fetch_run(params.ray_count, FETCH_WORKGROUPS);
         run_first = (group.x + group.y * groups.x) * run;
         let left = params.ray_count - min(run_first, params.ray_count);
-        trace_fetching(min(left, run), select(TRACE_CLOSEST, TRACE_ANY, params.any_hit != 0u), local_index);
+        trace_run(min(left, run), select(TRACE_CLOSEST, TRACE_ANY, params.any_hit != 0u), local_index);
         return;
     }
     // 2D dispatch for ray counts above 65535 × 64.

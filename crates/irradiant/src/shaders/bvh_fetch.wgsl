@@ -8,8 +8,9 @@
 // loop repeats trace_blas_wide's step by hand: a step shared as a function has cost the
 // traversal 4.5–6 % before (notes/traversal.md).
 //
-// A dispatch of such workgroups gives each a run of fetch_run(rays) (dispatch.wgsl): a run grows
-// only once the rays would fill more than FETCH_WORKGROUPS workgroups, so that the GPU stays full.
+// A dispatch of such workgroups gives each a run of fetch_run(rays, FETCH_WORKGROUPS) rays
+// (dispatch.wgsl): a run grows past 64 only once the rays would fill more than FETCH_WORKGROUPS
+// workgroups (a constant of the pass), so that the GPU stays full.
 //
 // The importing kernel defines
 //   fn fetched_ray(k: u32) -> FetchedRay   the run's ray k (k < count), in world space;
@@ -27,12 +28,21 @@ struct FetchedRay {
 var<workgroup> next_fetched: atomic<u32>;
 
 // Traces the workgroup's run of `count` rays, TRACE_CLOSEST or TRACE_ANY. Every thread of the
-// workgroup calls it, in uniform control flow (a barrier starts the run).
-fn trace_fetching(count: u32, mode: u32, local_index: u32) {
+// workgroup calls it, in uniform control flow (a barrier starts the run). A run of 64 or fewer
+// takes a ray a thread through trace(): fetching gains nothing there, and its loop ran Sponza's
+// probe rays 8 % slower (H200).
+fn trace_run(count: u32, mode: u32, local_index: u32) {
     if local_index == 0u {
         atomicStore(&next_fetched, 0u);
     }
     workgroupBarrier();
+    if count <= 64u {
+        if local_index < count {
+            let ray = fetched_ray(local_index);
+            fetched_hit(local_index, trace(ray.origin, ray.dir, ray.t_max, mode));
+        }
+        return;
+    }
     let inst = instances[0];
     var k = 0u;
     var walking = false;

@@ -14,8 +14,10 @@ fn folded_index(group: vec3<u32>) -> u32 {
     return group.x + group.y * WORKGROUP_FOLD;
 }
 
-// Rays a workgroup takes where its lanes fetch (bvh_fetch), for `rays` rays in all: 64 while
-// they fit in FETCH_WORKGROUPS workgroups, then as many more 64s as it takes (shaders::fetch_run).
-fn fetch_run(rays: u32) -> u32 {
-    return 64u * max(1u, (rays + 64u * FETCH_WORKGROUPS - 1u) / (64u * FETCH_WORKGROUPS));
+// Rays a workgroup takes where its lanes fetch (bvh_fetch), for `rays` rays in all and a
+// dispatch of at most `workgroups`: 64 while they fit, then as many more 64s as it takes
+// (shaders::fetch_run).
+fn fetch_run(rays: u32, workgroups: u32) -> u32 {
+    let per_64 = 64u * max(workgroups, 1u);
+    return 64u * max(1u, (rays + per_64 - 1u) / per_64);
 }

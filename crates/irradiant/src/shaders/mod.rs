@@ -5,29 +5,28 @@ use std::sync::{Arc, OnceLock};
 
 use irradiant_gpu::{ComputePass, GpuContext, PassDesc, PassError, ShaderLibrary};
 
-pub(crate) mod dispatch_constants {
+mod dispatch_constants {
     irradiant_gpu::wgsl_constants! {
         /// Workgroups in a row of the indirect dispatches the shaders write (DDGI's shadow
         /// queue and active probes, the path tracer's wavefront), folded as
         /// `Workgroups::linear` folds direct ones.
         WORKGROUP_FOLD: u32 = irradiant_gpu::WORKGROUP_FOLD;
-        /// Workgroups a dispatch of rays whose lanes fetch (bvh_fetch.wgsl) holds at most: a
-        /// workgroup's run of rays grows, in steps of 64, as the rays outnumber 64 × this. Runs
-        /// keep the GPU full: on an H200 (2026-11-28, BENCHMARKS.md) runs of 256 rays made
-        /// Sponza's 262 144 probe rays 23 % slower (1 024 workgroups), while 2 million rays in
-        /// 8 100 workgroups traced 17–28 % faster than a ray a thread, and in 4 050 or 2 025
-        /// no faster.
-        FETCH_WORKGROUPS: u32 = 8192;
     }
 }
 
-/// Rays a workgroup takes where its lanes fetch, for `rays` rays in all (dispatch.wgsl's
-/// `fetch_run`): 64 while they fit in FETCH_WORKGROUPS workgroups, then as many more 64s as it
-/// takes.
-pub(crate) fn fetch_run(rays: u64) -> u64 {
-    64 * rays
-        .div_ceil(64 * u64::from(dispatch_constants::FETCH_WORKGROUPS))
-        .max(1)
+/// Workgroups a dispatch of rays whose lanes fetch (bvh_fetch.wgsl) holds at most, by default
+/// (`speed.fetch_workgroups`, [`crate::raycast::RayCaster::new`]): a workgroup's run of rays
+/// grows, in steps of 64, as the rays outnumber 64 × this. Runs keep the GPU full: on an H200
+/// (2026-11-28, BENCHMARKS.md) runs of 256 rays made Sponza's 262 144 probe rays 23 % slower
+/// (1 024 workgroups), while 2 million rays in 8 100 workgroups traced 17–28 % faster than a ray
+/// a thread, and in 4 050 or 2 025 no faster.
+pub const FETCH_WORKGROUPS: u32 = 8192;
+
+/// Rays a workgroup takes where its lanes fetch, for `rays` rays in all and a dispatch of at
+/// most `workgroups` (dispatch.wgsl's `fetch_run`): 64 while they fit, then as many more 64s as
+/// it takes.
+pub(crate) fn fetch_run(rays: u64, workgroups: u32) -> u64 {
+    64 * rays.div_ceil(64 * u64::from(workgroups.max(1))).max(1)
 }
 
 /// Every shared WGSL module by its `#import` name, built once.

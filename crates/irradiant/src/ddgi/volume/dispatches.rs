@@ -44,7 +44,10 @@ impl DdgiDispatches {
             * v.rays_per_probe.div_ceil(64 / per_group) as u64;
         let probe_rays = grid.probe_count as u64 * v.rays_per_probe as u64;
         let trace = match fetches {
-            true => Workgroups::linear(probe_rays.div_ceil(crate::shaders::fetch_run(probe_rays))),
+            true => Workgroups::linear(probe_rays.div_ceil(crate::shaders::fetch_run(
+                probe_rays,
+                settings.speed.fetch_workgroups,
+            ))),
             false => Workgroups::linear(ray_groups),
         };
         Self {
