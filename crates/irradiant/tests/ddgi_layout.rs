@@ -66,8 +66,13 @@ fn lanes_that_fetch_their_rays_give_the_same_light() {
     let gpu_scene = irradiant::GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
     let mut fetching = settings(true, 1);
     fetching.speed.fetch_workgroups = 2;
+    let probe_rays = irradiant::ddgi::volume_descs(&scene, &fetching)
+        .iter()
+        .map(|desc| irradiant::probes::ProbeGrid::new(desc).probe_count as u64 * 100)
+        .max()
+        .unwrap();
     assert!(
-        fetching.fetches_rays(&gpu_scene),
+        fetching.fetches_rays(&gpu_scene, probe_rays),
         "the scene does not take the fetching loop"
     );
     let mut one_a_thread = fetching.clone();

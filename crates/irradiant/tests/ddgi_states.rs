@@ -175,6 +175,8 @@ fn only_the_probes_that_update_are_listed_and_dispatched() {
     for (probes_per_group, fetch_rays) in [(1, true), (4, true), (1, false)] {
         settings.speed.probes_per_group = probes_per_group;
         settings.speed.fetch_rays = fetch_rays;
+        // Few probes: fetching only once their rays would fill more than four workgroups.
+        settings.speed.fetch_workgroups = 4;
         let mut session = session(&ctx, &scene, (16, 16), spec(Some(&settings)));
         for _ in 0..irradiant::ddgi::RELOCATION_FRAMES + 3 {
             session.render().unwrap();
@@ -220,10 +222,12 @@ fn only_the_probes_that_update_are_listed_and_dispatched() {
             at(irradiant::ddgi::ACTIVE_BLEND_GROUPS),
             [count as u32, 1, 1]
         );
-        // Fetching (the box is one wide tree), a workgroup takes a run of 64 of the listed
-        // probes' rays at this size; else trace takes shade's dispatch.
+        // Fetching (the box is one wide tree), a workgroup takes a run of the listed probes'
+        // rays, 64 more for each 4 × 64 (fetch_run); else trace takes shade's dispatch.
+        let listed_rays = count as u32 * settings.volume.rays_per_probe;
+        let run = 64 * listed_rays.div_ceil(4 * 64).max(1);
         let trace_groups = match fetch_rays {
-            true => (count as u32 * settings.volume.rays_per_probe).div_ceil(64),
+            true => listed_rays.div_ceil(run),
             false => ray_groups,
         };
         assert_eq!(

@@ -268,7 +268,16 @@ impl Ddgi {
         settings.validate()?;
         let descs = volume_descs(cx.scene, settings);
         cascades::check_follow(cx.scene, &descs)?;
-        let pipelines = DdgiPipelines::new(cx.ctx, cx.gpu_scene, settings, descs.len())?;
+        let most_probe_rays = descs
+            .iter()
+            .map(|desc| {
+                let probes = crate::probes::ProbeGrid::new(desc).probe_count;
+                u64::from(probes) * u64::from(settings.volume.rays_per_probe)
+            })
+            .max()
+            .unwrap_or(0);
+        let pipelines =
+            DdgiPipelines::new(cx.ctx, cx.gpu_scene, settings, descs.len(), most_probe_rays)?;
         let scene_table = cx.gpu_scene.resources();
         let frame_table = cx.frame.resources.table();
         let count = descs.len();

@@ -50,19 +50,19 @@ pub struct DdgiPipelines {
 
 impl DdgiPipelines {
     /// Compiles the passes for `volumes` probe volumes (the light between them only where
-    /// there are several).
+    /// there are several), the largest of which casts `most_probe_rays` when every probe
+    /// updates.
     pub fn new(
         ctx: &GpuContext,
         scene: &GpuScene,
         settings: &DdgiSettings,
         volumes: usize,
+        most_probe_rays: u64,
     ) -> Result<Self, RenderError> {
+        let fetches_rays = settings.fetches_rays(scene, most_probe_rays);
         let mut common = scene.shader_constants();
         common.extend(shader_constants(settings));
-        common.push((
-            "FETCH_RAYS",
-            format!("{}u", settings.fetches_rays(scene) as u32),
-        ));
+        common.push(("FETCH_RAYS", format!("{}u", fetches_rays as u32)));
         common.push((
             "FETCH_WORKGROUPS",
             format!("{}u", settings.speed.fetch_workgroups),
@@ -109,7 +109,7 @@ impl DdgiPipelines {
                 include_str!("ray_directions.wgsl"),
                 vec![],
             )?,
-            fetches_rays: settings.fetches_rays(scene),
+            fetches_rays,
             trace: if fused {
                 None
             } else {

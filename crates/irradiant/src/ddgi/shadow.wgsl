@@ -28,7 +28,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         let run = fetch_run(shadow_queue.count, FETCH_WORKGROUPS);
         run_first = folded_index(group) * run;
         let left = shadow_queue.count - min(run_first, shadow_queue.count);
-        trace_run(min(left, run), TRACE_ANY, local_index);
+        trace_fetching(min(left, run), TRACE_ANY, local_index);
         return;
     }
     let i = folded_index(group) * 64u + local_index;

@@ -19,7 +19,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         let run = fetch_run(probe_rays, FETCH_WORKGROUPS);
         run_first = folded_index(group) * run;
         let left = probe_rays - min(run_first, probe_rays);
-        trace_run(min(left, run), TRACE_CLOSEST, local_index);
+        trace_fetching(min(left, run), TRACE_CLOSEST, local_index);
         return;
     }
     let slot = ray_slot(group, local_index);

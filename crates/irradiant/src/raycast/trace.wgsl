@@ -41,7 +41,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) g
         let run = fetch_run(params.ray_count, FETCH_WORKGROUPS);
         run_first = (group.x + group.y * groups.x) * run;
         let left = params.ray_count - min(run_first, params.ray_count);
-        trace_run(min(left, run), select(TRACE_CLOSEST, TRACE_ANY, params.any_hit != 0u), local_index);
+        trace_fetching(min(left, run), select(TRACE_CLOSEST, TRACE_ANY, params.any_hit != 0u), local_index);
         return;
     }
     // 2D dispatch for ray counts above 65535 × 64.

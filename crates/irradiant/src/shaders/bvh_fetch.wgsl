@@ -28,21 +28,14 @@ struct FetchedRay {
 var<workgroup> next_fetched: atomic<u32>;
 
 // Traces the workgroup's run of `count` rays, TRACE_CLOSEST or TRACE_ANY. Every thread of the
-// workgroup calls it, in uniform control flow (a barrier starts the run). A run of 64 or fewer
-// takes a ray a thread through trace(): fetching gains nothing there, and its loop ran Sponza's
-// probe rays 8 % slower (H200).
-fn trace_run(count: u32, mode: u32, local_index: u32) {
+// workgroup calls it, in uniform control flow (a barrier starts the run). Runs of 64 rays are
+// walked by the same loop: a branch to a ray a thread through trace() beside it made the
+// kernel's fetching runs 6–8 % slower (H200, notes/traversal.md).
+fn trace_fetching(count: u32, mode: u32, local_index: u32) {
     if local_index == 0u {
         atomicStore(&next_fetched, 0u);
     }
     workgroupBarrier();
-    if count <= 64u {
-        if local_index < count {
-            let ray = fetched_ray(local_index);
-            fetched_hit(local_index, trace(ray.origin, ray.dir, ray.t_max, mode));
-        }
-        return;
-    }
     let inst = instances[0];
     var k = 0u;
     var walking = false;
