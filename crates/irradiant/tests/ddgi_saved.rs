@@ -92,3 +92,55 @@ fn loaded_probes_light_the_first_frame_as_300_frames_of_warm_up_do() {
     assert!(e.contains("no DDGI probes"), "{e}");
     let _ = std::fs::remove_file(&file);
 }
+
+/// A file saved where ddgi/trace's lanes fetch their rays (the box is one wide tree, and one
+/// workgroup a dispatch makes every run longer than 64 rays) loads into a session whose scene
+/// leaves room for a host's instances, where each thread traces a ray: the list headers' trace
+/// dispatch is rebuilt for the loading session's kernels, so its first frame is the saving
+/// session's next (every probe ray traced), not one with part of the rays left out.
+#[test]
+fn probes_saved_by_fetching_lanes_load_where_each_thread_traces_a_ray() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (32, 32);
+    let mut fetching = settings();
+    fetching.speed.fetch_workgroups = 1;
+    let spec = spec(Some(&fetching));
+    let file = std::env::temp_dir().join(format!(
+        "irradiant-probes-fetching-{}.bin",
+        std::process::id()
+    ));
+    let mut warm = session(&ctx, &scene, size, spec.clone());
+    for _ in 0..40 {
+        warm.render().unwrap();
+    }
+    warm.save_probes(&file).unwrap();
+    let before = warm.indirect().unwrap();
+    warm.render().unwrap();
+    let warmed = warm.indirect().unwrap();
+    let mut loaded = irradiant::Session::new(
+        ctx.clone(),
+        scene.clone(),
+        irradiant::SessionSettings {
+            size,
+            frame: irradiant::frame::FrameSettings::default().without_taa(),
+            technique: spec,
+            scene: irradiant::GpuSceneSettings {
+                instance_headroom: 1,
+                ..Default::default()
+            },
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    loaded.load_probes(&file).unwrap();
+    loaded.render().unwrap();
+    let _ = std::fs::remove_file(&file);
+    let noise = relative_difference(&warmed, &before);
+    let from_file = relative_difference(&warmed, &loaded.indirect().unwrap());
+    eprintln!("against the next frame: the frame before {noise:.5}, loaded {from_file:.5}");
+    assert!(
+        from_file <= 0.5 * noise + 1e-4,
+        "{from_file} against noise {noise}"
+    );
+}

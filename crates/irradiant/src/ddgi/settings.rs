@@ -254,9 +254,12 @@ pub struct DdgiSpeedSettings {
     /// ddgi/trace and ddgi/shadow hand a workgroup a run of rays whose lanes fetch the next
     /// ray as theirs ends, so that a warp keeps walking while its longest ray does, instead of
     /// a ray a thread. Applies where the scene is one wide tree for good (no room for a host's
-    /// instances) and the volume's probe rays would fill more than `fetch_workgroups`
-    /// workgroups; costs a workgroup atomic a ray. The same hits. Sibenik at 32×8×32 probes ×
-    /// 256 rays (H200): trace 1.6 % and shadow 6 % faster.
+    /// instances) and the largest volume's probe rays, every probe updating, would fill more
+    /// than `fetch_workgroups` workgroups; decided when the passes compile, so frames that list
+    /// fewer probes (the convergence rounds, most probes asleep) or queue few shadow rays walk
+    /// runs of 64 in the same loop, which is slower than a ray a thread (8 % on Sponza's trace).
+    /// Costs a workgroup atomic a ray. The same hits. Sibenik at 32×8×32 probes × 256 rays
+    /// (H200): trace 1.6 % and shadow 6 % faster.
     pub fetch_rays: bool,
     /// With `fetch_rays`: the workgroups a dispatch of rays holds at most before each takes
     /// more than 64 rays. Fewer give longer runs, whose lanes idle less, but can leave part of

@@ -110,6 +110,9 @@ pub struct DdgiVolume {
     pub resources: DdgiResources,
     passes: VolumePasses,
     dispatches: DdgiDispatches,
+    /// ddgi/trace's lanes fetch their rays (DdgiPipelines::fetches_rays): its dispatch in the
+    /// list header is a run of rays a workgroup.
+    fetches_rays: bool,
     max_ray_distance: f32,
     /// The volume's extent, for the default ray length.
     diagonal: f32,
@@ -216,6 +219,7 @@ impl DdgiVolume {
         let diagonal = (desc.max - desc.min).length().max(1e-3);
         let mut volume = Self {
             dispatches,
+            fetches_rays: pipelines.fetches_rays,
             settings: settings.clone(),
             grid,
             atlas,

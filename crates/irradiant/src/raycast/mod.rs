@@ -39,7 +39,8 @@ impl RayWork {
     }
 }
 
-/// The compiled `raycast/trace` pass, for one scene's traversal settings.
+/// The compiled `raycast/trace` passes (a ray a thread, and where the scene allows lanes that
+/// fetch), for one scene's traversal settings.
 pub struct RayCaster {
     /// A ray a thread.
     pass: Arc<ComputePass>,
@@ -54,11 +55,13 @@ pub struct RayCaster {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RayOrder {
     /// Neighbouring rays walk the same nodes (a camera's rays in pixel order): a ray a thread.
-    /// Fetching would scatter a warp's lanes over rays at different depths of the tree: 6–7 %
+    /// Fetching would scatter a warp's lanes over rays at different depths of the tree: 5–7 %
     /// slower on primary rays (H200, BENCHMARKS.md).
     Coherent,
     /// Rays in no useful order (bounces, shadow rays): where the scene is one wide tree, a
-    /// workgroup's lanes fetch its next ray as theirs ends (15–36 % faster, H200).
+    /// workgroup's lanes fetch its next ray as theirs ends (H200, BENCHMARKS.md: 15 % less
+    /// time on Sibenik's diffuse rays, 36 % on Sponza's any-hit rays, 5 % on `many-lights`'
+    /// diffuse rays).
     Incoherent,
 }
 
@@ -74,7 +77,7 @@ pub struct RayBatch {
 }
 
 impl RayCaster {
-    /// Compiles the pass with the scene's traversal constants.
+    /// Compiles the passes with the scene's traversal constants.
     pub fn new(ctx: &GpuContext, scene: &GpuScene) -> Result<Self, RenderError> {
         Self::compile(
             ctx,

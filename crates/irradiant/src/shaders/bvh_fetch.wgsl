@@ -66,6 +66,7 @@ fn trace_fetching(count: u32, mode: u32, local_index: u32) {
             hit.t = min(ray.t_max, RAY_FAR);
             hit.triangle = INVALID;
             hit.instance = INVALID;
+            hit.bary = vec2<f32>(0.0);
             walking = true;
         }
         var done = false;

@@ -18,8 +18,8 @@ mod dispatch_constants {
 /// (`speed.fetch_workgroups`, [`crate::raycast::RayCaster::new`]): a workgroup's run of rays
 /// grows, in steps of 64, as the rays outnumber 64 × this. Runs keep the GPU full: on an H200
 /// (2026-11-28, BENCHMARKS.md) runs of 256 rays made Sponza's 262 144 probe rays 23 % slower
-/// (1 024 workgroups), while 2 million rays in 8 100 workgroups traced 17–28 % faster than a ray
-/// a thread, and in 4 050 or 2 025 no faster.
+/// (1 024 workgroups), while 2 million bench rays in 8 100 workgroups took 17–37 % less time
+/// than a ray a thread; in 4 050 or 2 025 workgroups diffuse rays gained nothing more.
 pub const FETCH_WORKGROUPS: u32 = 8192;
 
 /// Rays a workgroup takes where its lanes fetch, for `rays` rays in all and a dispatch of at

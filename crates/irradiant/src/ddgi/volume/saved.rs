@@ -29,6 +29,25 @@ impl DdgiVolume {
             ctx.queue.write_buffer(buffer, 0, bytes);
         }
         let r = &self.resources;
+        // The lists' trace dispatches depend on whether this session's kernels fetch (the scene
+        // settings', not the key's): rewritten from each list's count, as probe_states would.
+        for list in [0, NEWLY_LIST] {
+            let word = |at: u64| {
+                let i = (list + at) as usize;
+                u32::from_le_bytes(data[6][i..i + 4].try_into().expect("a header word"))
+            };
+            let trace = match self.fetches_rays {
+                true => {
+                    let rays = u64::from(word(0)) * u64::from(self.settings.volume.rays_per_probe);
+                    let run = crate::shaders::fetch_run(rays, self.settings.speed.fetch_workgroups);
+                    Workgroups::linear(rays.div_ceil(run)).counts()
+                }
+                false => [word(ACTIVE_RAY_GROUPS), word(ACTIVE_RAY_GROUPS + 4), 1],
+            };
+            let at = list + ACTIVE_TRACE_GROUPS;
+            ctx.queue
+                .write_buffer(&r.active_probes, at, bytemuck::cast_slice(&trace));
+        }
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
