@@ -205,9 +205,7 @@ impl RayCaster {
     fn batch_workgroups(&self, batch: &RayBatch) -> Workgroups {
         let rays = u64::from(batch.count);
         match batch.fetching {
-            true => Workgroups::linear(
-                rays.div_ceil(crate::shaders::fetch_run(rays, self.fetch_workgroups)),
-            ),
+            true => crate::shaders::fetch_dispatch(rays, self.fetch_workgroups),
             false => Self::workgroups(rays),
         }
     }

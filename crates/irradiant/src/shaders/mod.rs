@@ -25,8 +25,14 @@ pub const FETCH_WORKGROUPS: u32 = 8192;
 /// Rays a workgroup takes where its lanes fetch, for `rays` rays in all and a dispatch of at
 /// most `workgroups` (dispatch.wgsl's `fetch_run`): 64 while they fit, then as many more 64s as
 /// it takes.
-pub(crate) fn fetch_run(rays: u64, workgroups: u32) -> u64 {
+fn fetch_run(rays: u64, workgroups: u32) -> u64 {
     64 * rays.div_ceil(64 * u64::from(workgroups.max(1))).max(1)
+}
+
+/// The dispatch of `rays` rays whose lanes fetch, a run of [`fetch_run`] a workgroup (folded as
+/// the shaders fold the indirect ones they write).
+pub(crate) fn fetch_dispatch(rays: u64, workgroups: u32) -> irradiant_gpu::Workgroups {
+    irradiant_gpu::Workgroups::linear(rays.div_ceil(fetch_run(rays, workgroups)))
 }
 
 /// Every shared WGSL module by its `#import` name, built once.

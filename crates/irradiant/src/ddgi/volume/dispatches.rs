@@ -23,7 +23,7 @@ pub struct DdgiDispatches {
     /// The blends: one workgroup a probe (as `rays`, the most of an indirect dispatch).
     pub blends: Workgroups,
     /// ddgi/trace when every probe updates: `rays`, or where its lanes fetch a workgroup a run
-    /// of the probe rays (`crate::shaders::fetch_run`; at most `rays`).
+    /// of the probe rays (`crate::shaders::fetch_dispatch`; at most `rays`).
     pub trace: Workgroups,
     /// ddgi/resolve and ddgi/visualize over the image.
     pub image: Workgroups,
@@ -44,10 +44,7 @@ impl DdgiDispatches {
             * v.rays_per_probe.div_ceil(64 / per_group) as u64;
         let probe_rays = grid.probe_count as u64 * v.rays_per_probe as u64;
         let trace = match fetches {
-            true => Workgroups::linear(probe_rays.div_ceil(crate::shaders::fetch_run(
-                probe_rays,
-                settings.speed.fetch_workgroups,
-            ))),
+            true => crate::shaders::fetch_dispatch(probe_rays, settings.speed.fetch_workgroups),
             false => Workgroups::linear(ray_groups),
         };
         Self {

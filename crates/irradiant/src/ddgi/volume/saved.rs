@@ -39,8 +39,8 @@ impl DdgiVolume {
             let trace = match self.fetches_rays {
                 true => {
                     let rays = u64::from(word(0)) * u64::from(self.settings.volume.rays_per_probe);
-                    let run = crate::shaders::fetch_run(rays, self.settings.speed.fetch_workgroups);
-                    Workgroups::linear(rays.div_ceil(run)).counts()
+                    crate::shaders::fetch_dispatch(rays, self.settings.speed.fetch_workgroups)
+                        .counts()
                 }
                 false => [word(ACTIVE_RAY_GROUPS), word(ACTIVE_RAY_GROUPS + 4), 1],
             };
