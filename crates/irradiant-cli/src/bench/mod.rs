@@ -562,8 +562,9 @@ fn time_pass(
         Option<&mut Profiler>,
     ) -> Result<(), CliError>,
 ) -> Result<Vec<f64>, CliError> {
-    // Room for every pass of a recording: the wavefront's sixteen samples take 16 × 33.
-    let mut profiler = Profiler::new(ctx, 1024);
+    // Room for every pass of a recording: the wavefront's sixteen samples take 16 × 65 where
+    // its bounce rays are traced apart (pathtrace/hits before each of 32 bounces).
+    let mut profiler = Profiler::new(ctx, 2048);
     let mut times = Vec::new();
     let warm_start = Instant::now();
     let mut warm_runs = 0;

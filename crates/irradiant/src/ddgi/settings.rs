@@ -453,12 +453,11 @@ impl DdgiSettings {
     /// Whether ddgi/trace's and ddgi/shadow's lanes fetch their workgroup's next ray
     /// (`speed.fetch_rays`) in `scene`, whose largest volume casts `probe_rays` a frame when every
     /// probe updates: the scene is one wide tree for good, and those rays would fill more than
-    /// `speed.fetch_workgroups` workgroups (below that a run is 64 rays, which the fetching loop
-    /// walks slower than a ray a thread: 8 % on Sponza's probe rays, H200).
+    /// `speed.fetch_workgroups` workgroups (`crate::shaders::fetch_pays`).
     pub fn fetches_rays(&self, scene: &GpuScene, probe_rays: u64) -> bool {
         self.speed.fetch_rays
             && scene.fetches_rays()
-            && probe_rays > 64 * u64::from(self.speed.fetch_workgroups)
+            && crate::shaders::fetch_pays(probe_rays, self.speed.fetch_workgroups)
     }
 
     /// Whether ddgi/shade queues shadow rays for ddgi/shadow: `shadow_queue`, with one light

@@ -30,6 +30,13 @@ pub struct PathTracer {
     wavefront: Option<Option<Wavefront>>,
     /// The schedule the last samples were traced with.
     traced_with: PathSchedule,
+    /// Workgroups the wavefront's `pathtrace/hits` dispatches at most where it traces a
+    /// bounce's rays apart (`crate::shaders::FETCH_WORKGROUPS` unless
+    /// [`PathTracer::with_fetch_workgroups`]).
+    fetch_workgroups: u32,
+    /// Whether the wavefront traces a bounce's rays apart whatever the tree's cost (set by
+    /// [`PathTracer::with_fetch_workgroups`]); else from `TRACED_APART_FROM_SAH_COST` on.
+    fetch_any_tree: bool,
 }
 
 impl PathTracer {
@@ -47,8 +54,8 @@ impl PathTracer {
     /// What it holds now: the accumulation, and the wavefront's queues once made.
     pub fn allocations(&self) -> Vec<Allocation> {
         let mut all = Self::plan(self.width, self.height);
-        if let Some(Some(_)) = &self.wavefront {
-            all.extend(Wavefront::plan(self.width, self.height));
+        if let Some(Some(wavefront)) = &self.wavefront {
+            all.extend(wavefront.allocations(self.width, self.height));
         }
         all
     }
@@ -87,7 +94,21 @@ impl PathTracer {
             samples_done: 0,
             wavefront: None,
             traced_with: PathSchedule::Megakernel,
+            fetch_workgroups: crate::shaders::FETCH_WORKGROUPS,
+            fetch_any_tree: false,
         })
+    }
+
+    /// With the wavefront tracing a bounce's rays apart wherever the scene fetches rays,
+    /// whatever its tree's cost, and its `pathtrace/hits` dispatching at most `workgroups`
+    /// workgroups (a run of rays each: a test's few paths then take runs past 64). Call before
+    /// the first samples.
+    pub fn with_fetch_workgroups(self, workgroups: u32) -> Self {
+        Self {
+            fetch_workgroups: workgroups.max(1),
+            fetch_any_tree: true,
+            ..self
+        }
     }
 
     /// The workgroups of one dispatch over a `width`×`height` image.
@@ -127,7 +148,16 @@ impl PathTracer {
         };
         if settings.schedule.on(ctx) == PathSchedule::Wavefront {
             if self.wavefront.is_none() {
-                self.wavefront = Some(Wavefront::new(ctx, scene, self.width, self.height)?);
+                let apart = self.fetch_any_tree
+                    || scene.stats.sah_cost >= super::wavefront::TRACED_APART_FROM_SAH_COST;
+                self.wavefront = Some(Wavefront::new(
+                    ctx,
+                    scene,
+                    self.width,
+                    self.height,
+                    apart,
+                    self.fetch_workgroups,
+                )?);
             }
             if let Some(Some(wavefront)) = &self.wavefront {
                 wavefront.record(
@@ -162,6 +192,14 @@ impl PathTracer {
     /// the wavefront's queues did not fit it.
     pub fn traced_with(&self) -> PathSchedule {
         self.traced_with
+    }
+
+    /// Whether the last samples were traced by a wavefront that traces a bounce's rays apart
+    /// from their shading, by lanes that fetch their next ray (on a scene of one wide tree),
+    /// wherever more paths are alive than its `pathtrace/hits` holds in runs of 64.
+    pub fn fetched_rays(&self) -> bool {
+        self.traced_with == PathSchedule::Wavefront
+            && matches!(&self.wavefront, Some(Some(w)) if w.fetches_rays())
     }
 
     /// Renders `settings.samples_per_pixel` samples from scratch, reporting progress after each

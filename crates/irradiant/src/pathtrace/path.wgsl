@@ -47,11 +47,17 @@ fn path_radiance(start: vec3<f32>, start_dir: vec3<f32>, max_bounces: u32, first
 // One vertex of a path: traces its ray, adds the light found there and picks the next ray.
 // False when the path ends (a miss, the last bounce, a failed sample, Russian roulette).
 fn path_step(path: ptr<function, PathState>, bounce: u32, max_bounces: u32, first_emission: bool, light_sampling: u32) -> bool {
+    let hit = trace_ray((*path).origin, (*path).dir, RAY_FAR, false);
+    return path_step_at(path, hit, bounce, max_bounces, first_emission, light_sampling);
+}
+
+// path_step with its ray's closest hit already found (the wavefront's pathtrace/hits traces
+// the rays of a bounce apart from their shading).
+fn path_step_at(path: ptr<function, PathState>, hit: Hit, bounce: u32, max_bounces: u32, first_emission: bool, light_sampling: u32) -> bool {
     let origin = (*path).origin;
     let dir = (*path).dir;
     let throughput = (*path).throughput;
     var rng = (*path).rng;
-    let hit = trace_ray(origin, dir, RAY_FAR, false);
     if hit.triangle == INVALID {
         (*path).radiance += throughput * scene_info.sky;
         return false;

@@ -1,6 +1,8 @@
 //! The path tracer as a wavefront ([`PathSchedule::Wavefront`](super::PathSchedule)): one pass
 //! a bounce over the paths still alive, each pass appending the survivors to a queue whose
-//! header is the next pass's indirect dispatch. See `wavefront.wgsl`.
+//! header is the next pass's indirect dispatch. On a scene of one wide tree
+//! ([`GpuScene::fetches_rays`]) a bounce's rays are traced apart from their shading, by lanes
+//! that fetch their next ray. See `wavefront.wgsl`.
 
 use std::sync::Arc;
 
@@ -15,49 +17,95 @@ use crate::scene::GpuScene;
 const QUEUE_HEADER_BYTES: u64 = 32;
 /// Bytes of one path's state (`PathState` in path.wgsl).
 const PATH_STATE_BYTES: u64 = 64;
-/// Where a queue's dispatch (x, y, z) lies in it.
+/// Where a queue's dispatch (x, y, z) of its bounce pass, a thread a path, lies in it.
 const QUEUE_DISPATCH_OFFSET: u64 = 4;
+/// Where a queue's dispatch (x, y, z) of `pathtrace/hits`, a run of paths a workgroup, lies.
+const QUEUE_RUNS_OFFSET: u64 = 20;
+/// Bytes of one path's closest hit (`GpuPathHit` in wavefront.wgsl).
+const PATH_HIT_BYTES: u64 = 16;
 
-/// The wavefront's two passes and its two path queues (each pass reads one, fills the other).
+/// The bottom-level tree's SAH cost (`GpuSceneStats::sah_cost`: a ray's expected node visits
+/// and triangle tests) from which the wavefront traces a bounce's rays apart from their
+/// shading. Apart, a bounce of 2 million paths pays about 40 µs more (their origins, directions
+/// and hits through memory, one more pass), while lanes that fetch gain in proportion to how
+/// long rays walk the tree. NVIDIA H200, 1920×1080, a sample (BENCHMARKS.md, 2026-11-28): Sponza
+/// (63.0) 12.40 → 11.09 ms, Sibenik (47.8) 17.00 → 15.91, but `many-lights` (31.9) 7.45 →
+/// 7.62 and the Cornell box (14.2) 2.56 → 2.83.
+pub(super) const TRACED_APART_FROM_SAH_COST: f32 = 40.0;
+
+/// `WAVEFRONT_STAGE` of wavefront.wgsl: which of its passes a pipeline is.
+#[derive(Clone, Copy)]
+enum Stage {
+    Camera = 0,
+    Hits = 1,
+    Bounce = 2,
+}
+
+/// The wavefront's passes and its two path queues (each pass reads one, fills the other).
 pub(super) struct Wavefront {
     camera: Arc<ComputePass>,
     bounce: Arc<ComputePass>,
+    /// Where the scene fetches rays: `pathtrace/hits` and the closest hit of each queued path.
+    hits: Option<(Arc<ComputePass>, wgpu::Buffer)>,
     queues: [wgpu::Buffer; 2],
 }
 
 impl Wavefront {
-    /// The two queues of a `width`×`height` image: a path for every thread of its 8×8 tiles.
-    pub fn plan(width: u32, height: u32) -> Vec<Allocation> {
+    /// The two queues of a `width`×`height` image, a path for every thread of its 8×8 tiles,
+    /// and where `fetches` a hit for each.
+    pub fn plan(width: u32, height: u32, fetches: bool) -> Vec<Allocation> {
         let paths = (width.div_ceil(IMAGE_TILE.0) * IMAGE_TILE.0) as u64
             * (height.div_ceil(IMAGE_TILE.1) * IMAGE_TILE.1) as u64;
         let bytes = QUEUE_HEADER_BYTES + paths * PATH_STATE_BYTES;
-        ["pathtrace/paths_a", "pathtrace/paths_b"]
+        let mut plan: Vec<Allocation> = ["pathtrace/paths_a", "pathtrace/paths_b"]
             .into_iter()
             .map(|label| Allocation::storage(label, bytes, "the image size (--size)"))
-            .collect()
+            .collect();
+        if fetches {
+            plan.push(Allocation::storage(
+                "pathtrace/hits",
+                paths * PATH_HIT_BYTES,
+                "the image size (--size)",
+            ));
+        }
+        plan
     }
 
-    /// The wavefront of a `width`×`height` image, or None where its queues pass the adapter's
-    /// largest storage binding (the path tracer then keeps to the megakernel).
+    /// What it holds.
+    pub fn allocations(&self, width: u32, height: u32) -> Vec<Allocation> {
+        Self::plan(width, height, self.hits.is_some())
+    }
+
+    /// The wavefront of a `width`×`height` image, or None where its buffers pass the adapter's
+    /// largest storage binding (the path tracer then keeps to the megakernel). With `fetches`
+    /// (only where the scene fetches rays) `pathtrace/hits` traces a bounce's rays apart, in a
+    /// dispatch of at most `fetch_workgroups` workgroups.
     pub fn new(
         ctx: &GpuContext,
         scene: &GpuScene,
         width: u32,
         height: u32,
+        fetches: bool,
+        fetch_workgroups: u32,
     ) -> Result<Option<Self>, RenderError> {
-        let plan = Self::plan(width, height);
+        let fetches = fetches && scene.fetches_rays();
+        let plan = Self::plan(width, height, fetches);
         if ctx.check_allocations(&plan).is_err() {
             return Ok(None);
         }
-        let stage = |label, camera: bool| {
+        let stage = |label, stage: Stage| {
             crate::shaders::pass(
                 ctx,
                 &PassDesc::new(label, include_str!("wavefront.wgsl"))
                     .constants(scene.shader_constants())
-                    .constants([("WAVEFRONT_CAMERA", format!("{}u", camera as u32))]),
+                    .constants([
+                        ("WAVEFRONT_STAGE", format!("{}u", stage as u32)),
+                        ("FETCH_RAYS", format!("{}u", fetches as u32)),
+                        ("FETCH_WORKGROUPS", format!("{}u", fetch_workgroups.max(1))),
+                    ]),
             )
         };
-        let queue = |a: &Allocation| {
+        let buffer = |a: &Allocation| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(&a.label),
                 size: a.bytes,
@@ -67,17 +115,29 @@ impl Wavefront {
                 mapped_at_creation: false,
             })
         };
+        let hits = match fetches {
+            true => Some((stage("pathtrace/hits", Stage::Hits)?, buffer(&plan[2]))),
+            false => None,
+        };
         Ok(Some(Self {
-            camera: stage("pathtrace/camera", true)?,
-            bounce: stage("pathtrace/bounce", false)?,
-            queues: [queue(&plan[0]), queue(&plan[1])],
+            camera: stage("pathtrace/camera", Stage::Camera)?,
+            bounce: stage("pathtrace/bounce", Stage::Bounce)?,
+            hits,
+            queues: [buffer(&plan[0]), buffer(&plan[1])],
         }))
     }
 
+    /// Whether a bounce's rays are traced apart from their shading, by lanes that fetch
+    /// (where more paths are alive than `fetch_workgroups` runs of 64).
+    pub fn fetches_rays(&self) -> bool {
+        self.hits.is_some()
+    }
+
     /// Records `params.samples` samples a pixel from `params.sample_offset` on: for each, the
-    /// camera pass, then a bounce pass for each bounce up to `max_bounces`, each dispatched
-    /// over exactly the paths the pass before left alive. The bounce passes read nothing of a
-    /// sample's own, so they are bound once; the camera pass once a sample (its offset).
+    /// camera pass, then a bounce pass for each bounce up to `max_bounces` (after its rays'
+    /// `pathtrace/hits` where the scene fetches rays), each dispatched over exactly the paths
+    /// the pass before left alive. The bounce passes read nothing of a sample's own, so they
+    /// are bound once; the camera pass once a sample (its offset).
     pub fn record(
         &self,
         ctx: &GpuContext,
@@ -88,11 +148,14 @@ impl Wavefront {
         mut profiler: Option<&mut Profiler>,
     ) -> Result<(), RenderError> {
         let bound = |pass: &Arc<ComputePass>, uniform: &wgpu::Buffer, from: usize| {
-            let own = ResourceTable::new()
+            let mut own = ResourceTable::new()
                 .buffer("params", uniform)
                 .texture("accumulation", accumulation)
                 .buffer("paths_in", &self.queues[from])
                 .buffer("paths_out", &self.queues[1 - from]);
+            if let Some((_, hits)) = &self.hits {
+                own = own.buffer("hits", hits);
+            }
             pass.bind(ctx, &[&scene.resources(), &own])
         };
         let shared = ctx.uniform_buffer("pathtrace/params", params);
@@ -100,6 +163,10 @@ impl Wavefront {
             bound(&self.bounce, &shared, 0)?,
             bound(&self.bounce, &shared, 1)?,
         ];
+        let hits = match &self.hits {
+            Some((pass, _)) => Some([bound(pass, &shared, 0)?, bound(pass, &shared, 1)?]),
+            None => None,
+        };
         for sample in 0..params.samples {
             let uniform = ctx.uniform_buffer(
                 "pathtrace/params",
@@ -120,6 +187,14 @@ impl Wavefront {
             for bounce in 1..=params.max_bounces as usize {
                 let from = (bounce + 1) % 2;
                 encoder.clear_buffer(&self.queues[1 - from], 0, Some(QUEUE_HEADER_BYTES));
+                if let Some(hits) = &hits {
+                    hits[from].dispatch_indirect(
+                        encoder,
+                        profiler.as_deref_mut(),
+                        &self.queues[from],
+                        QUEUE_RUNS_OFFSET,
+                    );
+                }
                 bounces[from].dispatch_indirect(
                     encoder,
                     profiler.as_deref_mut(),

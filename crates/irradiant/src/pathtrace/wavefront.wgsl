@@ -1,18 +1,31 @@
-// pathtrace/camera and pathtrace/bounce: the reference path tracer as a wavefront
-// (PathSchedule::Wavefront). Each pass takes one vertex of every live path, one thread a path:
-// pathtrace/camera starts a path a pixel at its camera ray, and each pathtrace/bounce takes the
-// paths the pass before left alive. A path that ends adds its radiance to its pixel; one that
-// goes on is appended to the next pass's queue, which that pass's indirect dispatch covers
-// exactly, so that no warp waits on the longest path of its pixels as the megakernel's do.
-// WAVEFRONT_CAMERA (0 or 1, from Wavefront::new in wavefront.rs): which of the two passes.
+// pathtrace/camera, pathtrace/hits and pathtrace/bounce: the reference path tracer as a
+// wavefront (PathSchedule::Wavefront). Each bounce pass takes one vertex of every live path, one
+// thread a path: pathtrace/camera starts a path a pixel at its camera ray, and each
+// pathtrace/bounce takes the paths the pass before left alive. A path that ends adds its
+// radiance to its pixel; one that goes on is appended to the next pass's queue, which that
+// pass's indirect dispatch covers exactly, so that no warp waits on the longest path of its
+// pixels as the megakernel's do.
+// FETCH_RAYS (0 or 1, Wavefront::new in wavefront.rs: where GpuScene::fetches_rays): before each
+// pathtrace/bounce, pathtrace/hits finds the closest hits of the queue's rays with lanes that
+// fetch their next ray (bvh_fetch), a workgroup a run of them, and pathtrace/bounce shades
+// from those hits instead of tracing a ray a thread; only while the paths alive are more than
+// FETCH_WORKGROUPS runs of 64 (fetch_pays), since a lane with one ray gains nothing from it. The
+// camera's rays, neighbours in a tile, keep a ray a thread.
+// WAVEFRONT_STAGE (STAGE_CAMERA, STAGE_HITS or STAGE_BOUNCE below): which of the three passes.
 #import path
 #import pathtrace_params
 #import dispatch
 #import random
+#import bvh_fetch
+
+const STAGE_CAMERA: u32 = 0u;
+const STAGE_HITS: u32 = 1u;
+const STAGE_BOUNCE: u32 = 2u;
 
 // A queue of live paths. Its first 16 bytes are the indirect dispatch that takes them (its
-// count, then the workgroups in x, y, z); the host clears the header (32 bytes, the bounce
-// with it) before a pass appends.
+// count, then the workgroups in x, y, z), a thread a path; with FETCH_RAYS its last 12 bytes
+// are pathtrace/hits' dispatch over them, a run of fetch_run paths a workgroup. The host clears
+// the header (32 bytes, the bounce with it) before a pass appends.
 struct GpuPathQueue {
     count: atomic<u32>,
     groups_x: atomic<u32>,
@@ -20,9 +33,9 @@ struct GpuPathQueue {
     groups_z: atomic<u32>,
     // the bounce the queued paths take next
     bounce: atomic<u32>,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    runs_x: atomic<u32>,
+    runs_y: atomic<u32>,
+    runs_z: atomic<u32>,
     paths: array<PathState>,
 }
 
@@ -36,14 +49,26 @@ struct GpuPathQueueRead {
     groups_y: u32,
     groups_z: u32,
     bounce: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    runs_x: u32,
+    runs_y: u32,
+    runs_z: u32,
     paths: array<PathState>,
 }
 
 @group(1) @binding(2) var<storage, read> paths_in: GpuPathQueueRead;
 @group(1) @binding(3) var<storage, read_write> paths_out: GpuPathQueue;
+
+// The closest hit of a queued path's ray (pathtrace/hits writes it at the path's place in the
+// queue, pathtrace/bounce reads it there). Only scenes of one instance fetch (bvh_fetch), so a
+// hit's instance is 0.
+struct GpuPathHit {
+    t: f32,
+    // INVALID: the ray left the scene
+    triangle: u32,
+    bary: vec2<f32>,
+}
+
+@group(1) @binding(4) var<storage, read_write> hits: array<GpuPathHit>;
 
 const THREADS: u32 = 64u;
 var<workgroup> appended_in_group: atomic<u32>;
@@ -52,10 +77,17 @@ var<workgroup> group_base: u32;
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) local_index: u32) {
     bvh_thread(local_index);
+    if WAVEFRONT_STAGE == STAGE_HITS {
+        let run = fetch_run(paths_in.count, FETCH_WORKGROUPS);
+        run_first = folded_index(group) * run;
+        let left = paths_in.count - min(run_first, paths_in.count);
+        trace_fetching(min(left, run), TRACE_CLOSEST, local_index);
+        return;
+    }
     var path: PathState;
     var valid = false;
     var bounce = 0u;
-    if WAVEFRONT_CAMERA == 1u {
+    if WAVEFRONT_STAGE == STAGE_CAMERA {
         // One 8×8 tile a workgroup, as the megakernel's: neighbouring camera rays together.
         valid = id.x < params.width && id.y < params.height;
         var rng = rng_seed(id.y * params.width + id.x, params.sample_offset, params.seed);
@@ -71,7 +103,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
     }
     var alive = false;
     if valid {
-        alive = path_step(&path, bounce, params.max_bounces, true, params.light_sampling);
+        if WAVEFRONT_STAGE == STAGE_BOUNCE && FETCH_RAYS == 1u && fetch_pays(paths_in.count, FETCH_WORKGROUPS) {
+            let found = hits[folded_index(group) * THREADS + local_index];
+            let instance = select(0u, INVALID, found.triangle == INVALID);
+            alive = path_step_at(&path, Hit(found.t, found.triangle, instance, found.bary), bounce, params.max_bounces, true, params.light_sampling);
+        } else {
+            alive = path_step(&path, bounce, params.max_bounces, true, params.light_sampling);
+        }
         if !alive {
             let pixel = vec2<u32>(path.pixel & 0xffffu, path.pixel >> 16u);
             let sample = vec4<f32>(finite_or_zero(path.radiance), 1.0);
@@ -79,6 +117,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
         }
     }
     append(alive, path, bounce + 1u, local_index);
+}
+
+// pathtrace/hits' first queued path in this workgroup's run.
+var<private> run_first: u32;
+
+fn fetched_ray(k: u32) -> FetchedRay {
+    let path = paths_in.paths[run_first + k];
+    return FetchedRay(path.origin, RAY_FAR, path.dir);
+}
+
+fn fetched_hit(k: u32, hit: Hit) {
+    hits[run_first + k] = GpuPathHit(hit.t, hit.triangle, hit.bary);
 }
 
 // Appends the workgroup's live paths to paths_out with one global atomic a workgroup, and
@@ -104,6 +154,17 @@ fn append(alive: bool, path: PathState, next_bounce: u32, local_index: u32) {
             atomicMax(&paths_out.groups_y, groups.y);
             atomicMax(&paths_out.groups_z, 1u);
             atomicMax(&paths_out.bounce, next_bounce);
+            let in_queue = base + count;
+            if FETCH_RAYS == 1u && fetch_pays(in_queue, FETCH_WORKGROUPS) {
+                // The last workgroup to append counts every queued path, and the maximum
+                // covers its runs (ddgi/shade's shadow queue does the same). Fewer paths than
+                // that leave pathtrace/hits no workgroup, and pathtrace/bounce traces them.
+                let run = fetch_run(in_queue, FETCH_WORKGROUPS);
+                let runs = folded_groups((in_queue + run - 1u) / run);
+                atomicMax(&paths_out.runs_x, runs.x);
+                atomicMax(&paths_out.runs_y, runs.y);
+                atomicMax(&paths_out.runs_z, 1u);
+            }
         }
         group_base = base;
     }

@@ -21,3 +21,9 @@ fn fetch_run(rays: u32, workgroups: u32) -> u32 {
     let per_64 = 64u * max(workgroups, 1u);
     return 64u * max(1u, (rays + per_64 - 1u) / per_64);
 }
+
+// Whether lanes that fetch pay for `rays` rays in a dispatch of at most `workgroups`: only where
+// a run passes 64 rays, so that a lane has more than one to fetch (shaders::fetch_pays).
+fn fetch_pays(rays: u32, workgroups: u32) -> bool {
+    return rays > 64u * max(workgroups, 1u);
+}
