@@ -43,12 +43,12 @@ fn render_with(
 /// The wavefront traces the megakernel's paths: the same `path_step` from the same random
 /// numbers, one bounce a pass instead of one path a thread. On the Cornell box (its emitter
 /// sampled and hit under MIS, Russian roulette past the third bounce) and cut at two bounces,
-/// every pixel agrees up to the order the samples are summed in. The box is one wide tree, so
-/// the wavefront can trace a bounce's rays apart by lanes that fetch (`pathtrace/hits`; its
-/// tree is too cheap for that by default): wherever more paths are alive than its dispatch
-/// holds in runs of 64, so never with the default dispatch (1 024 paths), and with one of at
-/// most 3 or 1 workgroups in runs of up to 384 or 1 024 paths, where a lane takes up to 6 or 16
-/// rays, until fewer than 192 or 64 paths are alive.
+/// every pixel agrees up to the order the samples are summed in. By default the box's tree is
+/// too cheap for the wavefront to trace a bounce's rays apart; it is one wide tree, so the
+/// wavefront can be made to, by lanes that fetch (`pathtrace/hits`): wherever more paths are
+/// alive than its dispatch holds in runs of 64, so never with the default dispatch (1 024
+/// paths), and with one of at most 3 or 1 workgroups in runs of up to 384 or 1 024 paths, where
+/// a lane takes up to 6 or 16 rays, until fewer than 192 or 64 paths are alive.
 #[test]
 fn the_wavefront_traces_the_megakernels_paths() {
     let Some(ctx) = common::gpu() else { return };
@@ -65,10 +65,16 @@ fn the_wavefront_traces_the_megakernels_paths() {
         let mega = render_with(&ctx, &scene, 32, &settings(PathSchedule::Megakernel));
         let mean = mega.mean();
         assert!(mean[0] > 0.01, "the megakernel's image is black: {mean:?}");
-        for fetch_workgroups in [irradiant::shaders::FETCH_WORKGROUPS, 3, 1] {
-            let mut tracer = PathTracer::new(&ctx, &gpu_scene, 32, 32)
-                .unwrap()
-                .with_fetch_workgroups(fetch_workgroups);
+        for fetch_workgroups in [
+            None,
+            Some(irradiant::shaders::FETCH_WORKGROUPS),
+            Some(3),
+            Some(1),
+        ] {
+            let mut tracer = PathTracer::new(&ctx, &gpu_scene, 32, 32).unwrap();
+            if let Some(workgroups) = fetch_workgroups {
+                tracer = tracer.with_fetch_workgroups(workgroups);
+            }
             let wave = tracer
                 .render(
                     &ctx,
@@ -78,9 +84,11 @@ fn the_wavefront_traces_the_megakernels_paths() {
                     |_, _| {},
                 )
                 .unwrap();
-            assert!(
+            assert_eq!(tracer.traced_with(), PathSchedule::Wavefront);
+            assert_eq!(
                 tracer.fetched_rays(),
-                "the Cornell box's bounce rays were traced a ray a thread"
+                fetch_workgroups.is_some(),
+                "whether the Cornell box's bounce rays were traced apart"
             );
             let worst = mega
                 .pixels
@@ -90,7 +98,7 @@ fn the_wavefront_traces_the_megakernels_paths() {
                 .map(|(m, w)| (m - w).abs() / m.abs().max(1e-3))
                 .fold(0.0f32, f32::max);
             println!(
-                "max bounces {max_bounces}, fetching workgroups {fetch_workgroups}: mean \
+                "max bounces {max_bounces}, fetching workgroups {fetch_workgroups:?}: mean \
                  {mean:?} against {:?}, worst relative difference {worst:.2e}",
                 wave.mean()
             );

@@ -45,8 +45,11 @@ enum Stage {
 pub(super) struct Wavefront {
     camera: Arc<ComputePass>,
     bounce: Arc<ComputePass>,
-    /// Where the scene fetches rays: `pathtrace/hits` and the closest hit of each queued path.
-    hits: Option<(Arc<ComputePass>, wgpu::Buffer)>,
+    /// Where a bounce's rays are traced apart: `pathtrace/hits`.
+    hits: Option<Arc<ComputePass>>,
+    /// The closest hit of each queued path where they are traced apart; else one hit's bytes,
+    /// since pathtrace/bounce declares the binding either way.
+    hit_buffer: wgpu::Buffer,
     queues: [wgpu::Buffer; 2],
 }
 
@@ -115,14 +118,21 @@ impl Wavefront {
                 mapped_at_creation: false,
             })
         };
-        let hits = match fetches {
-            true => Some((stage("pathtrace/hits", Stage::Hits)?, buffer(&plan[2]))),
-            false => None,
+        let (hits, hit_buffer) = match fetches {
+            true => (
+                Some(stage("pathtrace/hits", Stage::Hits)?),
+                buffer(&plan[2]),
+            ),
+            false => (
+                None,
+                buffer(&Allocation::storage("pathtrace/hits", PATH_HIT_BYTES, "")),
+            ),
         };
         Ok(Some(Self {
             camera: stage("pathtrace/camera", Stage::Camera)?,
             bounce: stage("pathtrace/bounce", Stage::Bounce)?,
             hits,
+            hit_buffer,
             queues: [buffer(&plan[0]), buffer(&plan[1])],
         }))
     }
@@ -148,14 +158,12 @@ impl Wavefront {
         mut profiler: Option<&mut Profiler>,
     ) -> Result<(), RenderError> {
         let bound = |pass: &Arc<ComputePass>, uniform: &wgpu::Buffer, from: usize| {
-            let mut own = ResourceTable::new()
+            let own = ResourceTable::new()
                 .buffer("params", uniform)
                 .texture("accumulation", accumulation)
                 .buffer("paths_in", &self.queues[from])
-                .buffer("paths_out", &self.queues[1 - from]);
-            if let Some((_, hits)) = &self.hits {
-                own = own.buffer("hits", hits);
-            }
+                .buffer("paths_out", &self.queues[1 - from])
+                .buffer("hits", &self.hit_buffer);
             pass.bind(ctx, &[&scene.resources(), &own])
         };
         let shared = ctx.uniform_buffer("pathtrace/params", params);
@@ -164,7 +172,7 @@ impl Wavefront {
             bound(&self.bounce, &shared, 1)?,
         ];
         let hits = match &self.hits {
-            Some((pass, _)) => Some([bound(pass, &shared, 0)?, bound(pass, &shared, 1)?]),
+            Some(pass) => Some([bound(pass, &shared, 0)?, bound(pass, &shared, 1)?]),
             None => None,
         };
         for sample in 0..params.samples {
