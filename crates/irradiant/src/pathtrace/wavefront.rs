@@ -26,11 +26,11 @@ const PATH_HIT_BYTES: u64 = 16;
 
 /// The bottom-level tree's SAH cost (`GpuSceneStats::sah_cost`: a ray's expected node visits
 /// and triangle tests) from which the wavefront traces a bounce's rays apart from their
-/// shading. Apart, a bounce of 2 million paths pays about 40 µs more (their origins, directions
-/// and hits through memory, one more pass), while lanes that fetch gain in proportion to how
-/// long rays walk the tree. NVIDIA H200, 1920×1080, a sample (BENCHMARKS.md, 2026-11-28): Sponza
-/// (63.0) 12.40 → 11.09 ms, Sibenik (47.8) 17.00 → 15.91, but `many-lights` (31.9) 7.45 →
-/// 7.62 and the Cornell box (14.2) 2.56 → 2.83.
+/// shading. Apart, a bounce pays a fixed cost a path (its origin, direction and hit through
+/// memory, one more pass), while lanes that fetch gain in proportion to how long rays walk the
+/// tree. Split on every tree (NVIDIA H200, 1920×1080, a sample; docs/notes/traversal.md,
+/// 2026-11-28): Sponza (63.0) 12.40 → 11.09 ms and Sibenik (47.8) 17.00 → 15.91, but
+/// `many-lights` (31.9) 7.45 → 7.62 and the Cornell box (14.2) 2.55 → 2.83.
 pub(super) const TRACED_APART_FROM_SAH_COST: f32 = 40.0;
 
 /// `WAVEFRONT_STAGE` of wavefront.wgsl: which of its passes a pipeline is.
