@@ -47,8 +47,10 @@ fn render_with(
 /// too cheap for the wavefront to trace a bounce's rays apart; it is one wide tree, so the
 /// wavefront can be made to, by lanes that fetch (`pathtrace/hits`): wherever more paths are
 /// alive than its dispatch holds in runs of 64, so never with the default dispatch (1 024
-/// paths), and with one of at most 3 or 1 workgroups in runs of up to 384 or 1 024 paths, where
-/// a lane takes up to 6 or 16 rays, until fewer than 192 or 64 paths are alive.
+/// paths: the kernels that can split, tracing in the bounce), and with one of at most 3 or 1
+/// workgroups in runs of up to 384 or 1 024 paths, where a lane takes up to 6 or 16 rays, until
+/// 192 or 64 paths or fewer are alive. That the split then takes part was checked by hand: a
+/// `pathtrace/hits` that leaves each run's last ray untraced fails this test.
 #[test]
 fn the_wavefront_traces_the_megakernels_paths() {
     let Some(ctx) = common::gpu() else { return };
@@ -88,7 +90,7 @@ fn the_wavefront_traces_the_megakernels_paths() {
             assert_eq!(
                 tracer.fetched_rays(),
                 fetch_workgroups.is_some(),
-                "whether the Cornell box's bounce rays were traced apart"
+                "whether the wavefront was made to trace the Cornell box's bounce rays apart"
             );
             let worst = mega
                 .pixels

@@ -34,7 +34,8 @@ pub struct PathTraceSettings {
 }
 
 /// How the path tracer's work is laid out on the GPU. Both trace the same paths from the same
-/// random numbers (one shared `path_step`), so they render the same image.
+/// random numbers (one shared `path_step`, or `path_step_at` from a hit traced apart), so they
+/// render the same image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum PathSchedule {
     /// The wavefront on a GPU, the megakernel on a CPU adapter (lavapipe), where every pass

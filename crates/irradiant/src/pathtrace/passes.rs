@@ -51,7 +51,7 @@ impl PathTracer {
         )]
     }
 
-    /// What it holds now: the accumulation, and the wavefront's queues once made.
+    /// What it holds now: the accumulation, and the wavefront's queues (and hits) once made.
     pub fn allocations(&self) -> Vec<Allocation> {
         let mut all = Self::plan(self.width, self.height);
         if let Some(Some(wavefront)) = &self.wavefront {
@@ -123,7 +123,8 @@ impl PathTracer {
     }
 
     /// Records `samples` paths a pixel: one dispatch with the megakernel; with the wavefront,
-    /// a camera pass and a pass a bounce for each sample.
+    /// a camera pass and a pass a bounce for each sample, each bounce after its rays'
+    /// `pathtrace/hits` where they are traced apart.
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,

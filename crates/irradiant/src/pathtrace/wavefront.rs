@@ -13,7 +13,8 @@ use crate::RenderError;
 use crate::frame::IMAGE_TILE;
 use crate::scene::GpuScene;
 
-/// Bytes of a queue's header: its indirect dispatch (count, x, y, z), the bounce, padding.
+/// Bytes of a queue's header: its bounce pass's indirect dispatch (count, x, y, z), the
+/// bounce, and `pathtrace/hits`' dispatch (x, y, z; zero where rays are not traced apart).
 const QUEUE_HEADER_BYTES: u64 = 32;
 /// Bytes of one path's state (`PathState` in path.wgsl).
 const PATH_STATE_BYTES: u64 = 64;
@@ -91,7 +92,12 @@ impl Wavefront {
         fetches: bool,
         fetch_workgroups: u32,
     ) -> Result<Option<Self>, RenderError> {
-        let fetches = fetches && scene.fetches_rays();
+        // Where the hits would not fit, the wavefront still traces, its rays in the bounce.
+        let fetches = fetches
+            && scene.fetches_rays()
+            && ctx
+                .check_allocations(&Self::plan(width, height, true))
+                .is_ok();
         let plan = Self::plan(width, height, fetches);
         if ctx.check_allocations(&plan).is_err() {
             return Ok(None);
