@@ -38,9 +38,7 @@ fn list_if(list: u32, probe: u32, listed: bool, li: u32) {
             // workgroups of ddgi/trace find no rays left).
             var trace = rays;
             if FETCH_RAYS == 1u {
-                let probe_rays = listed * volume.rays_per_probe;
-                let run = fetch_run(probe_rays, FETCH_WORKGROUPS);
-                trace = folded_groups((probe_rays + run - 1u) / run);
+                trace = fetch_groups(listed * volume.rays_per_probe, FETCH_WORKGROUPS);
             }
             atomicMax(&active_probes.lists[list].trace_x, trace.x);
             atomicMax(&active_probes.lists[list].trace_y, trace.y);

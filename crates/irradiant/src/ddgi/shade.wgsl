@@ -170,8 +170,10 @@ fn enqueue_shadow(queued: bool, ray: GpuDdgiShadowRay, local_index: u32) {
             // A thread a ray, or with FETCH_RAYS runs of fetch_run rays (bvh_fetch); the last
             // workgroup to append counts every queued ray, and the maximum covers it.
             let in_queue = base + count;
-            let run = select(64u, fetch_run(in_queue, FETCH_WORKGROUPS), FETCH_RAYS == 1u);
-            let groups = folded_groups((in_queue + run - 1u) / run);
+            var groups = folded_groups((in_queue + 63u) / 64u);
+            if FETCH_RAYS == 1u {
+                groups = fetch_groups(in_queue, FETCH_WORKGROUPS);
+            }
             atomicMax(&shadow_queue.groups_x, groups.x);
             atomicMax(&shadow_queue.groups_y, groups.y);
             atomicMax(&shadow_queue.groups_z, 1u);

@@ -30,13 +30,10 @@ pub struct PathTracer {
     wavefront: Option<Option<Wavefront>>,
     /// The schedule the last samples were traced with.
     traced_with: PathSchedule,
-    /// Workgroups the wavefront's `pathtrace/hits` dispatches at most where it traces a
-    /// bounce's rays apart (`crate::shaders::FETCH_WORKGROUPS` unless
-    /// [`PathTracer::with_fetch_workgroups`]).
-    fetch_workgroups: u32,
-    /// Whether the wavefront traces a bounce's rays apart whatever the tree's cost (set by
-    /// [`PathTracer::with_fetch_workgroups`]); else from `TRACED_APART_FROM_SAH_COST` on.
-    fetch_any_tree: bool,
+    /// Set by [`PathTracer::with_fetch_workgroups`]: the wavefront traces a bounce's rays apart
+    /// whatever the tree's cost, its `pathtrace/hits` in at most this many workgroups. None:
+    /// from `TRACED_APART_FROM_SAH_COST` on, in at most `crate::shaders::FETCH_WORKGROUPS`.
+    forced_fetch_workgroups: Option<u32>,
 }
 
 impl PathTracer {
@@ -94,8 +91,7 @@ impl PathTracer {
             samples_done: 0,
             wavefront: None,
             traced_with: PathSchedule::Megakernel,
-            fetch_workgroups: crate::shaders::FETCH_WORKGROUPS,
-            fetch_any_tree: false,
+            forced_fetch_workgroups: None,
         })
     }
 
@@ -105,8 +101,7 @@ impl PathTracer {
     /// the first samples.
     pub fn with_fetch_workgroups(self, workgroups: u32) -> Self {
         Self {
-            fetch_workgroups: workgroups.max(1),
-            fetch_any_tree: true,
+            forced_fetch_workgroups: Some(workgroups.max(1)),
             ..self
         }
     }
@@ -149,7 +144,7 @@ impl PathTracer {
         };
         if settings.schedule.on(ctx) == PathSchedule::Wavefront {
             if self.wavefront.is_none() {
-                let apart = self.fetch_any_tree
+                let apart = self.forced_fetch_workgroups.is_some()
                     || scene.stats.sah_cost >= super::wavefront::TRACED_APART_FROM_SAH_COST;
                 self.wavefront = Some(Wavefront::new(
                     ctx,
@@ -157,7 +152,8 @@ impl PathTracer {
                     self.width,
                     self.height,
                     apart,
-                    self.fetch_workgroups,
+                    self.forced_fetch_workgroups
+                        .unwrap_or(crate::shaders::FETCH_WORKGROUPS),
                 )?);
             }
             if let Some(Some(wavefront)) = &self.wavefront {

@@ -87,6 +87,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
     var path: PathState;
     var valid = false;
     var bounce = 0u;
+    // The path's place in paths_in (and its hit's), for the bounce pass.
+    let i = folded_index(group) * THREADS + local_index;
     if WAVEFRONT_STAGE == STAGE_CAMERA {
         // One 8×8 tile a workgroup, as the megakernel's: neighbouring camera rays together.
         valid = id.x < params.width && id.y < params.height;
@@ -94,7 +96,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
         let dir = pixel_ray_dir(params, id.xy, &rng);
         path = path_start(params.camera.position, dir, rng, id.x | (id.y << 16u));
     } else {
-        let i = folded_index(group) * THREADS + local_index;
         valid = i < paths_in.count;
         bounce = paths_in.bounce;
         if valid {
@@ -104,7 +105,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
     var alive = false;
     if valid {
         if WAVEFRONT_STAGE == STAGE_BOUNCE && FETCH_RAYS == 1u && fetch_pays(paths_in.count, FETCH_WORKGROUPS) {
-            let found = hits[folded_index(group) * THREADS + local_index];
+            let found = hits[i];
             let instance = select(0u, INVALID, found.triangle == INVALID);
             alive = path_step_at(&path, Hit(found.t, found.triangle, instance, found.bary), bounce, params.max_bounces, true, params.light_sampling);
         } else {
@@ -159,8 +160,7 @@ fn append(alive: bool, path: PathState, next_bounce: u32, local_index: u32) {
                 // The last workgroup to append counts every queued path, and the maximum
                 // covers its runs (ddgi/shade's shadow queue does the same). Fewer paths than
                 // that leave pathtrace/hits no workgroup, and pathtrace/bounce traces them.
-                let run = fetch_run(in_queue, FETCH_WORKGROUPS);
-                let runs = folded_groups((in_queue + run - 1u) / run);
+                let runs = fetch_groups(in_queue, FETCH_WORKGROUPS);
                 atomicMax(&paths_out.runs_x, runs.x);
                 atomicMax(&paths_out.runs_y, runs.y);
                 atomicMax(&paths_out.runs_z, 1u);

@@ -22,6 +22,13 @@ fn fetch_run(rays: u32, workgroups: u32) -> u32 {
     return 64u * max(1u, (rays + per_64 - 1u) / per_64);
 }
 
+// The dispatch's (x, y) of `rays` rays whose lanes fetch, a run of fetch_run a workgroup
+// (shaders::fetch_dispatch).
+fn fetch_groups(rays: u32, workgroups: u32) -> vec2<u32> {
+    let run = fetch_run(rays, workgroups);
+    return folded_groups((rays + run - 1u) / run);
+}
+
 // Whether lanes that fetch pay for `rays` rays in a dispatch of at most `workgroups`: only where
 // a run passes 64 rays, so that a lane has more than one to fetch (shaders::fetch_pays).
 fn fetch_pays(rays: u32, workgroups: u32) -> bool {
