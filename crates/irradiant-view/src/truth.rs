@@ -55,7 +55,7 @@ struct Compared {
 
 enum Stage {
     /// Tracing the reference, a few samples a frame.
-    Rendering(PathTracer),
+    Rendering(Box<PathTracer>),
     /// The reference is there; the comparison waits for the technique's frame.
     Awaiting,
     /// The worker compares; the result comes on the channel.
@@ -108,7 +108,7 @@ impl Truth {
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
                 tracer.reset(&mut encoder);
                 ctx.queue.submit([encoder.finish()]);
-                Stage::Rendering(tracer)
+                Stage::Rendering(Box::new(tracer))
             }
         };
         Ok(Self {

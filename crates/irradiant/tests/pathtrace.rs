@@ -3,9 +3,11 @@
 
 mod common;
 
+use glam::Vec3;
 use irradiant::GpuScene;
 use irradiant::frame::Image;
 use irradiant::pathtrace::{PathSchedule, PathTraceSettings, PathTracer};
+use irradiant_scene::{Light, LightKind, Scene};
 
 fn render(
     ctx: &irradiant::GpuContext,
@@ -49,14 +51,40 @@ fn render_with(
 /// alive than its dispatch holds in runs of 64, so never with the default dispatch (1 024
 /// paths: the kernels that can split, tracing in the bounce), and with one of at most 3 or 1
 /// workgroups in runs of up to 384 or 1 024 paths, where a lane takes up to 6 or 16 rays, until
-/// 192 or 64 paths or fewer are alive. That the split then takes part was checked by hand: a
-/// `pathtrace/hits` that leaves each run's last ray untraced fails this test.
+/// 192 or 64 paths or fewer are alive. Made so, a sample's first passes also defer their
+/// vertices' shadow rays (`pathtrace/shadows`, `pathtrace/shadow_resolve`): the emitter
+/// sample's, and on the box lit by a point light and the sun as well, three a vertex. That the
+/// split then takes part was checked by hand: a `pathtrace/hits` that leaves each run's last ray
+/// untraced fails this test, and so does a `pathtrace/shadows` that lets blocked rays through.
 #[test]
 fn the_wavefront_traces_the_megakernels_paths() {
     let Some(ctx) = common::gpu() else { return };
-    let scene = irradiant_scene::load("cornell").unwrap().scene;
-    let gpu_scene = GpuScene::new(&ctx, &scene, &Default::default()).unwrap();
-    for max_bounces in [64, 2] {
+    let boxed = irradiant_scene::load("cornell").unwrap().scene;
+    let mut lit = boxed.clone();
+    lit.lights.push(Light::point(
+        "lamp",
+        Vec3::new(0.3, 1.2, 0.2),
+        Vec3::ONE,
+        0.5,
+    ));
+    lit.lights.push(Light {
+        kind: LightKind::Directional,
+        direction: Vec3::new(0.2, -0.4, -1.0).normalize(),
+        ..Light::point("sun", Vec3::ZERO, Vec3::ONE, 1.0)
+    });
+    let all_dispatches = [
+        None,
+        Some(irradiant::shaders::FETCH_WORKGROUPS),
+        Some(3),
+        Some(1),
+    ];
+    let runs: [(&Scene, u32, &[Option<u32>]); 3] = [
+        (&boxed, 64, &all_dispatches),
+        (&boxed, 2, &all_dispatches),
+        (&lit, 64, &[None, Some(1)]),
+    ];
+    for (scene, max_bounces, dispatches) in runs {
+        let gpu_scene = GpuScene::new(&ctx, scene, &Default::default()).unwrap();
         let settings = |schedule| PathTraceSettings {
             samples_per_pixel: 8,
             max_bounces,
@@ -64,15 +92,10 @@ fn the_wavefront_traces_the_megakernels_paths() {
             schedule,
             ..PathTraceSettings::fast()
         };
-        let mega = render_with(&ctx, &scene, 32, &settings(PathSchedule::Megakernel));
+        let mega = render_with(&ctx, scene, 32, &settings(PathSchedule::Megakernel));
         let mean = mega.mean();
         assert!(mean[0] > 0.01, "the megakernel's image is black: {mean:?}");
-        for fetch_workgroups in [
-            None,
-            Some(irradiant::shaders::FETCH_WORKGROUPS),
-            Some(3),
-            Some(1),
-        ] {
+        for &fetch_workgroups in dispatches {
             let mut tracer = PathTracer::new(&ctx, &gpu_scene, 32, 32).unwrap();
             if let Some(workgroups) = fetch_workgroups {
                 tracer = tracer.with_fetch_workgroups(workgroups);
@@ -92,6 +115,11 @@ fn the_wavefront_traces_the_megakernels_paths() {
                 fetch_workgroups.is_some(),
                 "whether the wavefront was made to trace the Cornell box's bounce rays apart"
             );
+            assert_eq!(
+                tracer.deferred_shadows(),
+                fetch_workgroups.is_some(),
+                "whether the wavefront was made to trace the Cornell box's shadow rays apart"
+            );
             let worst = mega
                 .pixels
                 .iter()
@@ -100,8 +128,9 @@ fn the_wavefront_traces_the_megakernels_paths() {
                 .map(|(m, w)| (m - w).abs() / m.abs().max(1e-3))
                 .fold(0.0f32, f32::max);
             println!(
-                "max bounces {max_bounces}, fetching workgroups {fetch_workgroups:?}: mean \
-                 {mean:?} against {:?}, worst relative difference {worst:.2e}",
+                "{} lights, max bounces {max_bounces}, fetching workgroups {fetch_workgroups:?}: \
+                 mean {mean:?} against {:?}, worst relative difference {worst:.2e}",
+                scene.lights.len(),
                 wave.mean()
             );
             assert!(

@@ -9,4 +9,7 @@ irradiant_gpu::wgsl_constants! {
     LIGHT_SAMPLING_EMITTERS: u32 = 1;
     /// BRDF-sampled emitter hits alone (`LightSampling::Brdf`).
     LIGHT_SAMPLING_BRDF: u32 = 2;
+    /// The most shadow rays a path vertex defers to the wavefront's `pathtrace/shadows` (one a
+    /// punctual light and the emitter sample): a vertex with more traces them in place.
+    DEFERRED_SHADOWS_MAX: u32 = 4;
 }

@@ -199,6 +199,14 @@ impl PathTracer {
             && matches!(&self.wavefront, Some(Some(w)) if w.fetches_rays())
     }
 
+    /// Whether the last samples were traced by a wavefront whose first passes defer their
+    /// vertices' shadow rays to `pathtrace/shadows` (where it fetches rays, and a vertex's lights
+    /// and emitter sample take at most `DEFERRED_SHADOWS_MAX` rays).
+    pub fn deferred_shadows(&self) -> bool {
+        self.traced_with == PathSchedule::Wavefront
+            && matches!(&self.wavefront, Some(Some(w)) if w.defers_shadows())
+    }
+
     /// Renders `settings.samples_per_pixel` samples from scratch, reporting progress after each
     /// dispatch as (samples done, samples wanted).
     pub fn render(

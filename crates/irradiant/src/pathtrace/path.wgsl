@@ -26,6 +26,31 @@ struct PathState {
     _pad0: u32,
 }
 
+// A shadow ray a vertex leaves to a pass of its own (the wavefront's pathtrace/shadows) with the
+// light it brings if it arrives, throughput included: the closest hit short of `stop` or before
+// `t_max` must be `emitter_triangle` (an emitter's point), or none (INVALID: a punctual light,
+// stop = t_max, so that any hit blocks it). emitter_visible and occluded's tests, deferred.
+struct DeferredShadow {
+    origin: vec3<f32>,
+    t_max: f32,
+    dir: vec3<f32>,
+    stop: f32,
+    light: vec3<f32>,
+    emitter_triangle: u32,
+}
+
+// Set by a kernel before path_step_at to defer the vertex's shadow rays into `deferred`
+// rather than trace them, where they are at most `defer_up_to` (≤ DEFERRED_SHADOWS_MAX); the
+// megakernel never sets it.
+var<private> defer_up_to: u32;
+var<private> deferred: array<DeferredShadow, DEFERRED_SHADOWS_MAX>;
+var<private> deferred_count: u32;
+
+fn defer_shadow(ray: DeferredShadow) {
+    deferred[deferred_count] = ray;
+    deferred_count++;
+}
+
 fn path_start(origin: vec3<f32>, dir: vec3<f32>, rng: u32, pixel: u32) -> PathState {
     return PathState(origin, 0.0, dir, rng, vec3<f32>(1.0), pixel, vec3<f32>(0.0), 0u);
 }
@@ -81,11 +106,25 @@ fn path_step_at(path: ptr<function, PathState>, hit: Hit, bounce: u32, max_bounc
         return false;
     }
     let wo = -dir;
-    radiance += direct_punctual(s, wo);
-
     let origin_next = offset_ray(s.position, s.geometric_normal);
-    if scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
-        radiance += emitter_sample_light(s, wo, origin_next, light_sampling, &rng);
+    let samples_emitters = scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF;
+    deferred_count = 0u;
+    let defers = scene_info.light_count + u32(samples_emitters) <= defer_up_to;
+    if defers {
+        defer_punctual(s, wo, origin_next, throughput);
+    } else {
+        radiance += direct_punctual(s, wo);
+    }
+    if samples_emitters {
+        let e = emitter_sample_unshadowed(s, wo, origin_next, light_sampling, &rng);
+        if any(e.light.light != vec3<f32>(0.0)) {
+            if defers {
+                let margin = e.light.distance * EMITTER_POINT_MARGIN;
+                defer_shadow(DeferredShadow(origin_next, e.light.distance + margin, e.light.wi, e.light.distance - margin, throughput * e.light.light, e.point.triangle));
+            } else if emitter_visible(origin_next, e.light.wi, e.light.distance, e.point) {
+                radiance += e.light.light;
+            }
+        }
     }
     (*path).radiance += throughput * radiance;
 
@@ -119,25 +158,54 @@ fn path_step_at(path: ptr<function, PathState>, hit: Hit, bounce: u32, max_bounc
 // What it costs where the weights fit badly, and why p̂ over an estimate of its integral was
 // no better: docs/notes/light-quality.md, 2026-11-27.
 fn emitter_sample_light(s: Surface, wo: vec3<f32>, origin: vec3<f32>, light_sampling: u32, rng: ptr<function, u32>) -> vec3<f32> {
-    if SCENE_HAS_EMITTERS == 0u {
+    let e = emitter_sample_unshadowed(s, wo, origin, light_sampling, rng);
+    // A blocked sample brings nothing.
+    if all(e.light.light == vec3<f32>(0.0)) || !emitter_visible(origin, e.light.wi, e.light.distance, e.point) {
         return vec3<f32>(0.0);
+    }
+    return e.light.light;
+}
+
+// emitter_sample_light's sample before its shadow ray: the point, and in `light` what it brings
+// if nothing blocks it (light 0: nothing to trace).
+struct EmitterSampleUnshadowed {
+    point: EmitterSample,
+    light: EmitterReach,
+}
+
+fn emitter_sample_unshadowed(s: Surface, wo: vec3<f32>, origin: vec3<f32>, light_sampling: u32, rng: ptr<function, u32>) -> EmitterSampleUnshadowed {
+    var out: EmitterSampleUnshadowed;
+    if SCENE_HAS_EMITTERS == 0u {
+        return out;
     }
     let r = resample_emitters(s, origin, HIT_EMITTER_CANDIDATES, rng);
     if r.emitter >= scene_info.emitter_count || r.w <= 0.0 {
-        return vec3<f32>(0.0);
+        return out;
     }
-    let e = emitter_point(r.emitter, r.bary);
-    let reach = emitter_reach(s, wo, origin, e);
-    // A blocked sample brings nothing: no MIS weight to work out.
-    if all(reach.light == vec3<f32>(0.0)) || !emitter_visible(origin, reach.wi, reach.distance, e) {
-        return vec3<f32>(0.0);
+    out.point = emitter_point(r.emitter, r.bary);
+    out.light = emitter_reach(s, wo, origin, out.point);
+    if all(out.light.light == vec3<f32>(0.0)) {
+        return out;
     }
     var w = 1.0;
     if light_sampling != LIGHT_SAMPLING_EMITTERS {
-        let light_pdf = emitter_area_pdf(emitter_cell(origin), r.emitter) * reach.distance * reach.distance / reach.cos_light;
-        w = power_heuristic(light_pdf, brdf_pdf(s, wo, reach.wi));
+        let light_pdf = emitter_area_pdf(emitter_cell(origin), r.emitter) * out.light.distance * out.light.distance / out.light.cos_light;
+        w = power_heuristic(light_pdf, brdf_pdf(s, wo, out.light.wi));
     }
-    return reach.light * r.w * w;
+    out.light.light = out.light.light * r.w * w;
+    return out;
+}
+
+// direct_punctual's lights, each with its shadow ray deferred (defer_shadow), weighted by the
+// path's throughput.
+fn defer_punctual(s: Surface, wo: vec3<f32>, origin: vec3<f32>, throughput: vec3<f32>) {
+    for (var i = 0u; i < scene_info.light_count; i++) {
+        let ray = light_ray(i, origin);
+        let light = reflected(s, wo, ray.wi, arriving_light(s, ray)).total;
+        if any(light != vec3<f32>(0.0)) {
+            defer_shadow(DeferredShadow(origin, ray.distance, ray.wi, ray.distance, throughput * light, INVALID));
+        }
+    }
 }
 
 // A NaN or infinite sample would ruin a whole accumulation: such a sample counts as none.

@@ -1,8 +1,9 @@
 //! The path tracer as a wavefront ([`PathSchedule::Wavefront`](super::PathSchedule)): one pass
 //! a bounce over the paths still alive, each pass appending the survivors to a queue whose
 //! header is the next pass's indirect dispatch. On a scene of one wide tree
-//! ([`GpuScene::fetches_rays`]) a bounce's rays are traced apart from their shading, by lanes
-//! that fetch their next ray. See `wavefront.wgsl`.
+//! ([`GpuScene::fetches_rays`]) a bounce's rays, and in a sample's first passes its vertices'
+//! shadow rays, are traced apart from their shading, by lanes that fetch their next ray. See
+//! `wavefront.wgsl`.
 
 use std::sync::Arc;
 
@@ -24,6 +25,18 @@ const QUEUE_DISPATCH_OFFSET: u64 = 4;
 const QUEUE_RUNS_OFFSET: u64 = 20;
 /// Bytes of one path's closest hit (`GpuPathHit` in wavefront.wgsl).
 const PATH_HIT_BYTES: u64 = 16;
+/// Bytes of the shadow queue's header (`GpuShadowQueue` in wavefront.wgsl): the dispatches of
+/// `pathtrace/shadows` (count, x, y, z) and of `pathtrace/shadow_resolve` (x, y, z), and its
+/// spans' count.
+const SHADOW_HEADER_BYTES: u64 = 32;
+/// Where the shadow queue's dispatch of `pathtrace/shadows` (x, y, z) lies in it.
+const SHADOW_RUNS_OFFSET: u64 = 4;
+/// Where its dispatch of `pathtrace/shadow_resolve` (x, y, z) lies.
+const SHADOW_RESOLVE_OFFSET: u64 = 16;
+/// Bytes of one deferred shadow ray (`DeferredShadow` in path.wgsl).
+const DEFERRED_SHADOW_BYTES: u64 = 48;
+/// Bytes of one path's span of deferred rays (first, count, pixel, 0).
+const SHADOW_SPAN_BYTES: u64 = 16;
 
 /// The bottom-level tree's SAH cost (`GpuSceneStats::sah_cost`: a ray's expected node visits
 /// and triangle tests) from which the wavefront traces a bounce's rays apart from their
@@ -34,12 +47,23 @@ const PATH_HIT_BYTES: u64 = 16;
 /// `many-lights` (31.9) 7.45 → 7.62 and the Cornell box (14.2) 2.55 → 2.83.
 pub(super) const TRACED_APART_FROM_SAH_COST: f32 = 40.0;
 
+/// The passes of a sample (the camera's, then a bounce's each) whose vertices may defer their
+/// shadow rays to `pathtrace/shadows`, where the paths alive fill its runs. Later bounces keep
+/// theirs in `pathtrace/bounce` and record no shadow passes: those would mostly be empty
+/// dispatches after the paths thin out, and each costs a clear, a copy and two dispatches a
+/// bounce. NVIDIA H200, 1920×1080, a sample (docs/notes/traversal.md, 2026-11-28 (night)):
+/// Sibenik 15.92 ms before, 15.25 with 3 passes, **14.52** with 6, 15.49 with every pass (another
+/// call); Sponza 11.10, 11.08, **10.96**, 11.91.
+const SHADOWS_APART_PASSES: u32 = 6;
+
 /// `WAVEFRONT_STAGE` of wavefront.wgsl: which of its passes a pipeline is.
 #[derive(Clone, Copy)]
 enum Stage {
     Camera = 0,
     Hits = 1,
     Bounce = 2,
+    Shadows = 3,
+    Resolve = 4,
 }
 
 /// The wavefront's passes and its two path queues (each pass reads one, fills the other).
@@ -52,12 +76,24 @@ pub(super) struct Wavefront {
     /// since pathtrace/bounce declares the binding either way.
     hit_buffer: wgpu::Buffer,
     queues: [wgpu::Buffer; 2],
+    /// Where a vertex's shadow rays are traced apart: `pathtrace/shadows` and
+    /// `pathtrace/shadow_resolve`.
+    shadow_passes: Option<[Arc<ComputePass>; 2]>,
+    /// The deferred shadow rays and each path's span of them (one entry each where none are).
+    shadow_queue: wgpu::Buffer,
+    shadow_spans: wgpu::Buffer,
+    /// A copy of the shadow queue's header, the dispatches of the passes that bind the queue
+    /// read-write (a dispatch may not read its own indirect arguments from such a binding).
+    shadow_dispatch: wgpu::Buffer,
+    /// Deferred shadow rays a vertex at most (0: none deferred).
+    shadow_slots: u64,
 }
 
 impl Wavefront {
     /// The two queues of a `width`×`height` image, a path for every thread of its 8×8 tiles,
-    /// and where `fetches` a hit for each.
-    pub fn plan(width: u32, height: u32, fetches: bool) -> Vec<Allocation> {
+    /// where `fetches` a hit for each, and where `shadow_slots` is not 0 that many deferred
+    /// shadow rays a path and its span.
+    pub fn plan(width: u32, height: u32, fetches: bool, shadow_slots: u64) -> Vec<Allocation> {
         let paths = (width.div_ceil(IMAGE_TILE.0) * IMAGE_TILE.0) as u64
             * (height.div_ceil(IMAGE_TILE.1) * IMAGE_TILE.1) as u64;
         let bytes = QUEUE_HEADER_BYTES + paths * PATH_STATE_BYTES;
@@ -72,12 +108,24 @@ impl Wavefront {
                 "the image size (--size)",
             ));
         }
+        if shadow_slots > 0 {
+            plan.push(Allocation::storage(
+                "pathtrace/shadows",
+                SHADOW_HEADER_BYTES + paths * shadow_slots * DEFERRED_SHADOW_BYTES,
+                "the image size (--size)",
+            ));
+            plan.push(Allocation::storage(
+                "pathtrace/shadow_spans",
+                paths * SHADOW_SPAN_BYTES,
+                "the image size (--size)",
+            ));
+        }
         plan
     }
 
     /// What it holds.
     pub fn allocations(&self, width: u32, height: u32) -> Vec<Allocation> {
-        Self::plan(width, height, self.hits.is_some())
+        Self::plan(width, height, self.hits.is_some(), self.shadow_slots)
     }
 
     /// The wavefront of a `width`×`height` image, or None where its buffers pass the adapter's
@@ -92,13 +140,29 @@ impl Wavefront {
         fetches: bool,
         fetch_workgroups: u32,
     ) -> Result<Option<Self>, RenderError> {
-        // Where the hits would not fit, the wavefront still traces, its rays in the bounce.
+        // Where the hits would not fit, the wavefront still traces, its rays in the bounce; where
+        // the deferred shadow rays would not, it traces those in the bounce.
         let fetches = fetches
             && scene.fetches_rays()
             && ctx
-                .check_allocations(&Self::plan(width, height, true))
+                .check_allocations(&Self::plan(width, height, true, 0))
                 .is_ok();
-        let plan = Self::plan(width, height, fetches);
+        // A vertex's shadow rays: one a punctual light, one for the emitter sample. A scene
+        // with more than DEFERRED_SHADOWS_MAX traces them in the bounce.
+        let lights_a_vertex = scene.light_count() as u64 + u64::from(scene.has_emitters());
+        let slots = match lights_a_vertex <= u64::from(super::constants::DEFERRED_SHADOWS_MAX) {
+            true => lights_a_vertex,
+            false => 0,
+        };
+        let shadow_slots = match fetches
+            && ctx
+                .check_allocations(&Self::plan(width, height, true, slots))
+                .is_ok()
+        {
+            true => slots,
+            false => 0,
+        };
+        let plan = Self::plan(width, height, fetches, shadow_slots);
         if ctx.check_allocations(&plan).is_err() {
             return Ok(None);
         }
@@ -111,6 +175,9 @@ impl Wavefront {
                         ("WAVEFRONT_STAGE", format!("{}u", stage as u32)),
                         ("FETCH_RAYS", format!("{}u", fetches as u32)),
                         ("FETCH_WORKGROUPS", format!("{}u", fetch_workgroups.max(1))),
+                        ("SHADOWS_APART", format!("{}u", (shadow_slots > 0) as u32)),
+                        ("SHADOW_SLOTS", format!("{shadow_slots}u")),
+                        ("SHADOWS_APART_PASSES", format!("{SHADOWS_APART_PASSES}u")),
                     ]),
             )
         };
@@ -120,7 +187,8 @@ impl Wavefront {
                 size: a.bytes,
                 usage: wgpu::BufferUsages::STORAGE
                     | wgpu::BufferUsages::INDIRECT
-                    | wgpu::BufferUsages::COPY_DST,
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             })
         };
@@ -134,12 +202,38 @@ impl Wavefront {
                 buffer(&Allocation::storage("pathtrace/hits", PATH_HIT_BYTES, "")),
             ),
         };
+        // The least the bindings take where no ray is deferred: a header and one entry.
+        let least = |label, bytes| buffer(&Allocation::storage(label, bytes, ""));
+        let (shadow_passes, shadow_queue, shadow_spans) = match shadow_slots > 0 {
+            true => (
+                Some([
+                    stage("pathtrace/shadows", Stage::Shadows)?,
+                    stage("pathtrace/shadow_resolve", Stage::Resolve)?,
+                ]),
+                buffer(&plan[3]),
+                buffer(&plan[4]),
+            ),
+            false => (
+                None,
+                least(
+                    "pathtrace/shadows",
+                    SHADOW_HEADER_BYTES + DEFERRED_SHADOW_BYTES,
+                ),
+                least("pathtrace/shadow_spans", SHADOW_SPAN_BYTES),
+            ),
+        };
+        let shadow_dispatch = least("pathtrace/shadow_dispatch", SHADOW_HEADER_BYTES);
         Ok(Some(Self {
             camera: stage("pathtrace/camera", Stage::Camera)?,
             bounce: stage("pathtrace/bounce", Stage::Bounce)?,
             hits,
             hit_buffer,
             queues: [buffer(&plan[0]), buffer(&plan[1])],
+            shadow_passes,
+            shadow_queue,
+            shadow_spans,
+            shadow_dispatch,
+            shadow_slots,
         }))
     }
 
@@ -147,6 +241,11 @@ impl Wavefront {
     /// (where more paths are alive than `fetch_workgroups` runs of 64).
     pub fn fetches_rays(&self) -> bool {
         self.hits.is_some()
+    }
+
+    /// Whether a sample's first passes defer their vertices' shadow rays to `pathtrace/shadows`.
+    pub fn defers_shadows(&self) -> bool {
+        self.shadow_passes.is_some()
     }
 
     /// Records `params.samples` samples a pixel from `params.sample_offset` on: for each, the
@@ -169,7 +268,9 @@ impl Wavefront {
                 .texture("accumulation", accumulation)
                 .buffer("paths_in", &self.queues[from])
                 .buffer("paths_out", &self.queues[1 - from])
-                .buffer("hits", &self.hit_buffer);
+                .buffer("hits", &self.hit_buffer)
+                .buffer("shadows", &self.shadow_queue)
+                .buffer("shadow_spans", &self.shadow_spans);
             pass.bind(ctx, &[&scene.resources(), &own])
         };
         let shared = ctx.uniform_buffer("pathtrace/params", params);
@@ -180,6 +281,46 @@ impl Wavefront {
         let hits = match &self.hits {
             Some(pass) => Some([bound(pass, &shared, 0)?, bound(pass, &shared, 1)?]),
             None => None,
+        };
+        let shadow_passes = match &self.shadow_passes {
+            Some([trace, resolve]) => {
+                Some([bound(trace, &shared, 0)?, bound(resolve, &shared, 0)?])
+            }
+            None => None,
+        };
+        // After a pass that may have deferred its shadow rays: trace them, then add what
+        // arrived; both dispatches are empty where it did not.
+        let shadows =
+            |encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>, pass: u32| {
+                if let Some([trace, resolve]) = &shadow_passes
+                    && pass < SHADOWS_APART_PASSES
+                {
+                    let mut profiler = profiler;
+                    encoder.copy_buffer_to_buffer(
+                        &self.shadow_queue,
+                        0,
+                        &self.shadow_dispatch,
+                        0,
+                        SHADOW_HEADER_BYTES,
+                    );
+                    trace.dispatch_indirect(
+                        encoder,
+                        profiler.as_deref_mut(),
+                        &self.shadow_dispatch,
+                        SHADOW_RUNS_OFFSET,
+                    );
+                    resolve.dispatch_indirect(
+                        encoder,
+                        profiler,
+                        &self.shadow_dispatch,
+                        SHADOW_RESOLVE_OFFSET,
+                    );
+                }
+            };
+        let clear_shadows = |encoder: &mut wgpu::CommandEncoder, pass: u32| {
+            if self.shadow_passes.is_some() && pass < SHADOWS_APART_PASSES {
+                encoder.clear_buffer(&self.shadow_queue, 0, Some(SHADOW_HEADER_BYTES));
+            }
         };
         for sample in 0..params.samples {
             let uniform = ctx.uniform_buffer(
@@ -193,11 +334,13 @@ impl Wavefront {
             // Filled from queue 1 (the camera pass reads none); bounces alternate from there.
             let camera = bound(&self.camera, &uniform, 1)?;
             encoder.clear_buffer(&self.queues[0], 0, Some(QUEUE_HEADER_BYTES));
+            clear_shadows(encoder, 0);
             camera.dispatch(
                 encoder,
                 profiler.as_deref_mut(),
                 super::PathTracer::workgroups(params.width, params.height),
             );
+            shadows(encoder, profiler.as_deref_mut(), 0);
             for bounce in 1..=params.max_bounces as usize {
                 let from = (bounce + 1) % 2;
                 encoder.clear_buffer(&self.queues[1 - from], 0, Some(QUEUE_HEADER_BYTES));
@@ -209,12 +352,14 @@ impl Wavefront {
                         QUEUE_RUNS_OFFSET,
                     );
                 }
+                clear_shadows(encoder, bounce as u32);
                 bounces[from].dispatch_indirect(
                     encoder,
                     profiler.as_deref_mut(),
                     &self.queues[from],
                     QUEUE_DISPATCH_OFFSET,
                 );
+                shadows(encoder, profiler.as_deref_mut(), bounce as u32);
             }
         }
         Ok(())

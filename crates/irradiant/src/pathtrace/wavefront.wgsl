@@ -1,17 +1,24 @@
-// pathtrace/camera, pathtrace/hits and pathtrace/bounce: the reference path tracer as a
-// wavefront (PathSchedule::Wavefront). Each bounce pass takes one vertex of every live path, one
-// thread a path: pathtrace/camera starts a path a pixel at its camera ray, and each
-// pathtrace/bounce takes the paths the pass before left alive. A path that ends adds its
-// radiance to its pixel; one that goes on is appended to the next pass's queue, which that
-// pass's indirect dispatch covers exactly, so that no warp waits on the longest path of its
-// pixels as the megakernel's do.
+// pathtrace/camera, pathtrace/hits, pathtrace/bounce, pathtrace/shadows and
+// pathtrace/shadow_resolve: the reference path tracer as a wavefront (PathSchedule::Wavefront).
+// Each bounce pass takes one vertex of every live path, one thread a path: pathtrace/camera
+// starts a path a pixel at its camera ray, and each pathtrace/bounce takes the paths the pass
+// before left alive. A path that ends adds its radiance to its pixel; one that goes on is
+// appended to the next pass's queue, which that pass's indirect dispatch covers exactly, so that
+// no warp waits on the longest path of its pixels as the megakernel's do.
 // FETCH_RAYS (0 or 1, Wavefront::new in wavefront.rs: where GpuScene::fetches_rays): before each
 // pathtrace/bounce, pathtrace/hits finds the closest hits of the queue's rays with lanes that
 // fetch their next ray (bvh_fetch), a workgroup a run of them, and pathtrace/bounce shades
 // from those hits instead of tracing a ray a thread; only while the paths alive are more than
 // FETCH_WORKGROUPS runs of 64 (fetch_pays), since a lane with one ray gains nothing from it. The
 // camera's rays, neighbours in a tile, keep a ray a thread.
-// WAVEFRONT_STAGE (STAGE_CAMERA, STAGE_HITS or STAGE_BOUNCE below): which of the three passes.
+// SHADOWS_APART (0 or 1; only with FETCH_RAYS, where a vertex's lights and emitter sample take
+// at most DEFERRED_SHADOWS_MAX shadow rays): in a sample's first SHADOWS_APART_PASSES passes,
+// while they hold more paths than FETCH_WORKGROUPS runs of 64, pathtrace/camera and
+// pathtrace/bounce defer their vertices' shadow rays (SHADOW_SLOTS a vertex at most, path.wgsl's
+// DeferredShadow) to a queue. pathtrace/shadows traces it with lanes that fetch and zeroes the
+// light of each blocked ray; pathtrace/shadow_resolve then adds each path's light that arrived
+// to its pixel, a thread a path of the pass, so that no two lanes add to one pixel at once.
+// WAVEFRONT_STAGE (STAGE_CAMERA … STAGE_RESOLVE below): which of the five passes.
 #import path
 #import pathtrace_params
 #import dispatch
@@ -21,6 +28,8 @@
 const STAGE_CAMERA: u32 = 0u;
 const STAGE_HITS: u32 = 1u;
 const STAGE_BOUNCE: u32 = 2u;
+const STAGE_SHADOWS: u32 = 3u;
+const STAGE_RESOLVE: u32 = 4u;
 
 // A queue of live paths. Its first 16 bytes are the indirect dispatch that takes them (its
 // count, then the workgroups in x, y, z), a thread a path; with FETCH_RAYS its last 12 bytes
@@ -70,6 +79,25 @@ struct GpuPathHit {
 
 @group(1) @binding(4) var<storage, read_write> hits: array<GpuPathHit>;
 
+// The shadow rays a pass deferred. Its header: pathtrace/shadows' dispatch (the rays' count,
+// then x, y, z in runs), pathtrace/shadow_resolve's (x, y, z, a thread a path of the pass) and
+// how many of `spans` it reads. The host clears the header (32 bytes) before each pass.
+struct GpuShadowQueue {
+    count: atomic<u32>,
+    runs_x: atomic<u32>,
+    runs_y: atomic<u32>,
+    runs_z: atomic<u32>,
+    resolve_x: atomic<u32>,
+    resolve_y: atomic<u32>,
+    resolve_z: atomic<u32>,
+    spans: atomic<u32>,
+    rays: array<DeferredShadow>,
+}
+
+@group(1) @binding(5) var<storage, read_write> shadows: GpuShadowQueue;
+// A path of the pass's deferred rays: (first, count, pixel, 0), at its thread's place.
+@group(1) @binding(6) var<storage, read_write> shadow_spans: array<vec4<u32>>;
+
 const THREADS: u32 = 64u;
 var<workgroup> appended_in_group: atomic<u32>;
 var<workgroup> group_base: u32;
@@ -82,6 +110,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
         run_first = folded_index(group) * run;
         let left = paths_in.count - min(run_first, paths_in.count);
         trace_fetching(min(left, run), TRACE_CLOSEST, local_index);
+        return;
+    }
+    if WAVEFRONT_STAGE == STAGE_SHADOWS {
+        let count = atomicLoad(&shadows.count);
+        let run = fetch_run(count, FETCH_WORKGROUPS);
+        run_first = folded_index(group) * run;
+        let left = count - min(run_first, count);
+        trace_fetching(min(left, run), TRACE_UNTIL, local_index);
+        return;
+    }
+    if WAVEFRONT_STAGE == STAGE_RESOLVE {
+        resolve_shadows(folded_index(group) * THREADS + local_index);
         return;
     }
     var path: PathState;
@@ -102,6 +142,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
             path = paths_in.paths[i];
         }
     }
+    // The pass's paths: every pixel's at the camera, else those the pass before left alive.
+    let pass_paths = select(paths_in.count, params.width * params.height, WAVEFRONT_STAGE == STAGE_CAMERA);
+    let shadows_apart = SHADOWS_APART == 1u && bounce < SHADOWS_APART_PASSES && fetch_pays(pass_paths, FETCH_WORKGROUPS);
+    if shadows_apart {
+        defer_up_to = SHADOW_SLOTS;
+    }
     var alive = false;
     if valid {
         if WAVEFRONT_STAGE == STAGE_BOUNCE && FETCH_RAYS == 1u && fetch_pays(paths_in.count, FETCH_WORKGROUPS) {
@@ -118,18 +164,103 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
         }
     }
     append(alive, path, bounce + 1u, local_index);
+    if shadows_apart {
+        // A workgroup's place among the pass's: the camera's 8×8 tiles row by row.
+        let tiles_x = (params.width + 7u) / 8u;
+        let group_index = select(folded_index(group), group.x + group.y * tiles_x, WAVEFRONT_STAGE == STAGE_CAMERA);
+        append_shadows(valid, group_index, path.pixel, local_index);
+    }
 }
 
 // pathtrace/hits' first queued path in this workgroup's run.
 var<private> run_first: u32;
 
 fn fetched_ray(k: u32) -> FetchedRay {
+    if WAVEFRONT_STAGE == STAGE_SHADOWS {
+        let ray = shadows.rays[run_first + k];
+        trace_stop = ray.stop;
+        return FetchedRay(ray.origin, ray.t_max, ray.dir);
+    }
     let path = paths_in.paths[run_first + k];
     return FetchedRay(path.origin, RAY_FAR, path.dir);
 }
 
 fn fetched_hit(k: u32, hit: Hit) {
+    if WAVEFRONT_STAGE == STAGE_SHADOWS {
+        // Arrived: the closest hit is the emitter's point, or none for a punctual light (the
+        // scene is one instance: every hit's is 0).
+        if hit.triangle != shadows.rays[run_first + k].emitter_triangle {
+            shadows.rays[run_first + k].light = vec3<f32>(0.0);
+        }
+        return;
+    }
     hits[run_first + k] = GpuPathHit(hit.t, hit.triangle, hit.bary);
+}
+
+var<workgroup> shadows_in_group: atomic<u32>;
+var<workgroup> group_has_paths: atomic<u32>;
+var<workgroup> shadow_base: u32;
+
+// Appends the workgroup's deferred shadow rays to `shadows` with one global atomic, raises
+// pathtrace/shadows' dispatch to cover them (as append does for pathtrace/hits) and
+// pathtrace/shadow_resolve's to cover this workgroup's paths, and writes each thread's span
+// at its place, `group_index` × THREADS + its index (none where the workgroup has no path).
+fn append_shadows(valid: bool, group_index: u32, pixel: u32, local_index: u32) {
+    if local_index == 0u {
+        atomicStore(&shadows_in_group, 0u);
+        atomicStore(&group_has_paths, 0u);
+    }
+    workgroupBarrier();
+    let count = select(0u, deferred_count, valid);
+    let place = atomicAdd(&shadows_in_group, count);
+    if valid {
+        atomicStore(&group_has_paths, 1u);
+    }
+    workgroupBarrier();
+    if local_index == 0u {
+        let in_group = atomicLoad(&shadows_in_group);
+        var base = 0u;
+        if in_group > 0u {
+            base = atomicAdd(&shadows.count, in_group);
+            let runs = fetch_groups(base + in_group, FETCH_WORKGROUPS);
+            atomicMax(&shadows.runs_x, runs.x);
+            atomicMax(&shadows.runs_y, runs.y);
+            atomicMax(&shadows.runs_z, 1u);
+        }
+        if atomicLoad(&group_has_paths) != 0u {
+            let resolve = folded_groups(group_index + 1u);
+            atomicMax(&shadows.resolve_x, resolve.x);
+            atomicMax(&shadows.resolve_y, resolve.y);
+            atomicMax(&shadows.resolve_z, 1u);
+            atomicMax(&shadows.spans, (group_index + 1u) * THREADS);
+        }
+        shadow_base = base;
+    }
+    workgroupBarrier();
+    if atomicLoad(&group_has_paths) != 0u {
+        let first = shadow_base + place;
+        shadow_spans[group_index * THREADS + local_index] = vec4<u32>(first, count, pixel, 0u);
+        for (var j = 0u; j < count; j++) {
+            shadows.rays[first + j] = deferred[j];
+        }
+    }
+}
+
+// Adds the light of the span at `index` that arrived to its pixel.
+fn resolve_shadows(index: u32) {
+    if index >= atomicLoad(&shadows.spans) {
+        return;
+    }
+    let span = shadow_spans[index];
+    if span.y == 0u {
+        return;
+    }
+    var light = vec3<f32>(0.0);
+    for (var j = 0u; j < span.y; j++) {
+        light += shadows.rays[span.x + j].light;
+    }
+    let pixel = vec2<u32>(span.z & 0xffffu, span.z >> 16u);
+    textureStore(accumulation, pixel, textureLoad(accumulation, pixel) + vec4<f32>(finite_or_zero(light), 0.0));
 }
 
 // Appends the workgroup's live paths to paths_out with one global atomic a workgroup, and

@@ -117,6 +117,8 @@ pub struct GpuScene {
     sampler: wgpu::Sampler,
     instances: wgpu::Buffer,
     lights: wgpu::Buffer,
+    /// Punctual lights `lights` holds: the scene's, for good.
+    light_count: usize,
     emitters: wgpu::Buffer,
     /// The emitter grid's texture (`scene::emitter_grid`), and its row width and cell budget.
     emitter_grid: wgpu::Texture,
@@ -322,6 +324,7 @@ impl GpuScene {
             sampler,
             instances,
             lights,
+            light_count: scene.lights.len(),
             emitters,
             emitter_grid,
             emitter_grid_view,
@@ -422,6 +425,11 @@ impl GpuScene {
     /// theirs ends (shaders/bvh_fetch.wgsl): the scene is one wide tree for good.
     pub fn fetches_rays(&self) -> bool {
         self.blas_layout == BlasLayout::Wide && self.instance_capacity <= 1
+    }
+
+    /// The scene's punctual lights (animation moves them but never adds one).
+    pub(crate) fn light_count(&self) -> usize {
+        self.light_count
     }
 
     /// Whether the scene can hold an emissive triangle: an instance's mesh has one, or room

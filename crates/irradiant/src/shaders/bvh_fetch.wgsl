@@ -27,9 +27,9 @@ struct FetchedRay {
 
 var<workgroup> next_fetched: atomic<u32>;
 
-// Traces the workgroup's run of `count` rays, TRACE_CLOSEST or TRACE_ANY. Every thread of the
-// workgroup calls it, in uniform control flow (a barrier starts the run). Runs of 64 rays are
-// walked by the same loop: a branch to a ray a thread through trace() beside it made the
+// Traces the workgroup's run of `count` rays, TRACE_CLOSEST, TRACE_ANY or TRACE_UNTIL (whose
+// trace_stop fetched_ray sets for each ray). Every thread of the workgroup calls it, in uniform
+// control flow (a barrier starts the run). Runs of 64 rays are walked by the same loop: a branch to a ray a thread through trace() beside it made the
 // kernel's fetching runs 6–8 % slower (H200, notes/traversal.md).
 fn trace_fetching(count: u32, mode: u32, local_index: u32) {
     if local_index == 0u {
@@ -98,7 +98,7 @@ fn trace_fetching(count: u32, mode: u32, local_index: u32) {
                 hit.triangle = i;
                 hit.instance = 0u;
                 hit.bary = r.yz;
-                if mode == TRACE_ANY {
+                if mode == TRACE_ANY || (mode == TRACE_UNTIL && r.x < trace_stop) {
                     done = true;
                     break;
                 }
