@@ -52,10 +52,13 @@ fn render_with(
 /// paths: the kernels that can split, tracing in the bounce), and with one of at most 3 or 1
 /// workgroups in runs of up to 384 or 1 024 paths, where a lane takes up to 6 or 16 rays, until
 /// 192 or 64 paths or fewer are alive. Made so, a sample's first passes also defer their
-/// vertices' shadow rays (`pathtrace/shadows`, `pathtrace/shadow_resolve`): the emitter
-/// sample's, and on the box lit by a point light and the sun as well, three a vertex. That the
-/// split then takes part was checked by hand: a `pathtrace/hits` that leaves each run's last ray
-/// untraced fails this test, and so does a `pathtrace/shadows` that lets blocked rays through.
+/// vertices' shadow rays in those runs (`pathtrace/shadows`, `pathtrace/shadow_resolve`): the
+/// emitter sample's, and on the box lit by a point light and the sun as well, three a vertex
+/// (at 27×27, whose edge tiles are partly outside the image). With four point lights more, six
+/// rays a vertex pass `DEFERRED_SHADOWS_MAX` and are traced in place. That the split then takes
+/// part was checked by hand: a `pathtrace/hits` that leaves each run's last ray untraced fails
+/// this test, and so do a `pathtrace/shadows` that lets blocked rays through and a punctual
+/// light's deferred ray that stops short.
 #[test]
 fn the_wavefront_traces_the_megakernels_paths() {
     let Some(ctx) = common::gpu() else { return };
@@ -78,12 +81,42 @@ fn the_wavefront_traces_the_megakernels_paths() {
         Some(3),
         Some(1),
     ];
-    let runs: [(&Scene, u32, &[Option<u32>]); 3] = [
-        (&boxed, 64, &all_dispatches),
-        (&boxed, 2, &all_dispatches),
-        (&lit, 64, &[None, Some(1)]),
+    let mut crowded = lit.clone();
+    for i in 0..4 {
+        let x = i as f32 * 0.4 - 0.6;
+        crowded
+            .lights
+            .push(Light::point("lamp", Vec3::new(x, 1.5, 0.0), Vec3::ONE, 0.2));
+    }
+    struct Run<'a> {
+        scene: &'a Scene,
+        max_bounces: u32,
+        size: u32,
+        dispatches: &'a [Option<u32>],
+        /// Whether a forced dispatch makes the wavefront with its shadow passes.
+        defers: bool,
+    }
+    let run = |scene, max_bounces, size, dispatches, defers| Run {
+        scene,
+        max_bounces,
+        size,
+        dispatches,
+        defers,
+    };
+    let runs = [
+        run(&boxed, 64, 32, &all_dispatches, true),
+        run(&boxed, 2, 32, &all_dispatches, true),
+        run(&lit, 64, 27, &[None, Some(1)], true),
+        run(&crowded, 64, 27, &[Some(1)], false),
     ];
-    for (scene, max_bounces, dispatches) in runs {
+    for Run {
+        scene,
+        max_bounces,
+        size,
+        dispatches,
+        defers,
+    } in runs
+    {
         let gpu_scene = GpuScene::new(&ctx, scene, &Default::default()).unwrap();
         let settings = |schedule| PathTraceSettings {
             samples_per_pixel: 8,
@@ -92,11 +125,11 @@ fn the_wavefront_traces_the_megakernels_paths() {
             schedule,
             ..PathTraceSettings::fast()
         };
-        let mega = render_with(&ctx, scene, 32, &settings(PathSchedule::Megakernel));
+        let mega = render_with(&ctx, scene, size, &settings(PathSchedule::Megakernel));
         let mean = mega.mean();
         assert!(mean[0] > 0.01, "the megakernel's image is black: {mean:?}");
         for &fetch_workgroups in dispatches {
-            let mut tracer = PathTracer::new(&ctx, &gpu_scene, 32, 32).unwrap();
+            let mut tracer = PathTracer::new(&ctx, &gpu_scene, size, size).unwrap();
             if let Some(workgroups) = fetch_workgroups {
                 tracer = tracer.with_fetch_workgroups(workgroups);
             }
@@ -115,10 +148,11 @@ fn the_wavefront_traces_the_megakernels_paths() {
                 fetch_workgroups.is_some(),
                 "whether the wavefront was made to trace the Cornell box's bounce rays apart"
             );
+            // Made with the shadow passes; that they take rays depends on the dispatch (above).
             assert_eq!(
                 tracer.deferred_shadows(),
-                fetch_workgroups.is_some(),
-                "whether the wavefront was made to trace the Cornell box's shadow rays apart"
+                fetch_workgroups.is_some() && defers,
+                "whether the wavefront was made with the passes that trace shadow rays apart"
             );
             let worst = mega
                 .pixels

@@ -251,8 +251,11 @@ impl Wavefront {
     /// Records `params.samples` samples a pixel from `params.sample_offset` on: for each, the
     /// camera pass, then a bounce pass for each bounce up to `max_bounces` (after its rays'
     /// `pathtrace/hits` where the scene fetches rays), each dispatched over exactly the paths
-    /// the pass before left alive. The bounce passes read nothing of a sample's own, so they
-    /// are bound once; the camera pass once a sample (its offset).
+    /// the pass before left alive. Where shadow rays are deferred, each of the first
+    /// `SHADOWS_APART_PASSES` passes clears the shadow queue's header before it and is followed
+    /// by a copy of the header, `pathtrace/shadows` and `pathtrace/shadow_resolve`. The bounce
+    /// passes read nothing of a sample's own, so they are bound once; the camera pass once a
+    /// sample (its offset).
     pub fn record(
         &self,
         ctx: &GpuContext,

@@ -18,6 +18,8 @@
 // DeferredShadow) to a queue. pathtrace/shadows traces it with lanes that fetch and zeroes the
 // light of each blocked ray; pathtrace/shadow_resolve then adds each path's light that arrived
 // to its pixel, a thread a path of the pass, so that no two lanes add to one pixel at once.
+// A non-finite sample (finite_or_zero) is then dropped in two parts, the deferred light and the
+// rest, where the megakernel drops the whole: the schedules differ only on such samples.
 // WAVEFRONT_STAGE (STAGE_CAMERA … STAGE_RESOLVE below): which of the five passes.
 #import path
 #import pathtrace_params

@@ -29,8 +29,9 @@ var<workgroup> next_fetched: atomic<u32>;
 
 // Traces the workgroup's run of `count` rays, TRACE_CLOSEST, TRACE_ANY or TRACE_UNTIL (whose
 // trace_stop fetched_ray sets for each ray). Every thread of the workgroup calls it, in uniform
-// control flow (a barrier starts the run). Runs of 64 rays are walked by the same loop: a branch to a ray a thread through trace() beside it made the
-// kernel's fetching runs 6–8 % slower (H200, notes/traversal.md).
+// control flow (a barrier starts the run). Runs of 64 rays are walked by the same loop: a
+// branch to a ray a thread through trace() beside it made the kernel's fetching runs 6–8 %
+// slower (H200, notes/traversal.md).
 fn trace_fetching(count: u32, mode: u32, local_index: u32) {
     if local_index == 0u {
         atomicStore(&next_fetched, 0u);
