@@ -175,6 +175,11 @@ pub struct GpuContext {
     /// what fails after it (views and bind groups of the missing resource) is its consequence.
     out_of_memory: Arc<Mutex<Option<String>>>,
     lost: Arc<Mutex<Option<String>>>,
+    /// The passes made on this device, by what made them: a technique made again (a preset
+    /// changed, a bench's `--vary`, a comparison's second spec) takes its pipelines from here
+    /// instead of compiling them again, which on a CPU adapter takes seconds a technique.
+    pub(crate) passes:
+        Mutex<std::collections::HashMap<crate::pass::PassKey, Arc<crate::ComputePass>>>,
 }
 
 /// llvmpipe's limit on the loop iterations of one shader invocation (GpuInfo::loop_iteration_limit).
@@ -349,6 +354,7 @@ impl GpuContext {
             errors,
             out_of_memory,
             lost,
+            passes: Default::default(),
         })
     }
 
@@ -398,6 +404,7 @@ impl GpuContext {
             queue,
             errors: Default::default(),
             out_of_memory: Default::default(),
+            passes: Default::default(),
             lost: Default::default(),
         })
     }

@@ -241,6 +241,29 @@ impl<'a> PassDesc<'a> {
     }
 }
 
+/// What makes a pass, whole: two passes of one key compose the same WGSL.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub(crate) struct PassKey {
+    /// The library's address: a process may hold several.
+    library: usize,
+    label: &'static str,
+    source: String,
+    constants: Vec<(&'static str, String)>,
+    unfilterable: Vec<String>,
+}
+
+impl PassKey {
+    fn of(library: &crate::ShaderLibrary, desc: &PassDesc) -> Self {
+        Self {
+            library: std::ptr::from_ref(library) as usize,
+            label: desc.label,
+            source: desc.source.to_owned(),
+            constants: desc.constants.clone(),
+            unfilterable: desc.unfilterable.iter().map(|s| (*s).to_owned()).collect(),
+        }
+    }
+}
+
 /// A compute pipeline and the bind group layouts read off its WGSL.
 pub struct ComputePass {
     /// The pass's label, `technique/stage`.
@@ -252,8 +275,23 @@ pub struct ComputePass {
 
 impl ComputePass {
     /// Composes the pass's WGSL, reads the bindings its entry point `main` uses, and creates
-    /// the bind group layouts and the pipeline. Errors name the pass.
+    /// the bind group layouts and the pipeline. Errors name the pass. A pass made before on
+    /// this context from the same description and library is handed out again.
     pub fn new(
+        ctx: &GpuContext,
+        library: &crate::ShaderLibrary,
+        desc: &PassDesc,
+    ) -> Result<Arc<Self>, PassError> {
+        let key = PassKey::of(library, desc);
+        if let Some(pass) = ctx.passes.lock().unwrap().get(&key) {
+            return Ok(pass.clone());
+        }
+        let pass = Self::create(ctx, library, desc)?;
+        ctx.passes.lock().unwrap().insert(key, pass.clone());
+        Ok(pass)
+    }
+
+    fn create(
         ctx: &GpuContext,
         library: &crate::ShaderLibrary,
         desc: &PassDesc,

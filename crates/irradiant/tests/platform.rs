@@ -7,6 +7,7 @@ use common::*;
 use irradiant::ddgi::{Ddgi, DdgiSettings};
 use irradiant::frame::{Frame, FrameNeeds, FrameSettings};
 use irradiant::{GpuScene, TechniqueSpec};
+use std::sync::Arc;
 
 /// Each level of the pyramid takes the voted normal and depth (Soler et al. eq. 5) and the mean
 /// radiance and albedo of the 2×2 texels under it that see a surface.
@@ -293,4 +294,23 @@ fn light_passes_between_volumes() {
         "without the lit room's bounce the nested volume's probes are darker: {own} against \
          {one_volume}"
     );
+}
+
+/// A pass made again on one context is the one made before, so that a technique made again (a
+/// preset changed in the viewer, a bench's `--vary`) compiles none of its pipelines twice;
+/// other constants make another pass, and another context makes its own.
+#[test]
+fn a_pass_made_again_is_taken_from_its_context() {
+    let Some(ctx) = gpu() else { return };
+    let source = "@group(0) @binding(0) var<storage, read_write> out: array<u32>;\n\
+                  @compute @workgroup_size(1) fn main() { out[0] = K; }";
+    let make = |ctx: &irradiant::GpuContext, k: &str| {
+        let desc = irradiant_gpu::PassDesc::new("test/cache", source).constants([("K", k.into())]);
+        irradiant::shaders::pass(ctx, &desc).unwrap()
+    };
+    let first = make(&ctx, "1u");
+    assert!(Arc::ptr_eq(&first, &make(&ctx, "1u")), "made twice");
+    assert!(!Arc::ptr_eq(&first, &make(&ctx, "2u")), "other constants");
+    let Some(other) = gpu() else { return };
+    assert!(!Arc::ptr_eq(&first, &make(&other, "1u")), "another context");
 }
