@@ -47,14 +47,22 @@ const SHADOW_SPAN_BYTES: u64 = 16;
 /// `many-lights` (31.9) 7.45 → 7.62 and the Cornell box (14.2) 2.55 → 2.83.
 pub(super) const TRACED_APART_FROM_SAH_COST: f32 = 40.0;
 
-/// The passes of a sample (the camera's, then a bounce's each) whose vertices may defer their
-/// shadow rays to `pathtrace/shadows`, where the paths alive fill its runs. Later bounces keep
-/// theirs in `pathtrace/bounce` and record no shadow passes: those would mostly be empty
-/// dispatches after the paths thin out, and each costs a clear, a copy and two dispatches a
-/// bounce. NVIDIA H200, 1920×1080, a sample (docs/notes/traversal.md, 2026-11-28 (night)):
-/// Sibenik 15.92 ms before, 15.25 with 3 passes, **14.52** with 6, 15.49 with every pass (another
-/// call); Sponza 11.10, 11.08, **10.96**, 11.91.
-const SHADOWS_APART_PASSES: u32 = 6;
+/// The passes of a sample run as a wavefront: the camera's, then a bounce's each, their
+/// vertices' shadow rays deferred to `pathtrace/shadows` where the paths alive fill its runs.
+/// The bounce pass after them is the tail: a thread takes its path to its end, as the megakernel
+/// does, and no later pass is recorded. By then the paths that are left are few, and a pass of
+/// each bounce would cost its clear, its dispatches and the barriers between them for little
+/// work; deferred shadow passes there cost the same (every pass deferring made Sponza 7 %
+/// slower). NVIDIA H200, 1920×1080, a sample, ms (docs/notes/traversal.md, 2026-11-28 (late)):
+///
+/// | passes before the tail | Cornell box | Sponza | Sibenik |
+/// | --- | ---: | ---: | ---: |
+/// | none (a pass every bounce, 32) | 2.540 | 10.954 | 14.513 |
+/// | 4 | 1.913 | 9.867 | 13.191 |
+/// | 5 | 1.844 | 9.539 | 12.810 |
+/// | **6** | 1.857 | **9.385** | **12.660** |
+/// | 10 (another call) | 1.978 | 9.411 | 13.003 |
+const WAVEFRONT_PASSES: u32 = 6;
 
 /// `WAVEFRONT_STAGE` of wavefront.wgsl: which of its passes a pipeline is.
 #[derive(Clone, Copy)]
@@ -177,7 +185,7 @@ impl Wavefront {
                         ("FETCH_WORKGROUPS", format!("{}u", fetch_workgroups.max(1))),
                         ("SHADOWS_APART", format!("{}u", (shadow_slots > 0) as u32)),
                         ("SHADOW_SLOTS", format!("{shadow_slots}u")),
-                        ("SHADOWS_APART_PASSES", format!("{SHADOWS_APART_PASSES}u")),
+                        ("WAVEFRONT_PASSES", format!("{WAVEFRONT_PASSES}u")),
                     ]),
             )
         };
@@ -249,11 +257,12 @@ impl Wavefront {
     }
 
     /// Records `params.samples` samples a pixel from `params.sample_offset` on: for each, the
-    /// camera pass, then a bounce pass for each bounce up to `max_bounces` (after its rays'
-    /// `pathtrace/hits` where the scene fetches rays), each dispatched over exactly the paths
-    /// the pass before left alive. Where shadow rays are deferred, each of the first
-    /// `SHADOWS_APART_PASSES` passes clears the shadow queue's header before it and is followed
-    /// by a copy of the header, `pathtrace/shadows` and `pathtrace/shadow_resolve`. The bounce
+    /// camera pass, then a bounce pass for each bounce up to `max_bounces` or
+    /// `WAVEFRONT_PASSES`, whichever is fewer (the last takes its paths to their end), each after
+    /// its rays' `pathtrace/hits` where the scene fetches rays and dispatched over exactly the
+    /// paths the pass before left alive. Where shadow rays are deferred, each pass before the
+    /// tail clears the shadow queue's header before it and is followed by a copy of the header,
+    /// `pathtrace/shadows` and `pathtrace/shadow_resolve`. The bounce
     /// passes read nothing of a sample's own, so they are bound once; the camera pass once a
     /// sample (its offset).
     pub fn record(
@@ -296,7 +305,7 @@ impl Wavefront {
         let shadows =
             |encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>, pass: u32| {
                 if let Some([trace, resolve]) = &shadow_passes
-                    && pass < SHADOWS_APART_PASSES
+                    && pass < WAVEFRONT_PASSES
                 {
                     let mut profiler = profiler;
                     encoder.copy_buffer_to_buffer(
@@ -321,7 +330,7 @@ impl Wavefront {
                 }
             };
         let clear_shadows = |encoder: &mut wgpu::CommandEncoder, pass: u32| {
-            if self.shadow_passes.is_some() && pass < SHADOWS_APART_PASSES {
+            if self.shadow_passes.is_some() && pass < WAVEFRONT_PASSES {
                 encoder.clear_buffer(&self.shadow_queue, 0, Some(SHADOW_HEADER_BYTES));
             }
         };
@@ -344,7 +353,8 @@ impl Wavefront {
                 super::PathTracer::workgroups(params.width, params.height),
             );
             shadows(encoder, profiler.as_deref_mut(), 0);
-            for bounce in 1..=params.max_bounces as usize {
+            // The last pass recorded takes its paths to their end (wavefront.wgsl's tail).
+            for bounce in 1..=params.max_bounces.min(WAVEFRONT_PASSES) as usize {
                 let from = (bounce + 1) % 2;
                 encoder.clear_buffer(&self.queues[1 - from], 0, Some(QUEUE_HEADER_BYTES));
                 if let Some(hits) = &hits {

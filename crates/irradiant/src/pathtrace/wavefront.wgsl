@@ -4,7 +4,9 @@
 // starts a path a pixel at its camera ray, and each pathtrace/bounce takes the paths the pass
 // before left alive. A path that ends adds its radiance to its pixel; one that goes on is
 // appended to the next pass's queue, which that pass's indirect dispatch covers exactly, so that
-// no warp waits on the longest path of its pixels as the megakernel's do.
+// no warp waits on the longest path of its pixels as the megakernel's do. The pass after the
+// first WAVEFRONT_PASSES (wavefront.rs says why) is the tail: it takes each of the few paths
+// left to its end, and the host records no later pass.
 // FETCH_RAYS (0 or 1, Wavefront::new in wavefront.rs: where GpuScene::fetches_rays): before each
 // pathtrace/bounce, pathtrace/hits finds the closest hits of the queue's rays with lanes that
 // fetch their next ray (bvh_fetch), a workgroup a run of them, and pathtrace/bounce shades
@@ -12,7 +14,7 @@
 // FETCH_WORKGROUPS runs of 64 (fetch_pays), since a lane with one ray gains nothing from it. The
 // camera's rays, neighbours in a tile, keep a ray a thread.
 // SHADOWS_APART (0 or 1; only with FETCH_RAYS, where a vertex's lights and emitter sample take
-// at most DEFERRED_SHADOWS_MAX shadow rays): in a sample's first SHADOWS_APART_PASSES passes,
+// at most DEFERRED_SHADOWS_MAX shadow rays): in a sample's first WAVEFRONT_PASSES passes,
 // while they hold more paths than FETCH_WORKGROUPS runs of 64, pathtrace/camera and
 // pathtrace/bounce defer their vertices' shadow rays (SHADOW_SLOTS a vertex at most, path.wgsl's
 // DeferredShadow) to a queue. pathtrace/shadows traces it with lanes that fetch and zeroes the
@@ -146,18 +148,32 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
     }
     // The pass's paths: every pixel's at the camera, else those the pass before left alive.
     let pass_paths = select(paths_in.count, params.width * params.height, WAVEFRONT_STAGE == STAGE_CAMERA);
-    let shadows_apart = SHADOWS_APART == 1u && bounce < SHADOWS_APART_PASSES && fetch_pays(pass_paths, FETCH_WORKGROUPS);
+    let shadows_apart = SHADOWS_APART == 1u && bounce < WAVEFRONT_PASSES && fetch_pays(pass_paths, FETCH_WORKGROUPS);
     if shadows_apart {
         defer_up_to = SHADOW_SLOTS;
     }
     var alive = false;
     if valid {
-        if WAVEFRONT_STAGE == STAGE_BOUNCE && FETCH_RAYS == 1u && fetch_pays(paths_in.count, FETCH_WORKGROUPS) {
-            let found = hits[i];
-            let instance = select(0u, INVALID, found.triangle == INVALID);
-            alive = path_step_at(&path, Hit(found.t, found.triangle, instance, found.bary), bounce, params.max_bounces, true, params.light_sampling);
-        } else {
-            alive = path_step(&path, bounce, params.max_bounces, true, params.light_sampling);
+        let fetched = WAVEFRONT_STAGE == STAGE_BOUNCE && FETCH_RAYS == 1u && fetch_pays(paths_in.count, FETCH_WORKGROUPS);
+        // The tail: from WAVEFRONT_PASSES on a thread takes its path to its end, as the
+        // megakernel does, and the host records no later pass.
+        let to_the_end = WAVEFRONT_STAGE == STAGE_BOUNCE && bounce >= WAVEFRONT_PASSES;
+        // One call site of the shading and one of the trace: each is inlined where called.
+        var step = bounce;
+        loop {
+            var hit: Hit;
+            if fetched && step == bounce {
+                let found = hits[i];
+                let instance = select(0u, INVALID, found.triangle == INVALID);
+                hit = Hit(found.t, found.triangle, instance, found.bary);
+            } else {
+                hit = trace_ray(path.origin, path.dir, RAY_FAR, false);
+            }
+            alive = path_step_at(&path, hit, step, params.max_bounces, true, params.light_sampling);
+            step++;
+            if !alive || !to_the_end {
+                break;
+            }
         }
         if !alive {
             let pixel = vec2<u32>(path.pixel & 0xffffu, path.pixel >> 16u);
