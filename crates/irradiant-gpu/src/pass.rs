@@ -241,11 +241,15 @@ impl<'a> PassDesc<'a> {
     }
 }
 
+/// Passes a context keeps at most: every technique's at its presets on a few scenes (a
+/// technique makes up to about 30).
+const PASSES_KEPT: usize = 512;
+
 /// What makes a pass, whole: two passes of one key compose the same WGSL.
 #[derive(Clone, PartialEq, Eq, Hash)]
 pub(crate) struct PassKey {
-    /// The library's address: a process may hold several.
-    library: usize,
+    /// The library's modules, hashed: a process may hold several libraries.
+    library: u64,
     label: &'static str,
     source: String,
     constants: Vec<(&'static str, String)>,
@@ -255,7 +259,11 @@ pub(crate) struct PassKey {
 impl PassKey {
     fn of(library: &crate::ShaderLibrary, desc: &PassDesc) -> Self {
         Self {
-            library: std::ptr::from_ref(library) as usize,
+            library: {
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                library.hash_sources(&mut h);
+                std::hash::Hasher::finish(&h)
+            },
             label: desc.label,
             source: desc.source.to_owned(),
             constants: desc.constants.clone(),
@@ -287,7 +295,13 @@ impl ComputePass {
             return Ok(pass.clone());
         }
         let pass = Self::create(ctx, library, desc)?;
-        ctx.passes.lock().unwrap().insert(key, pass.clone());
+        let mut passes = ctx.passes.lock().unwrap();
+        // Scenes' constants make passes of their own: a long session of many scenes starts
+        // over rather than keep every one (techniques alive hold theirs).
+        if passes.len() >= PASSES_KEPT {
+            passes.clear();
+        }
+        passes.insert(key, pass.clone());
         Ok(pass)
     }
 

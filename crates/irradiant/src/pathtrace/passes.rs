@@ -118,7 +118,8 @@ impl PathTracer {
     }
 
     /// Records `samples` paths a pixel: one dispatch with the megakernel; with the wavefront,
-    /// a camera pass and a pass a bounce for each sample, each bounce after its rays'
+    /// a camera pass and a pass a bounce for each sample up to the tail, which takes each path
+    /// left to its end (`Wavefront::record`), each bounce after its rays'
     /// `pathtrace/hits` where they are traced apart, and the first passes each followed by
     /// `pathtrace/shadows` and `pathtrace/shadow_resolve` where shadow rays are deferred.
     #[allow(clippy::too_many_arguments)]

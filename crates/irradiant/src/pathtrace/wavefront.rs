@@ -1,6 +1,7 @@
 //! The path tracer as a wavefront ([`PathSchedule::Wavefront`](super::PathSchedule)): one pass
 //! a bounce over the paths still alive, each pass appending the survivors to a queue whose
-//! header is the next pass's indirect dispatch. On a scene of one wide tree
+//! header is the next pass's indirect dispatch, for a sample's first `WAVEFRONT_PASSES`; the
+//! pass after them takes each path left to its end. On a scene of one wide tree
 //! ([`GpuScene::fetches_rays`]) a bounce's rays, and in a sample's first passes its vertices'
 //! shadow rays, are traced apart from their shading, by lanes that fetch their next ray. See
 //! `wavefront.wgsl`.
