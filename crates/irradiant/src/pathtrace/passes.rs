@@ -119,8 +119,8 @@ impl PathTracer {
 
     /// Records `samples` paths a pixel: one dispatch with the megakernel; with the wavefront,
     /// a camera pass and a pass a bounce for each sample up to the tail, which takes each path
-    /// left to its end (`Wavefront::record`), each bounce after its rays'
-    /// `pathtrace/hits` where they are traced apart, and the first passes each followed by
+    /// left to its end (`Wavefront::record`), each bounce after its rays' `pathtrace/hits`
+    /// where they are traced apart, and the passes before the tail each followed by
     /// `pathtrace/shadows` and `pathtrace/shadow_resolve` where shadow rays are deferred.
     #[allow(clippy::too_many_arguments)]
     pub fn record(

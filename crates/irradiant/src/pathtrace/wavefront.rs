@@ -263,9 +263,8 @@ impl Wavefront {
     /// its rays' `pathtrace/hits` where the scene fetches rays and dispatched over exactly the
     /// paths the pass before left alive. Where shadow rays are deferred, each pass before the
     /// tail clears the shadow queue's header before it and is followed by a copy of the header,
-    /// `pathtrace/shadows` and `pathtrace/shadow_resolve`. The bounce
-    /// passes read nothing of a sample's own, so they are bound once; the camera pass once a
-    /// sample (its offset).
+    /// `pathtrace/shadows` and `pathtrace/shadow_resolve`. The bounce passes read nothing of a
+    /// sample's own, so they are bound once; the camera pass once a sample (its offset).
     pub fn record(
         &self,
         ctx: &GpuContext,
