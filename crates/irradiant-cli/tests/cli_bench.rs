@@ -75,6 +75,22 @@ fn the_smoke_bench_times_every_pass_and_a_vary_grid() {
     let record: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(record["passes"].as_array().unwrap().len() >= 4);
+    // The wavefront's sample split by pass: each part within the whole, the tail among them.
+    let median = |label: &str| {
+        record["passes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["label"] == label)
+            .unwrap_or_else(|| panic!("no {label} in {record}"))["median_ms"]
+            .as_f64()
+            .unwrap()
+    };
+    let whole = median("pathtrace/wavefront (1 spp)");
+    for part in ["camera", "bounce", "tail"] {
+        let part = median(&format!("pathtrace/{part} (wavefront, 1 spp)"));
+        assert!(part > 0.0 && part <= whole, "{part} ms of {whole}");
+    }
     let ddgi = &record["techniques"][0];
     assert!(ddgi["passes"].as_array().unwrap().len() >= 9, "{ddgi}");
     the_dumped_rays_land_on_the_dumped_triangles(&dir.join("rays"), &record);

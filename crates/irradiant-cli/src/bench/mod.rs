@@ -4,6 +4,7 @@
 //! technique reports.
 
 mod frames;
+mod pathtrace;
 mod rays;
 mod ssil;
 mod table;
@@ -13,7 +14,6 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use clap::Args;
-use irradiant::pathtrace::{PathSchedule, PathTraceSettings, PathTracer};
 use irradiant::raycast::{RayCaster, RayOrder, RayWork};
 use irradiant::{AdapterChoice, GpuContext, GpuScene, GpuSceneSettings, TechniqueSpec};
 use irradiant_gpu::{Profiler, wgpu};
@@ -509,47 +509,7 @@ fn time_rays(
         });
         record.passes.push(pass);
     }
-    // One sample a pixel, as the viewer traces while the camera rests, and sixteen in one
-    // submission, as references are rendered: per sample, the megakernel's idle lanes spread
-    // over more paths.
-    for samples in [1, 16] {
-        for (schedule, label) in [
-            (PathSchedule::Megakernel, "pathtrace/trace"),
-            (PathSchedule::Wavefront, "pathtrace/wavefront"),
-        ] {
-            let mut tracer = PathTracer::new(ctx, gpu_scene, size.0, size.1)?;
-            let settings = PathTraceSettings {
-                samples_per_pixel: samples,
-                samples_per_dispatch: samples,
-                schedule,
-                ..PathTraceSettings::balanced()
-            };
-            let times = time_pass(ctx, timing, |encoder, profiler| {
-                tracer.record(
-                    ctx,
-                    encoder,
-                    gpu_scene,
-                    &scene.camera,
-                    &settings,
-                    samples,
-                    profiler,
-                )?;
-                Ok(())
-            })?;
-            if tracer.traced_with() != schedule {
-                continue;
-            }
-            let per_sample: Vec<f64> = times.iter().map(|t| t / samples as f64).collect();
-            let label = match samples {
-                1 => format!("{label} (1 spp)"),
-                _ => format!("{label} (a sample of {samples})"),
-            };
-            record
-                .passes
-                .push(pass_record(&scene.name, order, &label, &per_sample, None));
-        }
-    }
-    Ok(())
+    pathtrace::time_path_tracer(ctx, scene, gpu_scene, run, record)
 }
 
 /// Runs `record_pass` warm-up + timed times, one submission each, and returns the timed
@@ -557,18 +517,37 @@ fn time_rays(
 fn time_pass(
     ctx: &GpuContext,
     timing: Timing,
+    record_pass: impl FnMut(&mut wgpu::CommandEncoder, Option<&mut Profiler>) -> Result<(), CliError>,
+) -> Result<Vec<f64>, CliError> {
+    Ok(time_passes(ctx, timing, record_pass)?.spans)
+}
+
+/// A recording's timed runs: each run's span, and for each label its passes' summed time in
+/// each run (in the order the labels first came; none without timestamps).
+struct Timed {
+    spans: Vec<f64>,
+    by_label: Vec<(String, Vec<f64>)>,
+}
+
+/// [`time_pass`], with each run's time summed over the passes of each label.
+fn time_passes(
+    ctx: &GpuContext,
+    timing: Timing,
     mut record_pass: impl FnMut(
         &mut wgpu::CommandEncoder,
         Option<&mut Profiler>,
     ) -> Result<(), CliError>,
-) -> Result<Vec<f64>, CliError> {
-    // Room for every pass of a recording: the wavefront's sixteen samples take 16 × 65 where
-    // its bounce rays are traced apart (pathtrace/hits before each of 32 bounces).
+) -> Result<Timed, CliError> {
+    // Room for every pass of a recording: the wavefront's sixteen samples take 16 × 27 where
+    // its bounce and shadow rays are traced apart.
     let mut profiler = Profiler::new(ctx, 2048);
-    let mut times = Vec::new();
+    let mut timed = Timed {
+        spans: Vec::new(),
+        by_label: Vec::new(),
+    };
     let warm_start = Instant::now();
     let mut warm_runs = 0;
-    while times.len() < timing.iterations as usize {
+    while timed.spans.len() < timing.iterations as usize {
         let warming = !timing.warmup.done(warm_runs, warm_start);
         let mut encoder = ctx
             .device
@@ -591,16 +570,29 @@ fn time_pass(
         let gpu = profiler.read(ctx)?;
         if warming {
             warm_runs += 1;
-        } else {
-            // From the first pass's beginning to the last one's end: the gaps count.
-            let span = gpu
-                .iter()
-                .map(|t| t.start_milliseconds + t.milliseconds)
-                .reduce(f64::max);
-            times.push(span.unwrap_or(wall));
+            continue;
+        }
+        // From the first pass's beginning to the last one's end: the gaps count.
+        let span = gpu
+            .iter()
+            .map(|t| t.start_milliseconds + t.milliseconds)
+            .reduce(f64::max);
+        let run = timed.spans.len();
+        timed.spans.push(span.unwrap_or(wall));
+        for pass in &gpu {
+            let at = match timed.by_label.iter().position(|(l, _)| *l == pass.label) {
+                Some(at) => at,
+                None => {
+                    timed.by_label.push((pass.label.clone(), Vec::new()));
+                    timed.by_label.len() - 1
+                }
+            };
+            let times = &mut timed.by_label[at].1;
+            times.resize(run + 1, 0.0);
+            times[run] += pass.milliseconds;
         }
     }
-    Ok(times)
+    Ok(timed)
 }
 
 fn pass_record(

@@ -16,14 +16,17 @@ use crate::frame::IMAGE_TILE;
 use crate::scene::GpuScene;
 
 /// Bytes of a queue's header: its bounce pass's indirect dispatch (count, x, y, z), the
-/// bounce, and `pathtrace/hits`' dispatch (x, y, z; zero where rays are not traced apart).
-const QUEUE_HEADER_BYTES: u64 = 32;
+/// bounce, `pathtrace/hits`' dispatch (x, y, z; zero where rays are not traced apart) and
+/// `pathtrace/tail`'s (x, y, z; zero but in the tail's queue), then 4 bytes of padding.
+const QUEUE_HEADER_BYTES: u64 = 48;
 /// Bytes of one path's state (`PathState` in path.wgsl).
 const PATH_STATE_BYTES: u64 = 64;
 /// Where a queue's dispatch (x, y, z) of its bounce pass, a thread a path, lies in it.
 const QUEUE_DISPATCH_OFFSET: u64 = 4;
 /// Where a queue's dispatch (x, y, z) of `pathtrace/hits`, a run of paths a workgroup, lies.
 const QUEUE_RUNS_OFFSET: u64 = 20;
+/// Where a queue's dispatch (x, y, z) of `pathtrace/tail`, a run of paths a workgroup, lies.
+const QUEUE_TAIL_OFFSET: u64 = 32;
 /// Bytes of one path's closest hit (`GpuPathHit` in wavefront.wgsl).
 const PATH_HIT_BYTES: u64 = 16;
 /// Bytes of the shadow queue's header (`GpuShadowQueue` in wavefront.wgsl): the dispatches of
@@ -65,6 +68,23 @@ pub(super) const TRACED_APART_FROM_SAH_COST: f32 = 40.0;
 /// | 10 (another call) | 1.978 | 9.411 | 13.003 |
 const WAVEFRONT_PASSES: u32 = 6;
 
+/// Workgroups `pathtrace/tail` takes its paths in at most, for `fetch_workgroups` of the ray
+/// passes: a workgroup's run of the queue grows, in steps of 64, as the paths left outnumber 64
+/// × this, and its lanes fetch from the run. Fewer workgroups give each lane more paths to
+/// fetch, so that it idles less while its warp's longest path ends, but keep fewer warps on
+/// the GPU. NVIDIA H200, 1920×1080, a sample, ms (`pathtrace/wavefront`, round 1 / 2;
+/// docs/notes/traversal.md, 2026-11-28 (night, late)):
+///
+/// | | Cornell box | Sponza | Sibenik |
+/// | --- | ---: | ---: | ---: |
+/// | a path a thread (before) | 1.881 / 1.881 | 9.335 / 9.351 | 12.651 / 12.640 |
+/// | **1 024 workgroups (an eighth)** | 1.874 | **9.057 / 9.044** | **12.513 / 12.508** |
+/// | 2 048 | 1.869 | 9.271 / 9.262 | 12.542 / 12.540 |
+/// | 8 192 | 1.869 | 9.297 / 9.262 | 12.522 / 12.550 |
+fn tail_workgroups(fetch_workgroups: u32) -> u32 {
+    (fetch_workgroups / 8).max(1)
+}
+
 /// `WAVEFRONT_STAGE` of wavefront.wgsl: which of its passes a pipeline is.
 #[derive(Clone, Copy)]
 enum Stage {
@@ -73,12 +93,15 @@ enum Stage {
     Bounce = 2,
     Shadows = 3,
     Resolve = 4,
+    Tail = 5,
 }
 
 /// The wavefront's passes and its two path queues (each pass reads one, fills the other).
 pub(super) struct Wavefront {
     camera: Arc<ComputePass>,
     bounce: Arc<ComputePass>,
+    /// The pass after the first `WAVEFRONT_PASSES`: it takes each path left to its end.
+    tail: Arc<ComputePass>,
     /// Where a bounce's rays are traced apart: `pathtrace/hits`.
     hits: Option<Arc<ComputePass>>,
     /// The closest hit of each queued path where they are traced apart; else one hit's bytes,
@@ -187,6 +210,10 @@ impl Wavefront {
                         ("SHADOWS_APART", format!("{}u", (shadow_slots > 0) as u32)),
                         ("SHADOW_SLOTS", format!("{shadow_slots}u")),
                         ("WAVEFRONT_PASSES", format!("{WAVEFRONT_PASSES}u")),
+                        (
+                            "TAIL_WORKGROUPS",
+                            format!("{}u", tail_workgroups(fetch_workgroups)),
+                        ),
                     ]),
             )
         };
@@ -235,6 +262,7 @@ impl Wavefront {
         Ok(Some(Self {
             camera: stage("pathtrace/camera", Stage::Camera)?,
             bounce: stage("pathtrace/bounce", Stage::Bounce)?,
+            tail: stage("pathtrace/tail", Stage::Tail)?,
             hits,
             hit_buffer,
             queues: [buffer(&plan[0]), buffer(&plan[1])],
@@ -259,7 +287,8 @@ impl Wavefront {
 
     /// Records `params.samples` samples a pixel from `params.sample_offset` on: for each, the
     /// camera pass, then a bounce pass for each bounce up to `max_bounces` or
-    /// `WAVEFRONT_PASSES`, whichever is fewer (the last takes its paths to their end), each after
+    /// `WAVEFRONT_PASSES`, whichever is fewer (the `WAVEFRONT_PASSES`th is `pathtrace/tail`,
+    /// which takes its paths to their ends), each after
     /// its rays' `pathtrace/hits` where the scene fetches rays and dispatched over exactly the
     /// paths the pass before left alive. Where shadow rays are deferred, each pass before the
     /// tail clears the shadow queue's header before it and is followed by a copy of the header,
@@ -290,6 +319,9 @@ impl Wavefront {
             bound(&self.bounce, &shared, 0)?,
             bound(&self.bounce, &shared, 1)?,
         ];
+        // The tail reads queue (WAVEFRONT_PASSES + 1) % 2, as its bounce would.
+        let tail_from = (WAVEFRONT_PASSES as usize + 1) % 2;
+        let tail = bound(&self.tail, &shared, tail_from)?;
         let hits = match &self.hits {
             Some(pass) => Some([bound(pass, &shared, 0)?, bound(pass, &shared, 1)?]),
             None => None,
@@ -366,12 +398,20 @@ impl Wavefront {
                     );
                 }
                 clear_shadows(encoder, bounce as u32);
-                bounces[from].dispatch_indirect(
-                    encoder,
-                    profiler.as_deref_mut(),
-                    &self.queues[from],
-                    QUEUE_DISPATCH_OFFSET,
-                );
+                match bounce as u32 == WAVEFRONT_PASSES {
+                    true => tail.dispatch_indirect(
+                        encoder,
+                        profiler.as_deref_mut(),
+                        &self.queues[from],
+                        QUEUE_TAIL_OFFSET,
+                    ),
+                    false => bounces[from].dispatch_indirect(
+                        encoder,
+                        profiler.as_deref_mut(),
+                        &self.queues[from],
+                        QUEUE_DISPATCH_OFFSET,
+                    ),
+                }
                 shadows(encoder, profiler.as_deref_mut(), bounce as u32);
             }
         }

@@ -1,12 +1,15 @@
-// pathtrace/camera, pathtrace/hits, pathtrace/bounce, pathtrace/shadows and
+// pathtrace/camera, pathtrace/hits, pathtrace/bounce, pathtrace/tail, pathtrace/shadows and
 // pathtrace/shadow_resolve: the reference path tracer as a wavefront (PathSchedule::Wavefront).
 // Each bounce pass takes one vertex of every live path, one thread a path: pathtrace/camera
 // starts a path a pixel at its camera ray, and each pathtrace/bounce takes the paths the pass
 // before left alive. A path that ends adds its radiance to its pixel; one that goes on is
 // appended to the next pass's queue, which that pass's indirect dispatch covers exactly, so that
 // no warp waits on the longest path of its pixels as the megakernel's do. The pass after the
-// first WAVEFRONT_PASSES (wavefront.rs says why) is the tail: it takes each of the few paths
-// left to its end, and the host records no later pass.
+// first WAVEFRONT_PASSES (wavefront.rs says why), pathtrace/tail, takes the paths left to their
+// ends, and the host records no later pass. Its lanes fetch whole paths: a workgroup takes a
+// run of the queue (fetch_run over at most TAIL_WORKGROUPS workgroups) and a lane whose path
+// ends takes the run's next, so that a warp's lanes keep bouncing while its longest path does
+// (bvh_fetch's dynamic fetch, a path rather than a ray at a time).
 // FETCH_RAYS (0 or 1, Wavefront::new in wavefront.rs: where GpuScene::fetches_rays): before each
 // pathtrace/bounce, pathtrace/hits finds the closest hits of the queue's rays with lanes that
 // fetch their next ray (bvh_fetch), a workgroup a run of them, and pathtrace/bounce shades
@@ -22,7 +25,7 @@
 // to its pixel, a thread a path of the pass, so that no two lanes add to one pixel at once.
 // A non-finite sample (finite_or_zero) is then dropped in two parts, the deferred light and the
 // rest, where the megakernel drops the whole: the schedules differ only on such samples.
-// WAVEFRONT_STAGE (STAGE_CAMERA … STAGE_RESOLVE below): which of the five passes.
+// WAVEFRONT_STAGE (STAGE_CAMERA … STAGE_TAIL below): which of the six passes.
 #import path
 #import pathtrace_params
 #import dispatch
@@ -34,11 +37,13 @@ const STAGE_HITS: u32 = 1u;
 const STAGE_BOUNCE: u32 = 2u;
 const STAGE_SHADOWS: u32 = 3u;
 const STAGE_RESOLVE: u32 = 4u;
+const STAGE_TAIL: u32 = 5u;
 
 // A queue of live paths. Its first 16 bytes are the indirect dispatch that takes them (its
-// count, then the workgroups in x, y, z), a thread a path; with FETCH_RAYS its last 12 bytes
-// are pathtrace/hits' dispatch over them, a run of fetch_run paths a workgroup. The host clears
-// the header (32 bytes, the bounce with it) before a pass appends.
+// count, then the workgroups in x, y, z), a thread a path; with FETCH_RAYS the next 12 after
+// the bounce are pathtrace/hits' dispatch over them, a run of fetch_run paths a workgroup, and
+// where the tail takes the queue the 12 after those are its dispatch, a run of fetch_run over
+// TAIL_WORKGROUPS a workgroup. The host clears the header (48 bytes) before a pass appends.
 struct GpuPathQueue {
     count: atomic<u32>,
     groups_x: atomic<u32>,
@@ -49,6 +54,10 @@ struct GpuPathQueue {
     runs_x: atomic<u32>,
     runs_y: atomic<u32>,
     runs_z: atomic<u32>,
+    tail_x: atomic<u32>,
+    tail_y: atomic<u32>,
+    tail_z: atomic<u32>,
+    _pad: u32,
     paths: array<PathState>,
 }
 
@@ -65,6 +74,10 @@ struct GpuPathQueueRead {
     runs_x: u32,
     runs_y: u32,
     runs_z: u32,
+    tail_x: u32,
+    tail_y: u32,
+    tail_z: u32,
+    _pad: u32,
     paths: array<PathState>,
 }
 
@@ -132,7 +145,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
     var valid = false;
     var bounce = 0u;
     // The path's place in paths_in (and its hit's), for the bounce pass.
-    let i = folded_index(group) * THREADS + local_index;
+    var i = folded_index(group) * THREADS + local_index;
     if WAVEFRONT_STAGE == STAGE_CAMERA {
         // One 8×8 tile a workgroup, as the megakernel's: neighbouring camera rays together.
         valid = id.x < params.width && id.y < params.height;
@@ -140,11 +153,22 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
         let dir = pixel_ray_dir(params, id.xy, &rng);
         path = path_start(params.camera.position, dir, rng, id.x | (id.y << 16u));
     } else {
-        valid = i < paths_in.count;
         bounce = paths_in.bounce;
-        if valid {
+        valid = WAVEFRONT_STAGE == STAGE_TAIL || i < paths_in.count;
+        if valid && WAVEFRONT_STAGE == STAGE_BOUNCE {
             path = paths_in.paths[i];
         }
+    }
+    // The tail's run of the queue: its lanes take each path from it in the loop below.
+    var run_count = 0u;
+    if WAVEFRONT_STAGE == STAGE_TAIL {
+        let run = fetch_run(paths_in.count, TAIL_WORKGROUPS);
+        run_first = folded_index(group) * run;
+        run_count = min(paths_in.count - min(run_first, paths_in.count), run);
+        if local_index == 0u {
+            atomicStore(&next_tail_path, 0u);
+        }
+        workgroupBarrier();
     }
     // The pass's paths: every pixel's at the camera, else those the pass before left alive.
     let pass_paths = select(paths_in.count, params.width * params.height, WAVEFRONT_STAGE == STAGE_CAMERA);
@@ -154,13 +178,21 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
     }
     var alive = false;
     if valid {
-        let fetched = WAVEFRONT_STAGE == STAGE_BOUNCE && FETCH_RAYS == 1u && fetch_pays(paths_in.count, FETCH_WORKGROUPS);
-        // The tail: from WAVEFRONT_PASSES on a thread takes its path to its end, as the
-        // megakernel does, and the host records no later pass.
-        let to_the_end = WAVEFRONT_STAGE == STAGE_BOUNCE && bounce >= WAVEFRONT_PASSES;
+        // Where pathtrace/hits found the queue's closest hits: a path's first step here.
+        let fetched = WAVEFRONT_STAGE != STAGE_CAMERA && FETCH_RAYS == 1u && fetch_pays(paths_in.count, FETCH_WORKGROUPS);
         // One call site of the shading and one of the trace: each is inlined where called.
+        // A bounce pass steps once; a tail lane steps until its run has no path left.
         var step = bounce;
         loop {
+            if WAVEFRONT_STAGE == STAGE_TAIL && !alive {
+                let k = atomicAdd(&next_tail_path, 1u);
+                if k >= run_count {
+                    break;
+                }
+                i = run_first + k;
+                path = paths_in.paths[i];
+                step = bounce;
+            }
             var hit: Hit;
             if fetched && step == bounce {
                 let found = hits[i];
@@ -171,15 +203,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
             }
             alive = path_step_at(&path, hit, step, params.max_bounces, true, params.light_sampling);
             step++;
-            if !alive || !to_the_end {
+            if !alive {
+                let pixel = vec2<u32>(path.pixel & 0xffffu, path.pixel >> 16u);
+                let sample = vec4<f32>(finite_or_zero(path.radiance), 1.0);
+                textureStore(accumulation, pixel, textureLoad(accumulation, pixel) + sample);
+            }
+            if WAVEFRONT_STAGE != STAGE_TAIL {
                 break;
             }
         }
-        if !alive {
-            let pixel = vec2<u32>(path.pixel & 0xffffu, path.pixel >> 16u);
-            let sample = vec4<f32>(finite_or_zero(path.radiance), 1.0);
-            textureStore(accumulation, pixel, textureLoad(accumulation, pixel) + sample);
-        }
+    }
+    if WAVEFRONT_STAGE == STAGE_TAIL {
+        return;
     }
     append(alive, path, bounce + 1u, local_index);
     if shadows_apart {
@@ -190,8 +225,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) gro
     }
 }
 
-// pathtrace/hits' first queued path in this workgroup's run.
+// pathtrace/hits' and pathtrace/tail's first queued path in this workgroup's run.
 var<private> run_first: u32;
+// The tail's next path in its workgroup's run.
+var<workgroup> next_tail_path: atomic<u32>;
 
 fn fetched_ray(k: u32) -> FetchedRay {
     if WAVEFRONT_STAGE == STAGE_SHADOWS {
@@ -305,6 +342,13 @@ fn append(alive: bool, path: PathState, next_bounce: u32, local_index: u32) {
             atomicMax(&paths_out.groups_z, 1u);
             atomicMax(&paths_out.bounce, next_bounce);
             let in_queue = base + count;
+            if next_bounce == WAVEFRONT_PASSES {
+                // The tail takes this queue (the last workgroup to append sets its runs).
+                let tail = fetch_groups(in_queue, TAIL_WORKGROUPS);
+                atomicMax(&paths_out.tail_x, tail.x);
+                atomicMax(&paths_out.tail_y, tail.y);
+                atomicMax(&paths_out.tail_z, 1u);
+            }
             if FETCH_RAYS == 1u && fetch_pays(in_queue, FETCH_WORKGROUPS) {
                 // The last workgroup to append counts every queued path, and the maximum
                 // covers its runs (ddgi/shade's shadow queue does the same). Fewer paths than
