@@ -106,7 +106,8 @@ fn the_wavefront_traces_the_megakernels_paths() {
     let runs = [
         run(&boxed, 64, 32, &all_dispatches, true),
         run(&boxed, 2, 32, &all_dispatches, true),
-        // The tail's own pass, and the last: paths of at most one step past it.
+        // Paths that end within a few steps of the tail's pass (`WAVEFRONT_PASSES`, 4), its
+        // lanes taking several paths each with one fetching workgroup.
         run(&boxed, 7, 32, &[None, Some(1)], true),
         run(&lit, 64, 27, &[None, Some(1)], true),
         run(&crowded, 64, 27, &[Some(1)], false),

@@ -50,8 +50,9 @@ pub enum PathSchedule {
     /// One pass a bounce over the paths still alive (`pathtrace/camera`, `pathtrace/bounce`):
     /// ended paths leave the warps (a sample on Sibenik at 1920×1080 17.1 ms against 20.2, on
     /// an H100), against two queues of 64 bytes a pixel each (265 MB at 1920×1080) and a pass
-    /// a bounce for a sample's first six passes, the seventh taking each path left to its end
-    /// (12.66 ms on Sibenik on an H200, docs/pathtrace.md). On a costly tree of one mesh a
+    /// a bounce for a sample's first four passes, the fifth (`pathtrace/tail`) taking the paths
+    /// left to their ends, its lanes fetching them (12.25 ms on Sibenik on an H200,
+    /// docs/pathtrace.md). On a costly tree of one mesh a
     /// bounce's rays are traced apart first (`pathtrace/hits`, lanes that fetch: Sibenik 17.0
     /// → 15.9 ms on an H200), for 16 bytes a pixel more. Where the buffers pass the adapter's
     /// largest storage binding, the megakernel traces instead.

@@ -53,27 +53,32 @@ pub(super) const TRACED_APART_FROM_SAH_COST: f32 = 40.0;
 
 /// The passes of a sample run as a wavefront: the camera's, then a bounce's each, their
 /// vertices' shadow rays deferred to `pathtrace/shadows` where the paths alive fill its runs.
-/// The bounce pass after them is the tail: a thread takes its path to its end, as the megakernel
-/// does, and no later pass is recorded. By then the paths that are left are few, and a pass of
-/// each bounce would cost its clear, its dispatches and the barriers between them for little
-/// work; deferred shadow passes there cost the same (every pass deferring made Sponza 7 %
-/// slower). NVIDIA H200, 1920×1080, a sample, ms (docs/notes/traversal.md, 2026-11-28 (late)):
+/// The bounce pass after them is the tail (`pathtrace/tail`): its lanes take the paths left to
+/// their ends, as the megakernel does, and no later pass is recorded. By then the paths that
+/// are left are few, and a pass of each bounce would cost its clear, its dispatches and the
+/// barriers between them for little work; deferred shadow passes there cost the same (every
+/// pass deferring made Sponza 7 % slower). Once the tail's lanes fetched their paths, it paid
+/// to start it earlier. NVIDIA H200, 1920×1080, a sample, ms, round 1 / 2
+/// (docs/notes/traversal.md, 2026-11-28 (late) and (end of day)):
 ///
 /// | passes before the tail | Cornell box | Sponza | Sibenik |
 /// | --- | ---: | ---: | ---: |
 /// | none (a pass every bounce, 32) | 2.540 | 10.954 | 14.513 |
-/// | 4 | 1.913 | 9.867 | 13.191 |
-/// | 5 | 1.844 | 9.539 | 12.810 |
-/// | **6** | 1.857 | **9.385** | **12.660** |
-/// | 10 (another call) | 1.978 | 9.411 | 13.003 |
-const WAVEFRONT_PASSES: u32 = 6;
+/// | 4, a path a thread in the tail | 1.913 | 9.867 | 13.191 |
+/// | 6, a path a thread in the tail (before) | 1.857 | 9.385 | 12.660 |
+/// | 10, a path a thread in the tail | 1.978 | 9.411 | 13.003 |
+/// | 3, lanes that fetch in the tail (another call) | 1.782 | 9.969 / 9.980 | 13.895 / 13.886 |
+/// | **4, lanes that fetch** | 1.826 | **8.901 / 8.880** | **12.280 / 12.291** |
+/// | 5, lanes that fetch | 1.861 | 8.974 / 8.937 | 12.316 / 12.284 |
+/// | 6, lanes that fetch | 1.872 | 9.060 / 9.041 | 12.504 / 12.501 |
+const WAVEFRONT_PASSES: u32 = 4;
 
 /// Workgroups `pathtrace/tail` takes its paths in at most, for `fetch_workgroups` of the ray
 /// passes: a workgroup's run of the queue grows, in steps of 64, as the paths left outnumber 64
 /// × this, and its lanes fetch from the run. Fewer workgroups give each lane more paths to
 /// fetch, so that it idles less while its warp's longest path ends, but keep fewer warps on
 /// the GPU. NVIDIA H200, 1920×1080, a sample, ms (`pathtrace/wavefront`, round 1 / 2;
-/// docs/notes/traversal.md, 2026-11-28 (night, late)):
+/// docs/notes/traversal.md, 2026-11-28 (end of day)):
 ///
 /// | | Cornell box | Sponza | Sibenik |
 /// | --- | ---: | ---: | ---: |

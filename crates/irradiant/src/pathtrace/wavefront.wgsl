@@ -25,7 +25,7 @@
 // to its pixel, a thread a path of the pass, so that no two lanes add to one pixel at once.
 // A non-finite sample (finite_or_zero) is then dropped in two parts, the deferred light and the
 // rest, where the megakernel drops the whole: the schedules differ only on such samples.
-// WAVEFRONT_STAGE (STAGE_CAMERA … STAGE_TAIL below): which of the six passes.
+// WAVEFRONT_STAGE (STAGE_CAMERA … STAGE_TAIL below): which of the six kinds of pass.
 #import path
 #import pathtrace_params
 #import dispatch
