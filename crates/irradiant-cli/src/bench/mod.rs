@@ -509,7 +509,9 @@ fn time_rays(
         });
         record.passes.push(pass);
     }
-    pathtrace::time_path_tracer(ctx, scene, gpu_scene, run, record)
+    let path_tracer = pathtrace::time_path_tracer(ctx, (scene, gpu_scene), run)?;
+    record.passes.extend(path_tracer);
+    Ok(())
 }
 
 /// Runs `record_pass` warm-up + timed times, one submission each, and returns the timed

@@ -5,7 +5,7 @@ use irradiant::GpuScene;
 use irradiant::pathtrace::{PathSchedule, PathTraceSettings, PathTracer};
 use irradiant_gpu::GpuContext;
 
-use super::{BenchRecord, RayRun, pass_record, time_passes};
+use super::{PassRecord, RayRun, pass_record, time_passes};
 use crate::CliError;
 
 /// One sample a pixel, as the viewer traces while the camera rests, and sixteen in one
@@ -15,17 +15,11 @@ use crate::CliError;
 /// label's passes summed in a run), so that a change to one pass shows where it lands.
 pub(super) fn time_path_tracer(
     ctx: &GpuContext,
-    scene: &irradiant_scene::Scene,
-    gpu_scene: &GpuScene,
+    (scene, gpu_scene): (&irradiant_scene::Scene, &GpuScene),
     run: &RayRun,
-    record: &mut BenchRecord,
-) -> Result<(), CliError> {
-    let &RayRun {
-        size,
-        timing,
-        order,
-        ..
-    } = run;
+) -> Result<Vec<PassRecord>, CliError> {
+    let (size, timing, order) = (run.size, run.timing, run.order);
+    let mut records = Vec::new();
     for samples in [1, 16] {
         for (schedule, label) in [
             (PathSchedule::Megakernel, "pathtrace/trace"),
@@ -59,7 +53,7 @@ pub(super) fn time_path_tracer(
                 1 => format!("{label} (1 spp)"),
                 _ => format!("{label} (a sample of {samples})"),
             };
-            record.passes.push(pass_record(
+            records.push(pass_record(
                 &scene.name,
                 order,
                 &label,
@@ -68,7 +62,7 @@ pub(super) fn time_path_tracer(
             ));
             if samples == 1 && schedule == PathSchedule::Wavefront {
                 for (pass, times) in &timed.by_label {
-                    record.passes.push(pass_record(
+                    records.push(pass_record(
                         &scene.name,
                         order,
                         &format!("{pass} (wavefront, 1 spp)"),
@@ -79,5 +73,5 @@ pub(super) fn time_path_tracer(
             }
         }
     }
-    Ok(())
+    Ok(records)
 }
