@@ -38,7 +38,7 @@ pub fn print_table(r: &BenchRecord) {
         );
     }
     println!(
-        "\n{:<22} {:<36} {:>10} {:>10} {:>12} {:>10} {:>10} {:>10} {:>12}",
+        "\n{:<22} {:<44} {:>10} {:>10} {:>12} {:>10} {:>10} {:>10} {:>12}",
         "scene",
         "pass",
         "median ms",
@@ -60,7 +60,7 @@ pub fn print_table(r: &BenchRecord) {
             )
         });
         println!(
-            "{:<22} {:<36} {:>10.3} {:>10.3} {:>12} {:>10} {:>10} {:>10} {:>12}",
+            "{:<22} {:<44} {:>10.3} {:>10.3} {:>12} {:>10} {:>10} {:>10} {:>12}",
             p.scene, p.label, p.median_ms, p.min_ms, rays, rate, nodes, tris, node_rate
         );
     }
