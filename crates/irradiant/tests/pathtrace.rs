@@ -109,6 +109,11 @@ fn the_wavefront_traces_the_megakernels_paths() {
         // Paths that end within a few steps of the tail's pass (`WAVEFRONT_PASSES`, 4), its
         // lanes taking several paths each with one fetching workgroup.
         run(&boxed, 7, 32, &[None, Some(1)], true),
+        // Two tail workgroups with runs of more than 64 paths, the second's starting past the
+        // first's, and the bounce rays of the tail's queue traced apart before it.
+        run(&boxed, 7, 64, &[Some(16)], true),
+        // Paths that all end at the tail's first step.
+        run(&boxed, 4, 32, &[None, Some(1)], true),
         run(&lit, 64, 27, &[None, Some(1)], true),
         run(&crowded, 64, 27, &[Some(1)], false),
     ];

@@ -540,7 +540,7 @@ fn time_passes(
         Option<&mut Profiler>,
     ) -> Result<(), CliError>,
 ) -> Result<Timed, CliError> {
-    // Room for every pass of a recording: the wavefront's sixteen samples take 16 × 27 where
+    // Room for every pass of a recording: the wavefront's sixteen samples take 16 × 17 where
     // its bounce and shadow rays are traced apart.
     let mut profiler = Profiler::new(ctx, 2048);
     let mut timed = Timed {

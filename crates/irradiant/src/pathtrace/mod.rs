@@ -40,7 +40,7 @@ pub struct PathTraceSettings {
 pub enum PathSchedule {
     /// The wavefront on a GPU, the megakernel on a CPU adapter (lavapipe), where every pass
     /// costs about half a millisecond of its own: the wavefront's 33 passes a sample (before
-    /// its tail took every bounce past the sixth) made a 32×32 image 6 times slower.
+    /// the tail) made a 32×32 image 6 times slower.
     #[default]
     Auto,
     /// One thread a pixel traces its paths from start to end (`pathtrace/trace`): no memory
@@ -51,7 +51,7 @@ pub enum PathSchedule {
     /// ended paths leave the warps (a sample on Sibenik at 1920×1080 17.1 ms against 20.2, on
     /// an H100), against two queues of 64 bytes a pixel each (265 MB at 1920×1080) and a pass
     /// a bounce for a sample's first four passes, the fifth (`pathtrace/tail`) taking the paths
-    /// left to their ends, its lanes fetching them (12.25 ms on Sibenik on an H200,
+    /// left to their ends, its lanes fetching them (12.29 ms on Sibenik on an H200,
     /// docs/pathtrace.md). On a costly tree of one mesh a
     /// bounce's rays are traced apart first (`pathtrace/hits`, lanes that fetch: Sibenik 17.0
     /// → 15.9 ms on an H200), for 16 bytes a pixel more. Where the buffers pass the adapter's

@@ -58,7 +58,8 @@ pub(super) const TRACED_APART_FROM_SAH_COST: f32 = 40.0;
 /// are left are few, and a pass of each bounce would cost its clear, its dispatches and the
 /// barriers between them for little work; deferred shadow passes there cost the same (every
 /// pass deferring made Sponza 7 % slower). Once the tail's lanes fetched their paths, it paid
-/// to start it earlier. NVIDIA H200, 1920×1080, a sample, ms, round 1 / 2
+/// to start it earlier. NVIDIA H200, 1920×1080, a sample, ms, round 1 / 2 (the Cornell box's
+/// round 2 alone: a process's first wavefront there reads slow)
 /// (docs/notes/traversal.md, 2026-11-28 (late) and (end of day)):
 ///
 /// | passes before the tail | Cornell box | Sponza | Sibenik |
