@@ -47,8 +47,6 @@ pub(super) fn time_path_tracer(
             if tracer.traced_with() != schedule {
                 continue;
             }
-            let per_sample =
-                |times: &[f64]| -> Vec<f64> { times.iter().map(|t| t / samples as f64).collect() };
             let label = match samples {
                 1 => format!("{label} (1 spp)"),
                 _ => format!("{label} (a sample of {samples})"),
@@ -57,7 +55,11 @@ pub(super) fn time_path_tracer(
                 &scene.name,
                 order,
                 &label,
-                &per_sample(&timed.spans),
+                &timed
+                    .spans
+                    .iter()
+                    .map(|t| t / samples as f64)
+                    .collect::<Vec<_>>(),
                 None,
             ));
             if samples == 1 && schedule == PathSchedule::Wavefront {

@@ -404,20 +404,11 @@ impl Wavefront {
                     );
                 }
                 clear_shadows(encoder, bounce as u32);
-                match bounce as u32 == WAVEFRONT_PASSES {
-                    true => tail.dispatch_indirect(
-                        encoder,
-                        profiler.as_deref_mut(),
-                        &self.queues[from],
-                        QUEUE_TAIL_OFFSET,
-                    ),
-                    false => bounces[from].dispatch_indirect(
-                        encoder,
-                        profiler.as_deref_mut(),
-                        &self.queues[from],
-                        QUEUE_DISPATCH_OFFSET,
-                    ),
-                }
+                let (pass, args) = match bounce as u32 == WAVEFRONT_PASSES {
+                    true => (&tail, QUEUE_TAIL_OFFSET),
+                    false => (&bounces[from], QUEUE_DISPATCH_OFFSET),
+                };
+                pass.dispatch_indirect(encoder, profiler.as_deref_mut(), &self.queues[from], args);
                 shadows(encoder, profiler.as_deref_mut(), bounce as u32);
             }
         }
