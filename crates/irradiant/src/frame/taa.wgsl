@@ -7,7 +7,7 @@
 // ghosts, and its average over the pixel should not depend on which jittered samples happened
 // to fall on a bright edge. Until the history holds 1/taa_blend frames it is a
 // running mean, so a still view converges to the pixel's box-filtered value, as the path
-// tracer's is.
+// tracer's is. A pixel with no history takes its neighbours' samples too (reconstruct_current).
 #import gbuffer
 #import random
 
@@ -136,22 +136,58 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = vec2<i32>(id.xy);
     let current = textureLoad(radiance, pixel, 0).rgb;
-    if frame.taa_blend >= 1.0 || frame.history_frames == 0u {
+    if frame.taa_blend >= 1.0 {
         store_resolved(pixel, current);
         return;
     }
-    let previous = vec2<f32>(id.xy) + 0.5 + gbuffer_motion_at(id.xy);
-    let size = frame_size();
-    var alpha = max(frame.taa_blend, 1.0 / (f32(frame.history_frames) + 1.0));
-    var history = current;
-    if all(previous >= vec2<f32>(0.0)) && all(previous <= size) {
-        history = sample_history(previous);
-        if frame.accumulated_frames == 0u {
-            history = clip_to_neighbourhood(history, pixel);
-        }
-    } else {
-        // Off screen last frame: nothing to blend with.
-        alpha = 1.0;
+    if frame.history_frames == 0u {
+        // Nothing to blend with yet.
+        store_resolved(pixel, reconstruct_current(pixel));
+        return;
     }
+    let previous = vec2<f32>(id.xy) + 0.5 + gbuffer_motion_at(id.xy);
+    if any(previous < vec2<f32>(0.0)) || any(previous > frame_size()) {
+        // Off screen last frame: nothing to blend with.
+        store_resolved(pixel, reconstruct_current(pixel));
+        return;
+    }
+    var history = sample_history(previous);
+    if frame.accumulated_frames == 0u {
+        history = clip_to_neighbourhood(history, pixel);
+    }
+    let alpha = max(frame.taa_blend, 1.0 / (f32(frame.history_frames) + 1.0));
     store_resolved(pixel, mix(history, current, alpha));
+}
+
+// The frame's own samples reconstructed at the pixel's centre, for a pixel with no history (the
+// first frame after a cut or a reset, a pixel last frame did not see): each of the 3×3
+// neighbours' samples lies at its pixel's centre plus this frame's jitter, and weighs by a
+// Gaussian of its distance, Karis's fit to a Blackman-Harris filter 3.3 pixels wide
+// (exp(−2.29 d²), "High Quality Temporal Supersampling", 2014). One sample a pixel taken as
+// the pixel's value aliases edges and keeps every pixel's noise; the running mean's later
+// frames do the pixel's box filter over time, where this one frame holds a share 1/n.
+// Only reflected light is filtered: a surface's own emission and the sky are exact where they
+// are seen, and spread, an emitter's pixel would lend a tenth of its radiance to each
+// neighbour (a halo about every lamp).
+fn reconstruct_current(pixel: vec2<i32>) -> vec3<f32> {
+    let last = vec2<i32>(i32(frame.width) - 1, i32(frame.height) - 1);
+    var reflected = vec3<f32>(0.0);
+    var weight_sum = 0.0;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let q = pixel + vec2<i32>(dx, dy);
+            if any(q < vec2<i32>(0)) || any(q > last) || gbuffer_depth_at(vec2<u32>(q)) < 0.0 {
+                continue;
+            }
+            let d = vec2<f32>(f32(dx), f32(dy)) + frame.jitter;
+            let w = exp(-2.29 * dot(d, d));
+            reflected += (textureLoad(radiance, q, 0).rgb - textureLoad(gbuffer_emission, q, 0).rgb) * w;
+            weight_sum += w;
+        }
+    }
+    let own = textureLoad(radiance, pixel, 0).rgb;
+    if gbuffer_depth_at(vec2<u32>(pixel)) < 0.0 {
+        return own;
+    }
+    return textureLoad(gbuffer_emission, pixel, 0).rgb + reflected / weight_sum;
 }
