@@ -8,17 +8,23 @@
 #   many-emitter scenes, the stained-glass Sibenik, the Cornell box and Sibenik's two point
 #   lights): flip.txt.
 # - DDGI's full light against a full reference in the first frame (GI_SCENES): gi.txt.
-# - A frame cut at every pixel at 1920×1080 (compare's first frame: its passes' ms), and a
+# - A frame cut at every pixel at 1920×1080 (compare's first frame: its passes' ms, one
+#   profiled frame, so the call's first processes may read a cold start), and a
 #   swaying view (bench --moving-camera, 30 frames), where the pixels a view uncovers have no
 #   history: cost.txt, in two rounds, the runs in order and then reversed.
-# PARTS (default "flip gi cost") picks which of the three run.
+# PARTS (default "flip gi cost") picks which of the three run; every command's whole output
+# goes to log.txt.
 # Expects .dev/ as tools/device/pack.sh lays it out; writes into $OUT.
 set -euo pipefail
 source "$(dirname "$0")/setup.sh"
 cd .dev/repo
 nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv > "$OUT/nvidia-smi.txt" 2>&1 || true
 work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
 runs=(${RUNS:-before:- irradiant:-})
+for run in "${runs[@]}"; do
+    [[ $run == *:?* ]] || { echo "RUNS: '$run' is not binary:settings (settings '-' for none)" >&2; exit 2; }
+done
 reversed_runs=($(printf '%s\n' "${runs[@]}" | tac))
 printf '' > "$work/-.toml"
 settings_of() { [ "$1" = - ] && echo "$work/-.toml" || echo "$1"; }
@@ -32,8 +38,8 @@ if [[ $parts == *" flip "* ]]; then
             for frames in ${FRAMES:-1 64}; do
                 ../$bin compare --scene "$scene" --techniques none --reference-bounces 0 --size 320x240 \
                     --frames "$frames" --reference-spp 4096 --cache "$work/cache" \
-                    --settings "$(settings_of "$settings")" --out "$work/out" 2>&1 \
-                    | grep -E "FLIP|rror" | sed "s|^|$name $bin $settings frames=$frames |" | tee -a "$OUT/flip.txt"
+                    --settings "$(settings_of "$settings")" --out "$work/out" 2>&1 | tee -a "$OUT/log.txt" \
+                    | { grep -E "FLIP|rror|panic" || true; } | sed "s|^|$name $bin $settings frames=$frames |" | tee -a "$OUT/flip.txt" || true
             done
         done
     done
@@ -45,7 +51,8 @@ if [[ $parts == *" gi "* ]]; then
             bin=${run%%:*} settings=${run#*:}
             ../$bin compare --scene "$scene" --techniques ddgi --size 320x240 --frames 1 \
                 --reference-spp 4096 --cache "$work/cache" --settings "$(settings_of "$settings")" \
-                --out "$work/out" 2>&1 | grep -E "FLIP|rror" | sed "s|^|$name $bin $settings |" | tee -a "$OUT/gi.txt"
+                --out "$work/out" 2>&1 | tee -a "$OUT/log.txt" \
+                | { grep -E "FLIP|rror|panic" || true; } | sed "s|^|$name $bin $settings |" | tee -a "$OUT/gi.txt" || true
         done
     done
 fi
@@ -59,14 +66,14 @@ if [[ $parts == *" cost "* ]]; then
                 bin=${run%%:*} settings=${run#*:}
                 ../$bin compare --scene "$scene" --techniques none --reference-bounces 0 --size 1920x1080 \
                     --frames 1 --reference-spp 4 --cache "$work/cache" --settings "$(settings_of "$settings")" \
-                    --out "$work/cut" > /dev/null 2>&1
+                    --out "$work/cut" >> "$OUT/log.txt" 2>&1 || continue
                 python3 -c "import json, sys; p = dict(json.load(open(sys.argv[1]))['results'][0]['passes']); print(sys.argv[2], ' '.join('%s %.3f' % (k, p.get(k, 0)) for k in ('frame/direct', 'frame/direct_reuse', 'frame/taa')))" \
-                    "$work/cut/comparison.json" "round $round $name $bin $settings cut frame" | tee -a "$OUT/cost.txt"
+                    "$work/cut/comparison.json" "round $round $name $bin $settings cut frame" | tee -a "$OUT/cost.txt" || true
                 ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques none \
                     --moving-camera --settings "$(settings_of "$settings")" 2>&1 \
-                    | grep -E "^[a-z-]+ +none " | sed "s|^|round $round $name $bin $settings swaying |" | tee -a "$OUT/cost.txt"
+                    | tee -a "$OUT/log.txt" | { grep -E "^scene |^[a-z0-9-]+ +none " || true; } \
+                    | sed "s|^|round $round $name $bin $settings swaying |" | tee -a "$OUT/cost.txt" || true
             done
         done
     done
 fi
-rm -rf "$work"

@@ -142,13 +142,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     if frame.history_frames == 0u {
         // Nothing to blend with yet.
-        store_resolved(pixel, reconstruct_current(pixel));
+        store_resolved(pixel, reconstruct_current(pixel, current));
         return;
     }
     let previous = vec2<f32>(id.xy) + 0.5 + gbuffer_motion_at(id.xy);
-    if any(previous < vec2<f32>(0.0)) || any(previous > frame_size()) {
+    // Written so that a NaN motion vector counts as off screen too.
+    if !(all(previous >= vec2<f32>(0.0)) && all(previous <= frame_size())) {
         // Off screen last frame: nothing to blend with.
-        store_resolved(pixel, reconstruct_current(pixel));
+        store_resolved(pixel, reconstruct_current(pixel, current));
         return;
     }
     var history = sample_history(previous);
@@ -159,24 +160,28 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     store_resolved(pixel, mix(history, current, alpha));
 }
 
-// The frame's own samples reconstructed at the pixel's centre, for a pixel with no history (the
-// first frame after a cut or a reset, a pixel last frame did not see): each of the 3×3
-// neighbours' samples lies at its pixel's centre plus this frame's jitter, and weighs by a
-// Gaussian of its distance, Karis's fit to a Blackman-Harris filter 3.3 pixels wide
-// (exp(−2.29 d²), "High Quality Temporal Supersampling", 2014). One sample a pixel taken as
-// the pixel's value aliases edges and keeps every pixel's noise; the running mean's later
-// frames do the pixel's box filter over time, where this one frame holds a share 1/n.
-// Only reflected light is filtered: a surface's own emission and the sky are exact where they
-// are seen, and spread, an emitter's pixel would lend a tenth of its radiance to each
-// neighbour (a halo about every lamp).
-fn reconstruct_current(pixel: vec2<i32>) -> vec3<f32> {
+// The frame's own samples reconstructed at the pixel's centre (`current` is its own), for a
+// pixel with no history: the first frame after a cut or a reset, and a pixel whose
+// reprojection falls off screen (a disoccluded pixel on screen takes its clipped history).
+// Each of the 3×3 neighbours' samples lies at its pixel's centre plus this frame's jitter and
+// weighs by a Gaussian of its distance, exp(−2.29 d²), the fit to a Blackman-Harris filter 3.3
+// pixels wide of Karis's TAA ("High Quality Temporal Supersampling", SIGGRAPH 2014). One sample
+// a pixel taken as the pixel's value aliases edges and keeps every pixel's noise; the running
+// mean's later frames do the pixel's box filter over time, where this one frame holds a share
+// 1/n. Only reflected light is filtered: a surface's own emission and the sky stay the pixel's
+// own sample, since spread, an emitter's pixel lends each neighbour about a tenth of its
+// radiance (a halo about every lamp). So does a pixel whose emission f16 could not hold.
+fn reconstruct_current(pixel: vec2<i32>, current: vec3<f32>) -> vec3<f32> {
+    if !reflects_light(pixel) {
+        return current;
+    }
     let last = vec2<i32>(i32(frame.width) - 1, i32(frame.height) - 1);
     var reflected = vec3<f32>(0.0);
     var weight_sum = 0.0;
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
             let q = pixel + vec2<i32>(dx, dy);
-            if any(q < vec2<i32>(0)) || any(q > last) || gbuffer_depth_at(vec2<u32>(q)) < 0.0 {
+            if any(q < vec2<i32>(0)) || any(q > last) || !reflects_light(q) {
                 continue;
             }
             let d = vec2<f32>(f32(dx), f32(dy)) + frame.jitter;
@@ -185,9 +190,14 @@ fn reconstruct_current(pixel: vec2<i32>) -> vec3<f32> {
             weight_sum += w;
         }
     }
-    let own = textureLoad(radiance, pixel, 0).rgb;
-    if gbuffer_depth_at(vec2<u32>(pixel)) < 0.0 {
-        return own;
-    }
+    // The pixel's own sample is among them, at a weight of at least exp(−2.29 / 2).
     return textureLoad(gbuffer_emission, pixel, 0).rgb + reflected / weight_sum;
+}
+
+// Whether the pixel's sample is a surface whose emission can be told from its reflected light:
+// not the sky, and an emission under f16's largest value (above it the G-buffer holds an
+// infinity, and radiance − emission would be NaN).
+fn reflects_light(pixel: vec2<i32>) -> bool {
+    let p = vec2<u32>(pixel);
+    return gbuffer_depth_at(p) >= 0.0 && all(textureLoad(gbuffer_emission, p, 0).rgb <= vec3<f32>(F16_MAX));
 }
