@@ -172,7 +172,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 // own sample, since spread, an emitter's pixel lends each neighbour about a tenth of its
 // radiance (a halo about every lamp). So does a pixel whose emission f16 could not hold.
 fn reconstruct_current(pixel: vec2<i32>, current: vec3<f32>) -> vec3<f32> {
-    if !reflects_light(pixel) {
+    let own = reflected_light(pixel);
+    if own.w == 0.0 {
         return current;
     }
     let last = vec2<i32>(i32(frame.width) - 1, i32(frame.height) - 1);
@@ -181,23 +182,28 @@ fn reconstruct_current(pixel: vec2<i32>, current: vec3<f32>) -> vec3<f32> {
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
             let q = pixel + vec2<i32>(dx, dy);
-            if any(q < vec2<i32>(0)) || any(q > last) || !reflects_light(q) {
+            if any(q < vec2<i32>(0)) || any(q > last) {
                 continue;
             }
+            let seen = reflected_light(q);
             let d = vec2<f32>(f32(dx), f32(dy)) + frame.jitter;
-            let w = exp(-2.29 * dot(d, d));
-            reflected += (textureLoad(radiance, q, 0).rgb - textureLoad(gbuffer_emission, q, 0).rgb) * w;
+            let w = seen.w * exp(-2.29 * dot(d, d));
+            reflected += seen.rgb * w;
             weight_sum += w;
         }
     }
     // The pixel's own sample is among them, at a weight of at least exp(−2.29 / 2).
-    return textureLoad(gbuffer_emission, pixel, 0).rgb + reflected / weight_sum;
+    return current - own.rgb + reflected / weight_sum;
 }
 
-// Whether the pixel's sample is a surface whose emission can be told from its reflected light:
-// not the sky, and an emission under f16's largest value (above it the G-buffer holds an
+// The light the pixel's surface reflects (its radiance less its emission), w 1; w 0 where the
+// sample is the sky or its emission passes f16's largest value (the G-buffer then holds an
 // infinity, and radiance − emission would be NaN).
-fn reflects_light(pixel: vec2<i32>) -> bool {
+fn reflected_light(pixel: vec2<i32>) -> vec4<f32> {
     let p = vec2<u32>(pixel);
-    return gbuffer_depth_at(p) >= 0.0 && all(textureLoad(gbuffer_emission, p, 0).rgb <= vec3<f32>(F16_MAX));
+    let emission = textureLoad(gbuffer_emission, p, 0).rgb;
+    if gbuffer_depth_at(p) < 0.0 || !all(emission <= vec3<f32>(F16_MAX)) {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(textureLoad(radiance, pixel, 0).rgb - emission, 1.0);
 }
