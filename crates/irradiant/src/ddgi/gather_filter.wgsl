@@ -29,17 +29,6 @@ fn kernel(taps_out: i32) -> f32 {
 // How many of the pixel's standard errors a neighbour's light may differ by and still count
 // fully (SVGF's σ_l).
 const LIGHT_SIGMA: f32 = 2.0;
-// The normals' agreement: cos^64 (SVGF's σ_n), as six squarings.
-fn normals_agree(cosine: f32) -> f32 {
-    var c = max(cosine, 0.0);
-    for (var i = 0; i < 6; i++) {
-        c *= c;
-    }
-    return c;
-}
-// How fast the weight falls as a neighbour leaves the pixel's plane: e^(−this × the sine of
-// the angle between the plane and the step to the neighbour).
-const PLANE_SHARPNESS: f32 = 8.0;
 
 // The light at a pixel and the variance of that light as an estimate of the truth.
 struct Light {
@@ -119,11 +108,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let there = source_light(q);
             var w = kernel(abs(tx)) * kernel(abs(ty));
             if tx != 0 || ty != 0 {
-                let step = gbuffer_position(vec2<u32>(q), q_depth) - x;
-                let off_plane = abs(dot(n, step)) / max(length(step), 1e-9);
-                let facing = normals_agree(dot(n, gbuffer_normal_at(vec2<u32>(q))));
                 let apart = abs(luminance(there.rgb) - l) / (LIGHT_SIGMA * error + 1e-9 + 1e-3 * l);
-                w *= exp(-PLANE_SHARPNESS * off_plane - apart) * facing;
+                w *= surface_agreement(x, n, vec2<u32>(q), q_depth) * exp(-apart);
             }
             sum += w * there.rgb;
             sum_variance += w * w * there.variance;

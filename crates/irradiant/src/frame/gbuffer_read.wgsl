@@ -55,6 +55,22 @@ fn gbuffer_motion_at(pixel: vec2<u32>) -> vec2<f32> {
     return textureLoad(gbuffer_motion, pixel, 0).xy;
 }
 
+// How much a neighbour's surface counts as the pixel's own, for the filters that borrow their
+// neighbours' light (frame/taa's reconstruction, ddgi/gather_filter): 1 where it lies on the
+// pixel's plane (position x, normal n) and faces its way, falling as it leaves the plane
+// (e^(−PLANE_SHARPNESS × the sine of the angle between the plane and the step to it)) or turns
+// away (cos^64, SVGF's σ_n: Schied et al. 2017).
+fn surface_agreement(x: vec3<f32>, n: vec3<f32>, q: vec2<u32>, q_depth: f32) -> f32 {
+    let step = gbuffer_position(q, q_depth) - x;
+    let off_plane = abs(dot(n, step)) / max(length(step), 1e-9);
+    var facing = max(dot(n, gbuffer_normal_at(q)), 0.0);
+    for (var i = 0; i < 6; i++) {
+        facing *= facing;
+    }
+    return exp(-PLANE_SHARPNESS * off_plane) * facing;
+}
+const PLANE_SHARPNESS: f32 = 8.0;
+
 // The view direction (towards the camera) at a surface point.
 fn view_dir(p: vec3<f32>) -> vec3<f32> {
     return normalize(frame.camera.position - p);

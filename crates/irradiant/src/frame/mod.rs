@@ -58,6 +58,9 @@ struct FramePasses {
     direct_reuse: Option<BoundPass>,
     compose: BoundPass,
     taa: BoundPass,
+    /// frame/taa for a frame with no history under emitters (scenes that can hold them): a
+    /// pipeline of its own, so that the other frames' TAA keeps its registers.
+    taa_cut: Option<BoundPass>,
     tonemap: BoundPass,
     /// frame/pyramid, then frame/pyramid_down for each level above 0.
     pyramid: Vec<BoundPass>,
@@ -109,14 +112,28 @@ impl Frame {
             let frame_table = resources.table();
             let tables: &[&ResourceTable] = &[&scene_table, &frame_table];
             let tracing = scene.shader_constants();
+            let bind = |desc: PassDesc| {
+                crate::shaders::pass(ctx, &desc)?
+                    .bind(ctx, tables)
+                    .map_err(RenderError::from)
+            };
             let pass = |label, source, tracing_pass: bool| {
                 let mut desc = PassDesc::new(label, source);
                 if tracing_pass {
                     desc = desc.constants(tracing.clone());
                 }
-                crate::shaders::pass(ctx, &desc)?
-                    .bind(ctx, tables)
-                    .map_err(RenderError::from)
+                bind(desc)
+            };
+            // frame/taa, and with emitters its variant for a frame with no history, which
+            // takes each pixel's colour over the light on its surface (taa.wgsl,
+            // reconstruct_current): one emitter sample a pixel is one emitter's colour.
+            let taa = |colour_from_surface: bool| {
+                bind(
+                    PassDesc::new("frame/taa", include_str!("taa.wgsl")).constants([(
+                        "COLOUR_FROM_SURFACE",
+                        format!("{}u", colour_from_surface as u32),
+                    )]),
+                )
             };
             let mut pyramid = Vec::new();
             if needs.pyramid_levels > 0 {
@@ -160,7 +177,12 @@ impl Frame {
                     None
                 },
                 compose: pass("frame/compose", include_str!("compose.wgsl"), false)?,
-                taa: pass("frame/taa", include_str!("taa.wgsl"), false)?,
+                taa: taa(false)?,
+                taa_cut: if scene.has_emitters() {
+                    Some(taa(true)?)
+                } else {
+                    None
+                },
                 tonemap: pass("frame/tonemap", include_str!("tonemap.wgsl"), false)?,
                 pyramid,
             }
@@ -430,9 +452,11 @@ impl Frame {
         mut profiler: Option<&mut Profiler>,
     ) {
         let groups = self.image_groups();
-        self.passes
-            .taa
-            .dispatch(encoder, profiler.as_deref_mut(), groups);
+        let taa = match &self.passes.taa_cut {
+            Some(cut) if self.history_frames == 0 => cut,
+            _ => &self.passes.taa,
+        };
+        taa.dispatch(encoder, profiler.as_deref_mut(), groups);
         let r = &self.resources;
         encoder.copy_texture_to_texture(
             r.texture("resolved").as_image_copy(),

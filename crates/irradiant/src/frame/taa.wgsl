@@ -10,6 +10,7 @@
 // tracer's is. A pixel with no history takes its neighbours' samples too (reconstruct_current).
 #import gbuffer
 #import random
+#import sampling
 
 @group(2) @binding(0) var radiance: texture_2d<f32>;
 @group(2) @binding(1) var previous_radiance: texture_2d<f32>;
@@ -163,21 +164,39 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 // The frame's own samples reconstructed at the pixel's centre (`current` is its own), for a
 // pixel with no history: the first frame after a cut or a reset, and a pixel whose
 // reprojection falls off screen (a disoccluded pixel on screen takes its clipped history).
-// Each of the 3×3 neighbours' samples lies at its pixel's centre plus this frame's jitter and
-// weighs by a Gaussian of its distance, exp(−2.29 d²), the fit to a Blackman-Harris filter 3.3
-// pixels wide of Karis's TAA ("High Quality Temporal Supersampling", SIGGRAPH 2014). One sample
-// a pixel taken as the pixel's value aliases edges and keeps every pixel's noise; the running
-// mean's later frames do the pixel's box filter over time, where this one frame holds a share
-// 1/n. Only reflected light is filtered: a surface's own emission and the sky stay the pixel's
-// own sample, since spread, an emitter's pixel lends each neighbour about a tenth of its
-// radiance (a halo about every lamp). So does a pixel whose emission f16 could not hold.
+//
+// Its brightness: each of the 3×3 neighbours' samples lies at its pixel's centre plus this
+// frame's jitter and weighs by a Gaussian of its distance, exp(−2.29 d²), the fit to a
+// Blackman-Harris filter 3.3 pixels wide of Karis's TAA ("High Quality Temporal
+// Supersampling", SIGGRAPH 2014). One sample a pixel taken as the pixel's value aliases edges
+// and keeps every pixel's noise; the running mean's later frames do the pixel's box filter over
+// time, where this one frame holds a share 1/n.
+//
+// Its colour, in a frame with no history under emitters (COLOUR_FROM_SURFACE, the variant
+// the host runs for such a frame only, so that the other frames' TAA keeps its registers):
+// each sample of emitter light is one emitter's, so under emitters of many colours (stained
+// glass) one frame's pixels each take one colour, which no 3×3 filter evens out. The colour
+// comes from the light on the pixel's surface over a wider footprint (surface_light), and only
+// the colour: brightness keeps its edges and shadows. A pixel a moving view uncovers at the
+// screen's edge keeps the 3×3 filter's colour; the frames after it average its colour out.
+//
+// Only reflected light is filtered: a surface's own emission and the sky stay the pixel's own
+// sample, since spread, an emitter's pixel lends each neighbour about a tenth of its radiance (a
+// halo about every lamp). So does a pixel whose emission f16 could not hold.
 fn reconstruct_current(pixel: vec2<i32>, current: vec3<f32>) -> vec3<f32> {
     let own = reflected_light(pixel);
     if own.w == 0.0 {
         return current;
     }
+    let p = vec2<u32>(pixel);
+    let x = gbuffer_position(p, gbuffer_depth_at(p));
+    let n = gbuffer_normal_at(p);
     let last = vec2<i32>(i32(frame.width) - 1, i32(frame.height) - 1);
-    var reflected = vec3<f32>(0.0);
+    var sharp = vec3<f32>(0.0);
+    // The same filter with each neighbour on the pixel's surface lending its albedo (under the
+    // surface's light, multiplied in below) and the others their sample.
+    var albedo_part = vec3<f32>(0.0);
+    var others_part = vec3<f32>(0.0);
     var weight_sum = 0.0;
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
@@ -188,12 +207,71 @@ fn reconstruct_current(pixel: vec2<i32>, current: vec3<f32>) -> vec3<f32> {
             let seen = reflected_light(q);
             let d = vec2<f32>(f32(dx), f32(dy)) + frame.jitter;
             let w = seen.w * exp(-2.29 * dot(d, d));
-            reflected += seen.rgb * w;
+            sharp += w * seen.rgb;
             weight_sum += w;
+            if COLOUR_FROM_SURFACE != 0u {
+                var agree = 1.0;
+                if dx != 0 || dy != 0 {
+                    agree = select(0.0, surface_agreement(x, n, vec2<u32>(q), gbuffer_depth_at(vec2<u32>(q))), seen.w > 0.0);
+                }
+                albedo_part += w * agree * (albedo_at(q) + DEMODULATE_FLOOR);
+                others_part += w * (1.0 - agree) * seen.rgb;
+            }
         }
     }
     // The pixel's own sample is among them, at a weight of at least exp(−2.29 / 2).
-    return current - own.rgb + reflected / weight_sum;
+    sharp /= weight_sum;
+    if COLOUR_FROM_SURFACE == 0u {
+        return current - own.rgb + sharp;
+    }
+    let coloured = (albedo_part * surface_light(pixel, x, n) + others_part) / weight_sum;
+    let brightness = luminance(coloured);
+    if brightness <= 0.0 {
+        return current - own.rgb + sharp;
+    }
+    return current - own.rgb + coloured * (luminance(sharp) / brightness);
+}
+
+// A floor under the albedo the light is divided by: a black surface's light (specular only)
+// is carried at this albedo and multiplied back by the same.
+const DEMODULATE_FLOOR: f32 = 0.02;
+// The footprint over which the first frame's colour is taken: taps every CHROMA_STRIDE pixels,
+// CHROMA_TAPS each way from the pixel, weighed by a Gaussian of CHROMA_SIGMA pixels. Colour
+// is what the eye resolves least.
+const CHROMA_TAPS: i32 = 3;
+const CHROMA_STRIDE: i32 = 3;
+const CHROMA_SIGMA: f32 = 8.0;
+
+// The light arriving at the pixel's surface (its reflected light over its albedo), averaged
+// over the neighbours on that surface.
+fn surface_light(pixel: vec2<i32>, x: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let last = vec2<i32>(i32(frame.width) - 1, i32(frame.height) - 1);
+    var light = vec3<f32>(0.0);
+    var weight_sum = 0.0;
+    for (var ty = -CHROMA_TAPS; ty <= CHROMA_TAPS; ty++) {
+        for (var tx = -CHROMA_TAPS; tx <= CHROMA_TAPS; tx++) {
+            let q = pixel + vec2<i32>(tx, ty) * CHROMA_STRIDE;
+            if any(q < vec2<i32>(0)) || any(q > last) {
+                continue;
+            }
+            let seen = reflected_light(q);
+            if seen.w == 0.0 {
+                continue;
+            }
+            let d = vec2<f32>(f32(tx), f32(ty)) * f32(CHROMA_STRIDE);
+            var w = exp(-dot(d, d) / (2.0 * CHROMA_SIGMA * CHROMA_SIGMA));
+            if tx != 0 || ty != 0 {
+                w *= surface_agreement(x, n, vec2<u32>(q), gbuffer_depth_at(vec2<u32>(q)));
+            }
+            light += w * seen.rgb / (albedo_at(q) + DEMODULATE_FLOOR);
+            weight_sum += w;
+        }
+    }
+    return light / weight_sum;
+}
+
+fn albedo_at(pixel: vec2<i32>) -> vec3<f32> {
+    return textureLoad(gbuffer_albedo, vec2<u32>(pixel), 0).rgb;
 }
 
 // The light the pixel's surface reflects (its radiance less its emission), w 1; w 0 where the
