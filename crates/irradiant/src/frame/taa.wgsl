@@ -207,12 +207,16 @@ fn reconstruct_current(pixel: vec2<i32>, current: vec3<f32>) -> vec3<f32> {
             let seen = reflected_light(q);
             let d = vec2<f32>(f32(dx), f32(dy)) + frame.jitter;
             let w = seen.w * exp(-2.29 * dot(d, d));
+            if w == 0.0 {
+                // The sky, or an emission f16 could not hold: 0 × ∞ would poison the sums.
+                continue;
+            }
             sharp += w * seen.rgb;
             weight_sum += w;
             if COLOUR_FROM_SURFACE != 0u {
                 var agree = 1.0;
                 if dx != 0 || dy != 0 {
-                    agree = select(0.0, surface_agreement(x, n, vec2<u32>(q), gbuffer_depth_at(vec2<u32>(q))), seen.w > 0.0);
+                    agree = surface_agreement(x, n, vec2<u32>(q), gbuffer_depth_at(vec2<u32>(q)));
                 }
                 albedo_part += w * agree * (albedo_at(q) + DEMODULATE_FLOOR);
                 others_part += w * (1.0 - agree) * seen.rgb;
@@ -224,7 +228,9 @@ fn reconstruct_current(pixel: vec2<i32>, current: vec3<f32>) -> vec3<f32> {
     if COLOUR_FROM_SURFACE == 0u {
         return current - own.rgb + sharp;
     }
-    let coloured = (albedo_part * surface_light(pixel, x, n) + others_part) / weight_sum;
+    // Never below zero, where a neighbour's radiance less its emission (rounded apart) dips
+    // under it: a negative channel over a small brightness would be scaled without bound.
+    let coloured = max((albedo_part * surface_light(pixel, x, n) + others_part) / weight_sum, vec3<f32>(0.0));
     let brightness = luminance(coloured);
     if brightness <= 0.0 {
         return current - own.rgb + sharp;
@@ -242,12 +248,15 @@ const CHROMA_TAPS: i32 = 3;
 const CHROMA_STRIDE: i32 = 3;
 const CHROMA_SIGMA: f32 = 8.0;
 
-// The light arriving at the pixel's surface (its reflected light over its albedo), averaged
-// over the neighbours on that surface.
+// The light arriving at the pixel's surface: the reflected light of the neighbours on that
+// surface over their albedo, as a ratio of the two sums, so that a dark neighbour whose light
+// is mostly its specular highlight lends it at its albedo's weight rather than 1/floor times
+// over. The pixel's own tap is always among them (weight 1), so the albedo sum is at least
+// the floor.
 fn surface_light(pixel: vec2<i32>, x: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let last = vec2<i32>(i32(frame.width) - 1, i32(frame.height) - 1);
     var light = vec3<f32>(0.0);
-    var weight_sum = 0.0;
+    var albedo = vec3<f32>(0.0);
     for (var ty = -CHROMA_TAPS; ty <= CHROMA_TAPS; ty++) {
         for (var tx = -CHROMA_TAPS; tx <= CHROMA_TAPS; tx++) {
             let q = pixel + vec2<i32>(tx, ty) * CHROMA_STRIDE;
@@ -263,11 +272,14 @@ fn surface_light(pixel: vec2<i32>, x: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
             if tx != 0 || ty != 0 {
                 w *= surface_agreement(x, n, vec2<u32>(q), gbuffer_depth_at(vec2<u32>(q)));
             }
-            light += w * seen.rgb / (albedo_at(q) + DEMODULATE_FLOOR);
-            weight_sum += w;
+            if w == 0.0 {
+                continue;
+            }
+            light += w * max(seen.rgb, vec3<f32>(0.0));
+            albedo += w * (albedo_at(q) + DEMODULATE_FLOOR);
         }
     }
-    return light / weight_sum;
+    return light / albedo;
 }
 
 fn albedo_at(pixel: vec2<i32>) -> vec3<f32> {

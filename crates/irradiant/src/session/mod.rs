@@ -265,6 +265,18 @@ impl Session {
         self.camera = camera;
     }
 
+    /// Moves the view by a cut, as between two shots: the next frame takes nothing from the
+    /// last one's pixels (TAA's history, the direct light's mean and reservoirs), where after
+    /// [`set_camera`](Self::set_camera) it would reproject what it can find and clip it. The
+    /// frame then does what it does with no history (docs/frame.md: more emitter candidates
+    /// a pixel, TAA's reconstruction from the neighbours' samples and, under emitters, the
+    /// colour of the surface's light). The technique keeps its history: probes hold the world's
+    /// light, not the view's.
+    pub fn cut_to(&mut self, camera: Camera) {
+        self.camera = camera;
+        self.frame.invalidate();
+    }
+
     /// Animation time, in seconds.
     pub fn time(&self) -> f32 {
         self.time
