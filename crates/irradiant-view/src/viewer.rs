@@ -327,9 +327,11 @@ impl Viewer {
         Ok(())
     }
 
-    /// Puts the camera at a view.
+    /// Puts the camera at a view: a jump, which the frame takes as a cut (`Session::cut_to`:
+    /// no history from the last view's pixels; the probes keep theirs).
     pub fn set_camera(&mut self, camera: &irradiant_scene::Camera) -> Result<(), ViewError> {
         self.fly = FlyCamera::from_camera(camera, self.fly.speed);
+        self.session.cut_to(self.fly.camera());
         self.camera_moved()
     }
 

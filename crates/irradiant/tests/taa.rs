@@ -64,13 +64,7 @@ fn a_first_frame_takes_its_neighbours_samples_but_not_their_emission() {
     let size = (64, 64);
     for name in ["many-lights", "cornell"] {
         let scene = irradiant_scene::load(name).unwrap().scene;
-        let first_frame = |frame: FrameSettings| {
-            let mut s = session_with(&ctx, &scene, size, direct_only(), frame);
-            s.render().unwrap();
-            s.image().unwrap()
-        };
-        let with = first_frame(FrameSettings::default());
-        let without = first_frame(FrameSettings::default().without_taa());
+        let (with, without) = first_frames(&ctx, &scene, size);
         let reference = path_trace_view(&ctx, &scene, &scene.camera, size, 512, 1);
         let relative_mse =
             |i: &Image| irradiant_eval::relative_mse(&reference.pixels, &i.pixels).unwrap();
@@ -112,13 +106,7 @@ fn a_first_frame_under_coloured_emitters_takes_its_colour_from_the_surface() {
     let Some(ctx) = gpu() else { return };
     let size = (64, 64);
     let scene = many_lights_in_three_colours();
-    let first_frame = |frame: FrameSettings| {
-        let mut s = session_with(&ctx, &scene, size, direct_only(), frame);
-        s.render().unwrap();
-        s.image().unwrap()
-    };
-    let with = first_frame(FrameSettings::default());
-    let without = first_frame(FrameSettings::default().without_taa());
+    let (with, without) = first_frames(&ctx, &scene, size);
     let after_cut = {
         let mut s = session_with(&ctx, &scene, size, direct_only(), FrameSettings::default());
         let mut away = scene.camera.clone();
@@ -151,6 +139,24 @@ fn a_first_frame_under_coloured_emitters_takes_its_colour_from_the_surface() {
         c_cut < 0.3 * c_without,
         "after a cut: chromaticity error {c_cut} against pixel centres {c_without}"
     );
+}
+
+/// A session's first frame, direct light only, with TAA (reconstructed) and without (one
+/// sample at each pixel's centre).
+fn first_frames(
+    ctx: &std::sync::Arc<irradiant::GpuContext>,
+    scene: &irradiant_scene::Scene,
+    size: (u32, u32),
+) -> (Image, Image) {
+    let first_frame = |frame: FrameSettings| {
+        let mut s = session_with(ctx, scene, size, direct_only(), frame);
+        s.render().unwrap();
+        s.image().unwrap()
+    };
+    (
+        first_frame(FrameSettings::default()),
+        first_frame(FrameSettings::default().without_taa()),
+    )
 }
 
 /// The many-lights hall with its tiles reddish, greenish and bluish in a sequence that gives

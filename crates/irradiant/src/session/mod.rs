@@ -271,7 +271,8 @@ impl Session {
     /// frame then does what it does with no history (docs/frame.md: more emitter candidates
     /// a pixel, TAA's reconstruction from the neighbours' samples and, under emitters, the
     /// colour of the surface's light). The technique keeps its history: probes hold the world's
-    /// light, not the view's.
+    /// light, not the view's, and its screen-space histories (the final gather's, the
+    /// reflections', SSIL's, the light field's) take only what reprojects onto the same surface.
     pub fn cut_to(&mut self, camera: Camera) {
         self.camera = camera;
         self.frame.invalidate();
