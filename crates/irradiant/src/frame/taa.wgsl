@@ -172,13 +172,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 // and keeps every pixel's noise; the running mean's later frames do the pixel's box filter over
 // time, where this one frame holds a share 1/n.
 //
-// Its colour, in a frame with no history under emitters (COLOUR_FROM_SURFACE, the variant
-// the host runs for such a frame only, so that the other frames' TAA keeps its registers):
+// Its colour, in a frame with no history under emitters (COLOUR_FROM_SURFACE, a variant that
+// frame/mod.rs runs for such a frame only, so that the other frames' TAA keeps its registers):
 // each sample of emitter light is one emitter's, so under emitters of many colours (stained
 // glass) one frame's pixels each take one colour, which no 3×3 filter evens out. The colour
 // comes from the light on the pixel's surface over a wider footprint (surface_light), and only
-// the colour: brightness keeps its edges and shadows. A pixel a moving view uncovers at the
-// screen's edge keeps the 3×3 filter's colour; the frames after it average its colour out.
+// the colour: brightness keeps its edges and shadows. A pixel that reprojects off screen in
+// a frame with history (a moving view's edge, a view turned by set_camera rather than cut_to)
+// keeps the 3×3 filter's colour; the frames after it average its colour out.
 //
 // Only reflected light is filtered: a surface's own emission and the sky stay the pixel's own
 // sample, since spread, an emitter's pixel lends each neighbour about a tenth of its radiance (a
