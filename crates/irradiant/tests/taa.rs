@@ -170,7 +170,7 @@ fn many_lights_in_three_colours() -> irradiant_scene::Scene {
         .position(|m| m.emission != glam::Vec3::ZERO)
         .unwrap();
     let white = scene.materials[tile].clone();
-    let luminance = |c: glam::Vec3| c.dot(glam::Vec3::new(0.2126, 0.7152, 0.0722));
+    let luminance = |c: glam::Vec3| pixel_luminance(&c.to_array()) as f32;
     let first_colour = scene.materials.len() as u32;
     for tint in [
         glam::Vec3::new(1.0, 0.2, 0.2),
