@@ -55,6 +55,7 @@ fn largest_spec(name: &str, probes_per_group: u32) -> TechniqueSpec {
                 ddgi,
                 near_field: 4.0,
                 far_field_while_young: true,
+                bent_fill: true,
             },
         ),
         _ => TechniqueSpec::with_settings(name, &ddgi),

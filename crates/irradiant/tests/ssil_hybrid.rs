@@ -177,9 +177,13 @@ fn the_screen_gathers_only_the_light_surfaces_send_every_way() {
     }
 }
 
-/// On the Cornell box the hybrid stays with DDGI, far ahead of the screen alone. It is not
-/// yet below DDGI here: at 64×64 the screen's near field costs 2 % of FLIP (at 160×120 it gains
-/// 0.5 %, docs/ssil.md); with every sender on screen (a near field of 4) it loses 22 %.
+/// The hybrid on the Cornell box, after 60 frames against the path tracer: far under SSIL alone,
+/// and within 1 % of DDGI alone (at 64×64 the screen's coarse near field still costs 0.7 % of
+/// FLIP; at 160×120 it gains 2.5 %, docs/ssil.md). The probes fill what the screen leaves
+/// uncovered with their light around those directions' mean (`bent_fill`): the floor's screen
+/// sees the bright walls beside it and its uncovered directions lean to the dim ceiling, so the
+/// bent fill is nearer the path tracer than the probes' light taken as it is, which counts the
+/// walls' light again (2 % more FLIP here).
 #[test]
 fn the_hybrid_stays_with_ddgi_on_the_cornell_box() {
     let Some(ctx) = gpu() else { return };
@@ -202,10 +206,20 @@ fn the_hybrid_stays_with_ddgi_on_the_cornell_box() {
         "ssil+ddgi",
         &HybridSettings::balanced(),
     ));
-    eprintln!("Cornell box, FLIP: ddgi {ddgi:.4}, ssil {ssil:.4}, ssil+ddgi {hybrid:.4}");
+    let mut even = HybridSettings::balanced();
+    even.bent_fill = false;
+    let even = flip(TechniqueSpec::with_settings("ssil+ddgi", &even));
+    eprintln!(
+        "Cornell box, FLIP: ddgi {ddgi:.4}, ssil {ssil:.4}, ssil+ddgi {hybrid:.4} \
+         (the probes' light as it is: {even:.4})"
+    );
     assert!(
-        hybrid <= 1.03 * ddgi && hybrid < ssil,
+        hybrid <= 1.01 * ddgi && hybrid < ssil,
         "ssil+ddgi {hybrid:.4} against ddgi {ddgi:.4} and ssil {ssil:.4}"
+    );
+    assert!(
+        hybrid < even,
+        "the bent fill {hybrid:.4} against the probes' light as it is {even:.4}"
     );
 }
 

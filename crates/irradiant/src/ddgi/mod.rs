@@ -258,6 +258,12 @@ impl Ddgi {
             .map_or(0.0, |d| crate::probes::ProbeGrid::new(d).min_spacing())
     }
 
+    /// The finest volume's resources by name, for a pass of another technique that queries its
+    /// probes (`ddgi_query`); None without volumes.
+    pub fn finest_table(&self) -> Option<irradiant_gpu::ResourceTable<'_>> {
+        self.volumes.first().map(|v| v.resources.table())
+    }
+
     /// Validates the settings, compiles the pipelines once and builds a volume for each of the
     /// scene's probe volumes, bound to the frame.
     pub fn new(

@@ -54,11 +54,7 @@ struct ProbeRead {
 
 // The probes' light at p around normal n; `wo` points from p towards the viewer.
 fn ddgi_irradiance(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>) -> ProbeRead {
-    // 003's bias scales with the smallest spacing; here each axis with its own, so that on a
-    // grid of tall cells (Sibenik's 4 m layers) the bias is the same share of the cell that
-    // the visibility test has to reach across along that axis.
-    let bias = (n * 0.2 + wo * 0.8) * volume.spacing * (0.75 * volume.self_shadow_bias);
-    return irradiance_at_biased(p, n, p + bias);
+    return ddgi_irradiance_along(p, n, n, wo);
 }
 
 // ddgi_irradiance seen from a viewer `viewer_distance` away along `wo` (the final gather's
@@ -75,8 +71,25 @@ fn ddgi_irradiance_seen_from(p: vec3<f32>, n: vec3<f32>, wo: vec3<f32>, viewer_d
     return irradiance_at_biased(p, n, p + n * 0.2 * scale + view_bias);
 }
 
+// ddgi_irradiance read around `lookup` instead of the normal, with the cage's weights (its
+// backface wrap, visibility and bias) still those of the surface at p with normal n: the probes'
+// light arriving around a bent normal (ssil+ddgi's fill of what the screen does not cover).
+fn ddgi_irradiance_along(p: vec3<f32>, n: vec3<f32>, lookup: vec3<f32>, wo: vec3<f32>) -> ProbeRead {
+    // 003's bias scales with the smallest spacing; here each axis with its own, so that on a
+    // grid of tall cells (Sibenik's 4 m layers) the bias is the same share of the cell that
+    // the visibility test has to reach across along that axis.
+    let bias = (n * 0.2 + wo * 0.8) * volume.spacing * (0.75 * volume.self_shadow_bias);
+    return irradiance_along_biased(p, n, lookup, p + bias);
+}
+
 // The query at p around n, its cage, weights and visibility taken at `biased`.
 fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> ProbeRead {
+    return irradiance_along_biased(p, n, n, biased);
+}
+
+// The query at p read around `lookup`, its cage, weights and visibility taken for normal n at
+// `biased`.
+fn irradiance_along_biased(p: vec3<f32>, n: vec3<f32>, lookup: vec3<f32>, biased: vec3<f32>) -> ProbeRead {
     let max_base = vec3<i32>(volume.counts) - vec3<i32>(2);
     let grid = (biased - volume.origin) / volume.spacing;
     let base = clamp(vec3<i32>(floor(grid)), vec3<i32>(0), max(max_base, vec3<i32>(0)));
@@ -92,6 +105,7 @@ fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> ProbeR
     // probes blend in a perceptual (gamma 2) space (003, Listing 2).
     let half_gamma = volume.irradiance_gamma * 0.5;
     let n_uv = tile_uv(n);
+    let lookup_uv = tile_uv(lookup);
     var sum = vec3<f32>(0.0);
     var weight_sum = 0.0;
     var sum_out = vec3<f32>(0.0);
@@ -142,7 +156,7 @@ fn irradiance_at_biased(p: vec3<f32>, n: vec3<f32>, biased: vec3<f32>) -> ProbeR
         let cage_weight = trilinear.x * trilinear.y * trilinear.z;
         seen += visibility * cage_weight;
         w *= cage_weight;
-        let encoded = sample_irradiance_encoded(cell, n_uv);
+        let encoded = sample_irradiance_encoded(cell, lookup_uv);
         // Gamma 2 (light-field probes' static atlases) needs no decode before the blend.
         var blendable = max(encoded, vec3<f32>(0.0));
         if half_gamma != 1.0 {

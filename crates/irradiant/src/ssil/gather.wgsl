@@ -9,7 +9,8 @@
 // For the last bounce the samples are importance-sampled around the mirror direction
 // projected on the screen (f(θ) = α + exp(−s (θr − θ)² / 2π)) and the full BRDF gathers them.
 // Writes (E: cosine-weighted incident radiance ∫L cos dω, coverage: the share of the cosine
-// lobe the samples covered) and the glossy radiance. GATHER_LANES threads share a texel, each
+// lobe the samples covered) and the glossy radiance; with ssil+ddgi's bent fill also the
+// covered directions (covered_directions.wgsl). GATHER_LANES threads share a texel, each
 // taking every GATHER_LANES-th sample; their sums meet in workgroup memory.
 #import ssil_common
 #import gbuffer
@@ -69,18 +70,23 @@ fn wrap_angle(a: f32) -> f32 {
     return a - TAU * floor((a + PI) / TAU);
 }
 
-// One lane's sums: E (rgb), coverage, and the glossy radiance.
+// One lane's sums: E (rgb), coverage, the glossy radiance and the covered directions.
 struct LaneSum {
     light: vec4<f32>,
     specular: vec3<f32>,
+    covered: vec3<f32>,
 }
 
 const TEXELS_PER_GROUP: u32 = GATHER_TILE * GATHER_TILE;
-var<workgroup> lane_sums: array<LaneSum, GATHER_LANES * TEXELS_PER_GROUP>;
+// The lanes' sums, each part apart, so that a gather without the covered directions carries
+// none.
+var<workgroup> lane_light: array<vec4<f32>, GATHER_LANES * TEXELS_PER_GROUP>;
+var<workgroup> lane_specular: array<vec3<f32>, GATHER_LANES * TEXELS_PER_GROUP>;
+var<workgroup> lane_covered: array<vec3<f32>, GATHER_LANES * TEXELS_PER_GROUP>;
 
 // `lane`'s share of texel `texel`'s samples at this level.
 fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
-    var sum = LaneSum(vec4<f32>(0.0), vec3<f32>(0.0));
+    var sum = LaneSum(vec4<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
     let level = ssil_pass.level;
     let size = level_size(level);
     let nd = textureLoad(pyramid_normal_depth, texel, level);
@@ -179,6 +185,9 @@ fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
         }
         let l = textureLoad(source_radiance, qi, ssil_pass.radiance_level).rgb;
         sum.light += vec4<f32>(l * g, g / PI);
+        if COVERS_DIRECTIONS {
+            sum.covered += wi * (g / PI);
+        }
         if glossy {
             let f = brdf_eval(receiver, wo, wi) - diffuse_weight(receiver) / PI;
             sum.specular += max(f, vec3<f32>(0.0)) * l * g;
@@ -193,21 +202,30 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
     let size = level_size(ssil_pass.level);
     let texel = group.xy * GATHER_TILE + vec2<u32>(local.y % GATHER_TILE, local.y / GATHER_TILE);
     let inside = all(texel < size);
-    var own = LaneSum(vec4<f32>(0.0), vec3<f32>(0.0));
+    var own = LaneSum(vec4<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
     if inside {
         own = gather_lane(texel, local.x);
     }
-    lane_sums[local.y * GATHER_LANES + local.x] = own;
+    let slot = local.y * GATHER_LANES + local.x;
+    lane_light[slot] = own.light;
+    lane_specular[slot] = own.specular;
+    if COVERS_DIRECTIONS {
+        lane_covered[slot] = own.covered;
+    }
     workgroupBarrier();
     if local.x != 0u || !inside {
         return;
     }
     var total = own;
     for (var lane = 1u; lane < GATHER_LANES; lane++) {
-        let other = lane_sums[local.y * GATHER_LANES + lane];
-        total.light += other.light;
-        total.specular += other.specular;
+        let other = local.y * GATHER_LANES + lane;
+        total.light += lane_light[other];
+        total.specular += lane_specular[other];
+        if COVERS_DIRECTIONS {
+            total.covered += lane_covered[other];
+        }
     }
     textureStore(target_light, vec2<i32>(texel), vec4<f32>(total.light.rgb, min(total.light.a, 1.0)));
     textureStore(target_specular, vec2<i32>(texel), vec4<f32>(total.specular, 1.0));
+    store_covered(vec2<i32>(texel), total.covered);
 }

@@ -36,6 +36,13 @@ pub struct HybridSettings {
     /// the far field's error (the fill's even-light assumption) is smaller than theirs. Off:
     /// the near field from the first frame, and the first frames read as DDGI's.
     pub far_field_while_young: bool,
+    /// Reads the probes' light for what the screen leaves uncovered around those directions'
+    /// mean (a bent normal), instead of taking the probes' light at the pixel as if the
+    /// uncovered directions brought the mean of all of them. Where the screen covers a bright
+    /// wall beside a dim ceiling, the fill then leans to the ceiling's light, not the wall's
+    /// again. Costs two probe queries a pixel the screen covers (docs/ssil.md). Off: the
+    /// probes' light as it is, and no queries.
+    pub bent_fill: bool,
 }
 
 crate::settings::presets_from_inherent!(HybridSettings);
@@ -56,6 +63,7 @@ impl HybridSettings {
             ddgi: DdgiSettings::fast(),
             near_field: NEAR_FIELD,
             far_field_while_young: true,
+            bent_fill: true,
         }
     }
     /// Each technique's balanced preset.
@@ -65,6 +73,7 @@ impl HybridSettings {
             ddgi: DdgiSettings::balanced(),
             near_field: NEAR_FIELD,
             far_field_while_young: true,
+            bent_fill: true,
         }
     }
     /// Each technique's quality preset: DDGI's final gather traces the near field, so the
@@ -75,6 +84,7 @@ impl HybridSettings {
             ddgi: DdgiSettings::quality(),
             near_field: NEAR_FIELD,
             far_field_while_young: true,
+            bent_fill: true,
         }
     }
     /// Whether the screen's part runs. With DDGI's final gather (`ddgi.gather.rays_per_pixel`)

@@ -105,7 +105,8 @@ impl TechniqueKind for SsilKind {
         settings.check_size(size)?;
         let mut plan = Vec::new();
         if hybrid.as_ref().is_none_or(HybridSettings::screen_part) {
-            plan = resources::plan(&settings, size, self.hybrid);
+            let covered = hybrid.as_ref().is_some_and(|h| h.bent_fill);
+            plan = resources::plan(&settings, size, self.hybrid, covered);
         }
         if let Some(hybrid) = hybrid {
             plan.extend(crate::ddgi::DDGI.plan(
@@ -148,7 +149,11 @@ impl TechniqueKind for SsilKind {
                 let ddgi = Ddgi::new(cx, "ddgi", &hybrid.ddgi)?;
                 let reach = hybrid.near_field * ddgi.finest_spacing();
                 let ssil = if hybrid.screen_part() {
-                    Some(Ssil::new(cx, &settings, Some(reach))?)
+                    let part = super::HybridPart {
+                        reach,
+                        bent_fill: hybrid.bent_fill.then(|| ddgi.finest_table()).flatten(),
+                    };
+                    Some(Ssil::new(cx, &settings, Some(part))?)
                 } else {
                     None
                 };

@@ -98,20 +98,36 @@ pub struct Ssil {
     frames: u32,
 }
 
+/// What `ssil+ddgi` gives its screen part: how far senders count, and the probes it fills with.
+pub struct HybridPart<'a> {
+    /// The near field's reach (scene units).
+    pub reach: f32,
+    /// The finest probe volume's resources (`DdgiResources::table`), for the fill read around
+    /// the uncovered directions (`HybridSettings::bent_fill`); None: the probes' light at the
+    /// pixel as it is.
+    pub bent_fill: Option<ResourceTable<'a>>,
+}
+
+/// The probe volume's atlas DDGI's query gathers rather than filters (its rg32float distances);
+/// the bent fill imports the query.
+const UNFILTERABLE_WITH_PROBES: &[&str] = &["distance_texture"];
+
 impl Ssil {
     /// Validates the settings, allocates its textures and binds its passes to the frame;
-    /// `hybrid_reach` builds it as `ssil+ddgi`'s part, over the probes' light, gathering senders
-    /// up to that distance (scene units, the near field).
+    /// `hybrid` builds it as `ssil+ddgi`'s part, over the probes' light, gathering senders up
+    /// to its reach (scene units, the near field).
     pub fn new(
         cx: &TechniqueContext,
         settings: &SsilSettings,
-        hybrid_reach: Option<f32>,
+        hybrid_part: Option<HybridPart>,
     ) -> Result<Self, RenderError> {
         settings.validate()?;
-        let hybrid = hybrid_reach.is_some();
+        let hybrid = hybrid_part.is_some();
+        let hybrid_reach = hybrid_part.as_ref().map(|part| part.reach);
+        let bent_fill = hybrid_part.and_then(|part| part.bent_fill);
         let ctx = cx.ctx;
         let size = cx.frame.size();
-        let resources = SsilResources::new(ctx, settings, size, hybrid)?;
+        let resources = SsilResources::new(ctx, settings, size, hybrid, bent_fill.is_some())?;
         let compile = |label: &'static str, source: &str, tracing: bool| {
             let mut desc = PassDesc::new(label, source);
             if tracing {
@@ -119,15 +135,49 @@ impl Ssil {
             }
             crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
         };
+        // The covered directions are summed, stored and bound only for the bent fill.
+        let covered = if bent_fill.is_some() {
+            include_str!("covered_directions.wgsl")
+        } else {
+            include_str!("covered_none.wgsl")
+        };
+        let with_covered = |source: &str| format!("{source}\n{covered}");
         let p = Pipelines {
             voxelize: compile("ssil/voxelize", include_str!("voxelize.wgsl"), true)?,
             voxel_down: compile("ssil/voxel_down", include_str!("voxel_down.wgsl"), false)?,
-            gather: compile("ssil/gather", include_str!("gather.wgsl"), false)?,
-            upsample: compile("ssil/upsample", include_str!("upsample.wgsl"), false)?,
+            gather: compile(
+                "ssil/gather",
+                &with_covered(include_str!("gather.wgsl")),
+                false,
+            )?,
+            upsample: compile(
+                "ssil/upsample",
+                &with_covered(include_str!("upsample.wgsl")),
+                false,
+            )?,
             bounce: compile("ssil/bounce", include_str!("bounce.wgsl"), false)?,
             probe_light: compile("ssil/probe_light", include_str!("probe_light.wgsl"), false)?,
             bounce_down: compile("ssil/bounce", include_str!("bounce_down.wgsl"), false)?,
-            temporal: compile("ssil/temporal", include_str!("temporal.wgsl"), false)?,
+            // The light for what the screen leaves uncovered: read from the probes around the
+            // bent normal, or the probes' light as it is.
+            temporal: if bent_fill.is_some() {
+                let source = format!(
+                    "{}\n{}",
+                    with_covered(include_str!("temporal.wgsl")),
+                    include_str!("uncovered_bent.wgsl")
+                );
+                let desc = PassDesc::new("ssil/temporal", &source)
+                    .constants(cx.gpu_scene.shader_constants())
+                    .unfilterable(UNFILTERABLE_WITH_PROBES);
+                crate::shaders::pass(ctx, &desc)?
+            } else {
+                let source = format!(
+                    "{}\n{}",
+                    with_covered(include_str!("temporal.wgsl")),
+                    include_str!("uncovered_even.wgsl")
+                );
+                compile("ssil/temporal", &source, false)?
+            },
         };
         let scene_table = cx.gpu_scene.resources();
         let frame_table = cx.frame.resources.table();
@@ -221,6 +271,10 @@ impl Ssil {
                     .texture("ssil_voxels", &r.voxels.view)
                     .texture("target_light", &r.gather.levels[j as usize])
                     .texture("target_specular", &r.gather_specular.levels[j as usize]);
+                let own = match &r.covered {
+                    Some(c) => own.texture("target_direction", &c.gather.levels[j as usize]),
+                    None => own,
+                };
                 gathers.push((
                     bind(&p.gather, own)?.labelled(GATHER_LABELS[j as usize]),
                     gather_groups(size, s + j),
@@ -254,6 +308,15 @@ impl Ssil {
                     .texture("coarse_specular", coarse_specular)
                     .texture("target_light", &r.combined.levels[j as usize])
                     .texture("target_specular", &r.combined_specular.levels[j as usize]);
+                let own = match &r.covered {
+                    Some(c) => {
+                        let coarse = if coarsest { &c.gather } else { &c.combined };
+                        own.texture("source_direction", &c.gather.levels[j as usize])
+                            .texture("coarse_direction", &coarse.levels[above])
+                            .texture("target_direction", &c.combined.levels[j as usize])
+                    }
+                    None => own,
+                };
                 upsamples.push((bind(&p.upsample, own)?, group(s + j)));
             }
             bounces.push(BouncePasses {
@@ -270,21 +333,23 @@ impl Ssil {
             with_gather: (s == 0) as u32,
             ..Default::default()
         }));
-        let upsample = (
-            bind(
-                &p.upsample,
-                ResourceTable::new()
-                    .buffer("ssil", &r.params)
-                    .buffer("ssil_pass", uniforms.last().unwrap())
-                    .texture("source_light", &r.combined.levels[0])
-                    .texture("source_specular", &r.combined_specular.levels[0])
-                    .texture("coarse_light", &r.combined.levels[0])
-                    .texture("coarse_specular", &r.combined_specular.levels[0])
-                    .texture("target_light", &r.full.view)
-                    .texture("target_specular", &r.full_specular.view),
-            )?,
-            group(0),
-        );
+        let own = ResourceTable::new()
+            .buffer("ssil", &r.params)
+            .buffer("ssil_pass", uniforms.last().unwrap())
+            .texture("source_light", &r.combined.levels[0])
+            .texture("source_specular", &r.combined_specular.levels[0])
+            .texture("coarse_light", &r.combined.levels[0])
+            .texture("coarse_specular", &r.combined_specular.levels[0])
+            .texture("target_light", &r.full.view)
+            .texture("target_specular", &r.full_specular.view);
+        let own = match &r.covered {
+            Some(c) => own
+                .texture("source_direction", &c.combined.levels[0])
+                .texture("coarse_direction", &c.combined.levels[0])
+                .texture("target_direction", &c.full.view),
+            None => own,
+        };
+        let upsample = (bind(&p.upsample, own)?, group(0));
         let temporal = |now: usize| -> Result<(BoundPass, Workgroups), RenderError> {
             let before = 1 - now;
             let own = ResourceTable::new()
@@ -297,7 +362,18 @@ impl Ssil {
                 .texture("ssil_filtered", &r.filtered[now].view)
                 .texture("ssil_filtered_specular", &r.filtered_specular[now].view)
                 .texture("ssil_filtered_geometry", &r.filtered_geometry[now].view);
-            Ok((bind(&p.temporal, own)?, group(0)))
+            let own = match &r.covered {
+                Some(c) => own
+                    .texture("source_direction", &c.full.view)
+                    .texture("history_direction", &c.filtered[before].view)
+                    .texture("target_direction", &c.filtered[now].view),
+                None => own,
+            };
+            let mut tables = vec![&scene_table, &frame_table, &own];
+            if let Some(probes) = &bent_fill {
+                tables.push(probes);
+            }
+            Ok((p.temporal.bind(ctx, &tables)?, group(0)))
         };
         let temporal = [temporal(0)?, temporal(1)?];
         // The pass uniforms stay alive through the bind groups that hold them.

@@ -118,6 +118,17 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64, bool)] = &[
     ),
 ];
 
+/// The covered directions beside the gathers', the combined, the full and the filtered light
+/// (covered_directions.wgsl), with ssil+ddgi's bent fill only: (name, at the start level with a
+/// mip a level?), rgba16float each.
+const COVERED: &[(&str, bool)] = &[
+    ("ssil/gather_covered", true),
+    ("ssil/combined_covered", true),
+    ("ssil/full_covered", false),
+    ("ssil/filtered_covered_0", false),
+    ("ssil/filtered_covered_1", false),
+];
+
 /// The light the gathers read when it is not the frame's pyramid: more than one bounce, or
 /// the probes' light in it (ssil+ddgi).
 const BOUNCE: (&str, wgpu::TextureFormat, u64) =
@@ -133,12 +144,24 @@ fn needs_bounce_chain(settings: &SsilSettings, hybrid: bool) -> bool {
     settings.bounces > 1 || hybrid
 }
 
-/// Every allocation, from the settings and the image size alone.
-pub fn plan(settings: &SsilSettings, size: (u32, u32), hybrid: bool) -> Vec<Allocation> {
+/// Every allocation, from the settings and the image size alone; `covered`: with the covered
+/// directions (ssil+ddgi's bent fill).
+pub fn plan(
+    settings: &SsilSettings,
+    size: (u32, u32),
+    hybrid: bool,
+    covered: bool,
+) -> Vec<Allocation> {
     let start = start_size(settings, size);
+    let covered_textures = COVERED
+        .iter()
+        .filter(|_| covered)
+        .map(|&(name, chain)| (name, 8, chain));
     let mut plan: Vec<Allocation> = TEXTURES
         .iter()
-        .map(|&(name, _, texel, chain)| {
+        .map(|&(name, _, texel, chain)| (name, texel, chain))
+        .chain(covered_textures)
+        .map(|(name, texel, chain)| {
             if chain {
                 Allocation::texture(name, start, texel, settings.levels, SETTING)
             } else {
@@ -158,6 +181,15 @@ pub fn plan(settings: &SsilSettings, size: (u32, u32), hybrid: bool) -> Vec<Allo
     plan
 }
 
+/// The covered directions beside the gathers', the combined, the full and the filtered light.
+pub struct CoveredTextures {
+    pub gather: LevelTexture,
+    pub combined: LevelTexture,
+    pub full: LevelTexture,
+    /// Frame n writes set n mod 2 and reads the other, as the filtered light.
+    pub filtered: [LevelTexture; 2],
+}
+
 pub struct SsilResources {
     pub params: wgpu::Buffer,
     /// Open and total voxelization rays of the last frame (two u32).
@@ -174,6 +206,8 @@ pub struct SsilResources {
     pub filtered: [LevelTexture; 2],
     pub filtered_specular: [LevelTexture; 2],
     pub filtered_geometry: [LevelTexture; 2],
+    /// The covered directions, with ssil+ddgi's bent fill.
+    pub covered: Option<CoveredTextures>,
     pub bounce: Option<LevelTexture>,
 }
 
@@ -183,8 +217,9 @@ impl SsilResources {
         settings: &SsilSettings,
         size: (u32, u32),
         hybrid: bool,
+        covered: bool,
     ) -> Result<Self, RenderError> {
-        ctx.check_allocations(&plan(settings, size, hybrid))?;
+        ctx.check_allocations(&plan(settings, size, hybrid, covered))?;
         let device = &ctx.device;
         let start = start_size(settings, size);
         let make = |name: &str| {
@@ -229,6 +264,29 @@ impl SsilResources {
                 make("ssil/filtered_geometry_0"),
                 make("ssil/filtered_geometry_1"),
             ],
+            covered: covered.then(|| {
+                let make_covered = |name: &str| {
+                    let &(_, chain) = COVERED
+                        .iter()
+                        .find(|t| t.0 == name)
+                        .expect("a planned texture");
+                    let (size, mips) = if chain {
+                        (start, settings.levels)
+                    } else {
+                        (size, 1)
+                    };
+                    LevelTexture::new(device, name, size, wgpu::TextureFormat::Rgba16Float, mips)
+                };
+                CoveredTextures {
+                    gather: make_covered("ssil/gather_covered"),
+                    combined: make_covered("ssil/combined_covered"),
+                    full: make_covered("ssil/full_covered"),
+                    filtered: [
+                        make_covered("ssil/filtered_covered_0"),
+                        make_covered("ssil/filtered_covered_1"),
+                    ],
+                }
+            }),
             bounce: needs_bounce_chain(settings, hybrid)
                 .then(|| LevelTexture::new(device, BOUNCE.0, start, BOUNCE.1, settings.levels)),
         })

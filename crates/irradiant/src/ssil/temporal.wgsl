@@ -8,22 +8,24 @@
 // (`hybrid`) DDGI has already written its light there; the screen-space light replaces it in
 // the share of the cosine lobe the screen covered (coverage C, senders in the near field only)
 // and the probes keep the rest — off-screen, hidden and farther senders — so that nothing is
-// counted twice.
+// counted twice. The probes' light for the rest is read around the directions the screen left
+// uncovered (`uncovered_light`, from one of two files compiled after this one: SsilPipelines).
+// The bindings start at 60, clear of DDGI's, whose query the hybrid's file imports.
 #import ssil_common
 #import gbuffer
 #import history
 #import brdf
 
-@group(2) @binding(0) var<uniform> ssil: GpuSsilParams;
-@group(2) @binding(1) var pyramid_normal_depth: texture_2d<f32>;
-@group(2) @binding(2) var ssil_full: texture_2d<f32>;
-@group(2) @binding(3) var ssil_full_specular: texture_2d<f32>;
-@group(2) @binding(4) var ssil_history: texture_2d<f32>;
-@group(2) @binding(5) var ssil_history_specular: texture_2d<f32>;
-@group(2) @binding(6) var ssil_history_geometry: texture_2d<f32>;
-@group(2) @binding(7) var ssil_filtered: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(8) var ssil_filtered_specular: texture_storage_2d<rgba16float, write>;
-@group(2) @binding(9) var ssil_filtered_geometry: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(60) var<uniform> ssil: GpuSsilParams;
+@group(2) @binding(61) var pyramid_normal_depth: texture_2d<f32>;
+@group(2) @binding(62) var ssil_full: texture_2d<f32>;
+@group(2) @binding(63) var ssil_full_specular: texture_2d<f32>;
+@group(2) @binding(64) var ssil_history: texture_2d<f32>;
+@group(2) @binding(65) var ssil_history_specular: texture_2d<f32>;
+@group(2) @binding(66) var ssil_history_geometry: texture_2d<f32>;
+@group(2) @binding(67) var ssil_filtered: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(68) var ssil_filtered_specular: texture_storage_2d<rgba16float, write>;
+@group(2) @binding(69) var ssil_filtered_geometry: texture_storage_2d<rgba32float, write>;
 @group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
 
 @compute @workgroup_size(8, 8, 1)
@@ -37,11 +39,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if here.w < 0.0 {
         textureStore(ssil_filtered, texel, vec4<f32>(0.0));
         textureStore(ssil_filtered_specular, texel, vec4<f32>(0.0));
+        store_covered(texel, vec3<f32>(0.0));
         textureStore(indirect, texel, vec4<f32>(0.0));
         return;
     }
     var light = textureLoad(ssil_full, texel, 0);
     var specular = textureLoad(ssil_full_specular, texel, 0).rgb;
+    var covered = source_covered(texel);
     let s = gbuffer_surface(id.xy);
     if ssil.history_valid == 1u {
         let previous = history_position(id.xy);
@@ -53,16 +57,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 let a = ssil.hysteresis * exp(-length(gbuffer_motion_at(id.xy)) / ssil.motion_pixels);
                 let a_specular = a * clamp(2.0 * s.roughness, 0.2, 1.0);
                 light = mix(light, textureLoad(ssil_history, p, 0), a);
+                covered = mix(covered, history_covered(p), a);
                 specular = mix(specular, textureLoad(ssil_history_specular, p, 0).rgb, a_specular);
             }
         }
     }
     textureStore(ssil_filtered, texel, light);
     textureStore(ssil_filtered_specular, texel, vec4<f32>(specular, 1.0));
+    store_covered(texel, covered);
     var out = diffuse_weight(s) / PI * light.rgb + specular;
     if ssil.hybrid == 1u {
         let probes = textureLoad(indirect, texel);
-        out += (1.0 - light.a) * probes.rgb / max(probes.a, 1e-6);
+        let coverage = min(light.a, 1.0);
+        out += (1.0 - coverage) * uncovered_light(s, probes.rgb / max(probes.a, 1e-6), coverage, covered);
     }
     textureStore(indirect, texel, vec4<f32>(out, 1.0));
 }

@@ -29,9 +29,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let texel = vec2<i32>(id.xy);
     var light = vec4<f32>(0.0);
     var specular = vec3<f32>(0.0);
+    // the covered directions (covered_directions.wgsl), combined as the light is
+    var covered = vec3<f32>(0.0);
     if ssil_pass.with_gather == 1u {
         light = textureLoad(source_light, texel, 0);
         specular = textureLoad(source_specular, texel, 0).rgb;
+        covered = source_covered(texel);
     }
     let here = textureLoad(pyramid_normal_depth, id.xy, level);
     if ssil_pass.coarse_level > level && here.w >= 0.0 {
@@ -43,9 +46,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let f = c - floor(c);
         var sum = vec4<f32>(0.0);
         var sum_specular = vec3<f32>(0.0);
+        var sum_covered = vec3<f32>(0.0);
         var total = 0.0;
         var nearest = vec4<f32>(0.0);
         var nearest_specular = vec3<f32>(0.0);
+        var nearest_covered = vec3<f32>(0.0);
         var nearest_distance = 1e30;
         for (var k = 0; k < 4; k++) {
             let o = vec2<i32>(k & 1, k >> 1);
@@ -60,24 +65,30 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 * pow(max(dot(there.xyz, here.xyz), 0.0), 8.0);
             let value = textureLoad(coarse_light, q, 0);
             let value_specular = textureLoad(coarse_specular, q, 0).rgb;
+            let value_covered = coarse_covered(q);
             sum += w * value;
             sum_specular += w * value_specular;
+            sum_covered += w * value_covered;
             total += w;
             if depth_difference < nearest_distance {
                 nearest_distance = depth_difference;
                 nearest = value;
                 nearest_specular = value_specular;
+                nearest_covered = value_covered;
             }
         }
         // Where no coarse texel agrees (a thin object, a silhouette), the closest in depth.
         if total > 1e-4 {
             light += sum / total;
             specular += sum_specular / total;
+            covered += sum_covered / total;
         } else {
             light += nearest;
             specular += nearest_specular;
+            covered += nearest_covered;
         }
     }
     textureStore(target_light, texel, vec4<f32>(light.rgb, min(light.a, 1.0)));
     textureStore(target_specular, texel, vec4<f32>(specular, 1.0));
+    store_covered(texel, covered);
 }
