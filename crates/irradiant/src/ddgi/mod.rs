@@ -25,6 +25,7 @@ mod settings;
 pub mod types;
 mod volume;
 
+pub(crate) use pipelines::QUERY_UNFILTERABLE;
 pub use resources::{
     ACTIVE_BLEND_GROUPS, ACTIVE_PROBES_HEADER, ACTIVE_RAY_GROUPS, ACTIVE_TRACE_GROUPS,
     ATLAS_TEXEL_BYTES, MAX_WAKE_BOXES, NEWLY_LIST, SHADOW_QUEUE_HEADER,

@@ -9,8 +9,9 @@ use super::settings::DdgiSettings;
 use crate::RenderError;
 use crate::scene::GpuScene;
 
-/// The distance atlas is rg32float, which not every adapter filters: the query gathers it.
-const UNFILTERABLE: &[&str] = &["distance_texture"];
+/// The distance atlas is rg32float, which not every adapter filters: the query gathers it. Every
+/// pass that imports `ddgi_query` names it so (DDGI's, the light field's, ssil+ddgi's fill).
+pub const QUERY_UNFILTERABLE: &[&str] = &["distance_texture"];
 
 pub struct DdgiPipelines {
     pub ray_directions: Arc<ComputePass>,
@@ -71,7 +72,7 @@ impl DdgiPipelines {
             let desc = PassDesc::new(label, source)
                 .constants(common.clone())
                 .constants(extra)
-                .unfilterable(UNFILTERABLE);
+                .unfilterable(QUERY_UNFILTERABLE);
             crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
         };
         let fused = settings.speed.fuse_trace_and_shade;

@@ -133,9 +133,6 @@ struct Pipelines {
     trace_rays: Arc<ComputePass>,
 }
 
-/// DDGI's query reads the distance atlas (rg32float) by gathers: not filterable everywhere.
-const UNFILTERABLE: &[&str] = &["distance_texture"];
-
 impl Pipelines {
     fn new(cx: &TechniqueContext, settings: &LightfieldSettings) -> Result<Self, RenderError> {
         let exact = (settings.shade.irradiance_block == 1) as u32;
@@ -146,7 +143,7 @@ impl Pipelines {
                 desc = desc.constants(cx.gpu_scene.shader_constants());
             }
             if query {
-                desc = desc.unfilterable(UNFILTERABLE);
+                desc = desc.unfilterable(crate::ddgi::QUERY_UNFILTERABLE);
             }
             crate::shaders::pass(cx.ctx, &desc).map_err(RenderError::from)
         };

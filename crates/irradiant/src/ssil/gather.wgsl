@@ -78,8 +78,8 @@ struct LaneSum {
 }
 
 const TEXELS_PER_GROUP: u32 = GATHER_TILE * GATHER_TILE;
-// The lanes' sums, each part apart, so that a gather without the covered directions carries
-// none.
+// The lanes' sums, each part apart: without the bent fill COVERS_DIRECTIONS is a constant
+// false, and the compiler drops the covered directions' array with the code that uses it.
 var<workgroup> lane_light: array<vec4<f32>, GATHER_LANES * TEXELS_PER_GROUP>;
 var<workgroup> lane_specular: array<vec3<f32>, GATHER_LANES * TEXELS_PER_GROUP>;
 var<workgroup> lane_covered: array<vec3<f32>, GATHER_LANES * TEXELS_PER_GROUP>;
@@ -185,7 +185,8 @@ fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
         }
         let l = textureLoad(source_radiance, qi, ssil_pass.radiance_level).rgb;
         sum.light += vec4<f32>(l * g, g / PI);
-        if COVERS_DIRECTIONS {
+        // Only the last bounce's directions are read (ssil/temporal).
+        if COVERS_DIRECTIONS && ssil_pass.last_bounce == 1u {
             sum.covered += wi * (g / PI);
         }
         if glossy {
@@ -227,5 +228,5 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_id) l
     }
     textureStore(target_light, vec2<i32>(texel), vec4<f32>(total.light.rgb, min(total.light.a, 1.0)));
     textureStore(target_specular, vec2<i32>(texel), vec4<f32>(total.specular, 1.0));
-    store_covered(vec2<i32>(texel), total.covered);
+    store_covered(vec2<i32>(texel), covered_within_lobe(total.covered, total.light.a));
 }

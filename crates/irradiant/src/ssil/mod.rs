@@ -108,10 +108,6 @@ pub struct HybridPart<'a> {
     pub bent_fill: Option<ResourceTable<'a>>,
 }
 
-/// The probe volume's atlas DDGI's query gathers rather than filters (its rg32float distances);
-/// the bent fill imports the query.
-const UNFILTERABLE_WITH_PROBES: &[&str] = &["distance_texture"];
-
 impl Ssil {
     /// Validates the settings, allocates its textures and binds its passes to the frame;
     /// `hybrid` builds it as `ssil+ddgi`'s part, over the probes' light, gathering senders up
@@ -167,8 +163,7 @@ impl Ssil {
                     include_str!("uncovered_bent.wgsl")
                 );
                 let desc = PassDesc::new("ssil/temporal", &source)
-                    .constants(cx.gpu_scene.shader_constants())
-                    .unfilterable(UNFILTERABLE_WITH_PROBES);
+                    .unfilterable(crate::ddgi::QUERY_UNFILTERABLE);
                 crate::shaders::pass(ctx, &desc)?
             } else {
                 let source = format!(

@@ -120,7 +120,7 @@ const TEXTURES: &[(&str, wgpu::TextureFormat, u64, bool)] = &[
 
 /// The covered directions beside the gathers', the combined, the full and the filtered light
 /// (covered_directions.wgsl), with ssil+ddgi's bent fill only: (name, at the start level with a
-/// mip a level?), rgba16float each.
+/// mip a level?), in COVERED_FORMAT.
 const COVERED: &[(&str, bool)] = &[
     ("ssil/gather_covered", true),
     ("ssil/combined_covered", true),
@@ -128,6 +128,7 @@ const COVERED: &[(&str, bool)] = &[
     ("ssil/filtered_covered_0", false),
     ("ssil/filtered_covered_1", false),
 ];
+const COVERED_FORMAT: (wgpu::TextureFormat, u64) = (wgpu::TextureFormat::Rgba16Float, 8);
 
 /// The light the gathers read when it is not the frame's pyramid: more than one bounce, or
 /// the probes' light in it (ssil+ddgi).
@@ -156,7 +157,7 @@ pub fn plan(
     let covered_textures = COVERED
         .iter()
         .filter(|_| covered)
-        .map(|&(name, chain)| (name, 8, chain));
+        .map(|&(name, chain)| (name, COVERED_FORMAT.1, chain));
     let mut plan: Vec<Allocation> = TEXTURES
         .iter()
         .map(|&(name, _, texel, chain)| (name, texel, chain))
@@ -275,7 +276,7 @@ impl SsilResources {
                     } else {
                         (size, 1)
                     };
-                    LevelTexture::new(device, name, size, wgpu::TextureFormat::Rgba16Float, mips)
+                    LevelTexture::new(device, name, size, COVERED_FORMAT.0, mips)
                 };
                 CoveredTextures {
                     gather: make_covered("ssil/gather_covered"),

@@ -10,7 +10,8 @@
 // and the probes keep the rest — off-screen, hidden and farther senders — so that nothing is
 // counted twice. The probes' light for the rest is read around the directions the screen left
 // uncovered (`uncovered_light`, from one of two files compiled after this one: SsilPipelines).
-// The bindings start at 60, clear of DDGI's, whose query the hybrid's file imports.
+// The bindings start at 60, clear of DDGI's, whose query the hybrid's file imports; `indirect`
+// keeps the slot DDGI's passes give it (10), which the query does not use.
 #import ssil_common
 #import gbuffer
 #import history

@@ -10,9 +10,10 @@ fn uncovered_light(s: Surface, probes: vec3<f32>, coverage: f32, covered: vec3<f
     if coverage <= 1e-3 || coverage >= 1.0 {
         return probes;
     }
-    // The cosine lobe's directions weigh ∫ cos ω dω / π = (2/3) n in all; less the covered
-    // ones', the uncovered ones'. Its component along n cannot fall below 0 but for the
-    // covered sum's rounding; it is kept a little above, so the bent normal faces out.
+    // The cosine lobe's directions weigh ∫ ω cos θ dω / π = (2/3) n in all; less the covered
+    // ones', the uncovered ones'. Its component along n can still fall below 0: the covered
+    // sum was taken about each level's voted normal, not this pixel's. It is kept a little
+    // above, so that the bent normal faces out.
     var uncovered = (2.0 / 3.0) * s.normal - covered;
     uncovered += s.normal * max(0.05 * length(uncovered) - dot(uncovered, s.normal), 0.0);
     if dot(uncovered, uncovered) < 1e-8 {

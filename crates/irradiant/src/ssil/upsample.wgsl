@@ -90,5 +90,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     textureStore(target_light, texel, vec4<f32>(light.rgb, min(light.a, 1.0)));
     textureStore(target_specular, texel, vec4<f32>(specular, 1.0));
-    store_covered(texel, covered);
+    store_covered(texel, covered_within_lobe(covered, light.a));
 }
