@@ -183,7 +183,7 @@ fn the_screen_gathers_only_the_light_surfaces_send_every_way() {
 /// uncovered with their light around those directions' mean (`bent_fill`): the floor's screen
 /// sees the bright walls beside it and its uncovered directions lean to the dim ceiling, so the
 /// bent fill is nearer the path tracer than the probes' light taken as it is, which counts the
-/// walls' light again (2 % more FLIP here).
+/// walls' light again (1.7 % more FLIP here).
 #[test]
 fn the_hybrid_stays_with_ddgi_on_the_cornell_box() {
     let Some(ctx) = gpu() else { return };
