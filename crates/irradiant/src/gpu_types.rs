@@ -290,7 +290,7 @@ pub fn all_layouts() -> Vec<Expected> {
             history_valid,
             hybrid,
             reach,
-            _pad0,
+            glossy_above,
             _pad1,
             _pad2
         }),

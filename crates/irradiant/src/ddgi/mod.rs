@@ -259,6 +259,33 @@ impl Ddgi {
             .map_or(0.0, |d| crate::probes::ProbeGrid::new(d).min_spacing())
     }
 
+    /// Records the diffuse light into the frame's `indirect`: every volume's ddgi/resolve
+    /// (finest first), and the final gather's mean and filter.
+    pub fn resolve_diffuse(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        mut profiler: Option<&mut Profiler>,
+    ) {
+        for v in &self.volumes {
+            v.record_resolve(encoder, profiler.as_deref_mut());
+        }
+        if let Some(gather) = &mut self.gather {
+            gather.record(encoder, profiler);
+        }
+    }
+
+    /// Records the glossy reflections (`reflections.enabled`), added to the frame's `indirect`
+    /// after the diffuse light.
+    pub fn resolve_reflections(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        profiler: Option<&mut Profiler>,
+    ) {
+        if let Some(reflections) = &mut self.reflections {
+            reflections.record(encoder, profiler);
+        }
+    }
+
     /// The finest volume's resources by name, for a pass of another technique that queries its
     /// probes (`ddgi_query`); None without volumes.
     pub fn finest_table(&self) -> Option<irradiant_gpu::ResourceTable<'_>> {
@@ -458,15 +485,8 @@ impl Technique for Ddgi {
         self.frames += 1;
     }
     fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
-        for v in &self.volumes {
-            v.record_resolve(encoder, profiler.as_deref_mut());
-        }
-        if let Some(gather) = &mut self.gather {
-            gather.record(encoder, profiler.as_deref_mut());
-        }
-        if let Some(reflections) = &mut self.reflections {
-            reflections.record(encoder, profiler);
-        }
+        self.resolve_diffuse(encoder, profiler.as_deref_mut());
+        self.resolve_reflections(encoder, profiler);
     }
     fn visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {
         for v in &self.volumes {

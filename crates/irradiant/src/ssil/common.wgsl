@@ -30,7 +30,8 @@ struct GpuSsilParams {
     hybrid: u32,
     // the farthest a sender may lie from its receiver (ssil+ddgi's near field); < 0: no limit
     reach: f32,
-    _pad0: u32,
+    // the last bounce gathers glossy reflection at surfaces rougher than this (> 1: none)
+    glossy_above: f32,
     _pad1: u32,
     _pad2: u32,
 }

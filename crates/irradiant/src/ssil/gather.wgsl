@@ -103,7 +103,7 @@ fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
     var receiver = gbuffer_surface(full);
     receiver.normal = n;
     receiver.position = x;
-    let glossy = ssil_pass.last_bounce == 1u && has_specular(receiver);
+    let glossy = ssil_pass.last_bounce == 1u && has_specular(receiver) && receiver.roughness > ssil.glossy_above;
     // eq. 2: the world area of one pixel of this level at unit depth, facing the camera:
     // 2^(2k) times a level-0 pixel's.
     let pixel_area = 4.0 * frame.camera.tan_half_fov_y * frame.camera.tan_half_fov_y * frame.camera.aspect

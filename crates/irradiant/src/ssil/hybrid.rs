@@ -171,11 +171,15 @@ impl Technique for SsilDdgi {
     fn update(&mut self, encoder: &mut wgpu::CommandEncoder, profiler: Option<&mut Profiler>) {
         self.ddgi.update(encoder, profiler);
     }
+    /// The probes' diffuse light, the screen's over it, then DDGI's traced reflections added
+    /// whole: the screen's coverage C is a share of the diffuse lobe, not of a glossy one, so
+    /// the reflections are not the fill's to scale (docs/ssil.md).
     fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder, mut profiler: Option<&mut Profiler>) {
-        self.ddgi.resolve(encoder, profiler.as_deref_mut());
+        self.ddgi.resolve_diffuse(encoder, profiler.as_deref_mut());
         if let Some(ssil) = &mut self.ssil {
-            ssil.resolve(encoder, profiler);
+            ssil.resolve(encoder, profiler.as_deref_mut());
         }
+        self.ddgi.resolve_reflections(encoder, profiler);
     }
     fn visualize(&self, encoder: &mut wgpu::CommandEncoder, view: ProbeView) {
         self.ddgi.visualize(encoder, view);

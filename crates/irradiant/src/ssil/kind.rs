@@ -151,6 +151,11 @@ impl TechniqueKind for SsilKind {
                 let ssil = if hybrid.screen_part() {
                     let part = super::HybridPart {
                         reach,
+                        probes_reflect_up_to: hybrid
+                            .ddgi
+                            .reflections
+                            .enabled
+                            .then_some(hybrid.ddgi.reflections.max_roughness),
                         bent_fill: hybrid.bent_fill.then(|| ddgi.finest_table()).flatten(),
                     };
                     Some(Ssil::new(cx, &settings, Some(part))?)

@@ -85,6 +85,9 @@ pub struct Ssil {
     hybrid: bool,
     /// In ssil+ddgi, the farthest a sender may lie (scene units); below 0: no limit.
     reach: f32,
+    /// In ssil+ddgi with DDGI's reflections, the roughest surface they trace: the glossy
+    /// gather only above it (`HybridPart::probes_reflect_up_to`).
+    probes_reflect_up_to: Option<f32>,
     resources: SsilResources,
     voxels: Vec<(BoundPass, Workgroups)>,
     bounces: Vec<BouncePasses>,
@@ -102,6 +105,10 @@ pub struct Ssil {
 pub struct HybridPart<'a> {
     /// The near field's reach (scene units).
     pub reach: f32,
+    /// The roughest surface DDGI traces reflections at (`reflections.max_roughness`), None
+    /// without them: there the screen's glossy gather steps aside, as its diffuse light does
+    /// where the pixels trace.
+    pub probes_reflect_up_to: Option<f32>,
     /// The finest probe volume's resources (`DdgiResources::table`), for the fill read around
     /// the uncovered directions (`HybridSettings::bent_fill`); None: the probes' light at the
     /// pixel as it is.
@@ -120,6 +127,9 @@ impl Ssil {
         settings.validate()?;
         let hybrid = hybrid_part.is_some();
         let hybrid_reach = hybrid_part.as_ref().map(|part| part.reach);
+        let probes_reflect_up_to = hybrid_part
+            .as_ref()
+            .and_then(|part| part.probes_reflect_up_to);
         let bent_fill = hybrid_part.and_then(|part| part.bent_fill);
         let ctx = cx.ctx;
         let size = cx.frame.size();
@@ -379,6 +389,7 @@ impl Ssil {
             settings: settings.clone(),
             hybrid,
             reach: hybrid_reach.unwrap_or(-1.0),
+            probes_reflect_up_to,
             resources,
             voxels,
             bounces,
@@ -483,6 +494,12 @@ impl Technique for Ssil {
     }
     fn prepare(&mut self, ctx: &GpuContext, camera: &Camera) {
         let s = &self.settings;
+        // Glossy reflection at surfaces rougher than this; above 1 at none.
+        let glossy_above = match (s.glossy, self.probes_reflect_up_to) {
+            (false, _) => 2.0,
+            (true, Some(traced)) => traced,
+            (true, None) => -1.0,
+        };
         let (near, far) = self.depth_range(camera);
         let height = self.resources.full.texture.size().height;
         let params = GpuSsilParams {
@@ -503,7 +520,7 @@ impl Technique for Ssil {
             history_valid: (self.frames > 0) as u32,
             hybrid: self.hybrid as u32,
             reach: self.reach,
-            _pad0: 0,
+            glossy_above,
             _pad1: 0,
             _pad2: 0,
         };

@@ -43,8 +43,10 @@ pub struct GpuSsilParams {
     /// The farthest a sender may lie from its receiver (ssil+ddgi's near field, scene units);
     /// below 0: no limit.
     pub reach: f32,
-    /// Padding to a 16-byte multiple; 0.
-    pub _pad0: u32,
+    /// The last bounce gathers glossy reflection at surfaces rougher than this (GGX roughness):
+    /// below 0 at every glossy surface, above 1 at none (`SsilSettings::glossy` off); in
+    /// ssil+ddgi with DDGI's reflections their `max_roughness`, the roughest surface they trace.
+    pub glossy_above: f32,
     /// Padding to a 16-byte multiple; 0.
     pub _pad1: u32,
     /// Padding to a 16-byte multiple; 0.
