@@ -5,7 +5,7 @@
 // light, which moves over a surface differently from the surface itself. The result, with the
 // geometry it was filtered on, is next frame's history; and it resolves into the frame's
 // indirect light: the diffuse share of the irradiance plus the glossy radiance. In ssil+ddgi
-// (`hybrid`) DDGI has already written its light there; the screen-space light replaces it in
+// (`hybrid`) DDGI has already written its diffuse light there (its reflections come after, whole); the screen-space light replaces it in
 // the share of the cosine lobe the screen covered (coverage C, senders in the near field only)
 // and the probes keep the rest — off-screen, hidden and farther senders — so that nothing is
 // counted twice. The probes' light for the rest is read around the directions the screen left

@@ -3,7 +3,7 @@
 // instead of around the normal. Where the screen covers a bright wall beside a dim ceiling,
 // the uncovered directions lean towards the ceiling, and so does their light (docs/ssil.md).
 // The finest volume reads both; its share of the pixel (1 with one volume) moves the blended
-// light by the difference, which keeps the other volumes' light and DDGI's reflections.
+// light by the difference, which keeps the other volumes' light.
 #import ddgi_query
 
 fn uncovered_light(s: Surface, probes: vec3<f32>, coverage: f32, covered: vec3<f32>) -> vec3<f32> {
