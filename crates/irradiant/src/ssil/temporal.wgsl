@@ -5,10 +5,10 @@
 // light, which moves over a surface differently from the surface itself. The result, with the
 // geometry it was filtered on, is next frame's history; and it resolves into the frame's
 // indirect light: the diffuse share of the irradiance plus the glossy radiance. In ssil+ddgi
-// (`hybrid`) DDGI has already written its diffuse light there (its reflections come after, whole); the screen-space light replaces it in
-// the share of the cosine lobe the screen covered (coverage C, senders in the near field only)
-// and the probes keep the rest — off-screen, hidden and farther senders — so that nothing is
-// counted twice. The probes' light for the rest is read around the directions the screen left
+// (`hybrid`) DDGI has already written its diffuse light there (its reflections come after,
+// whole); the screen-space light replaces it in the share of the cosine lobe the screen
+// covered (coverage C, senders in the near field only) and the probes keep the rest —
+// off-screen, hidden and farther senders — so that nothing is counted twice. The probes' light for the rest is read around the directions the screen left
 // uncovered (`uncovered_light`, from one of two files compiled after this one: SsilPipelines).
 // The bindings start at 60, clear of DDGI's, whose query the hybrid's file imports; `indirect`
 // keeps the slot DDGI's passes give it (10), which the query does not use.
