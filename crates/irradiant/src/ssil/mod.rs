@@ -164,24 +164,24 @@ impl Ssil {
             bounce: compile("ssil/bounce", include_str!("bounce.wgsl"), false)?,
             probe_light: compile("ssil/probe_light", include_str!("probe_light.wgsl"), false)?,
             bounce_down: compile("ssil/bounce", include_str!("bounce_down.wgsl"), false)?,
-            // The light for what the screen leaves uncovered: read from the probes around the
-            // bent normal, or the probes' light as it is.
-            temporal: if bent_fill.is_some() {
+            temporal: {
+                // The light for what the screen leaves uncovered: read from the probes around
+                // the bent normal (DDGI's query, with its unfilterable atlas), or the probes'
+                // light as it is.
+                let (uncovered, unfilterable) = if bent_fill.is_some() {
+                    (
+                        include_str!("uncovered_bent.wgsl"),
+                        crate::ddgi::QUERY_UNFILTERABLE,
+                    )
+                } else {
+                    (include_str!("uncovered_even.wgsl"), &[][..])
+                };
                 let source = format!(
-                    "{}\n{}",
-                    with_covered(include_str!("temporal.wgsl")),
-                    include_str!("uncovered_bent.wgsl")
+                    "{}\n{uncovered}",
+                    with_covered(include_str!("temporal.wgsl"))
                 );
-                let desc = PassDesc::new("ssil/temporal", &source)
-                    .unfilterable(crate::ddgi::QUERY_UNFILTERABLE);
+                let desc = PassDesc::new("ssil/temporal", &source).unfilterable(unfilterable);
                 crate::shaders::pass(ctx, &desc)?
-            } else {
-                let source = format!(
-                    "{}\n{}",
-                    with_covered(include_str!("temporal.wgsl")),
-                    include_str!("uncovered_even.wgsl")
-                );
-                compile("ssil/temporal", &source, false)?
             },
         };
         let scene_table = cx.gpu_scene.resources();
