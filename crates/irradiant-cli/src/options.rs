@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use irradiant::frame::FrameSettings;
+use irradiant::settings::merge_tables;
 use irradiant::{Preset, SettingsFile, TechniqueSpec};
 use irradiant_scene::Scene;
 
@@ -167,37 +168,6 @@ pub fn technique_list(lists: &[String]) -> Result<Vec<TechniqueChoice>, CliError
         irradiant::registry::find(&c.name).map_err(|e| CliError::Usage(e.to_string()))?;
     }
     Ok(choices)
-}
-
-/// `spec` as `scene` runs it: the manifest's `[technique]` table under the spec's own settings
-/// where it names the same technique (as `render` and `compare` lay it), else `spec` as it is.
-pub fn under_scene_table(spec: &TechniqueSpec, scene: &Scene) -> TechniqueSpec {
-    let Some(toml::Value::Table(table)) = scene.settings.get("technique") else {
-        return spec.clone();
-    };
-    if table.get("name").and_then(|n| n.as_str()) != Some(spec.name.as_str()) {
-        return spec.clone();
-    }
-    let mut settings = table.clone();
-    settings.remove("name");
-    settings.remove("preset");
-    merge(&mut settings, &spec.settings);
-    TechniqueSpec {
-        settings,
-        ..spec.clone()
-    }
-}
-
-/// `over` merged into `base`, table by table.
-fn merge(base: &mut toml::Table, over: &toml::Table) {
-    for (key, value) in over {
-        match (base.get_mut(key), value) {
-            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge(b, o),
-            _ => {
-                base.insert(key.clone(), value.clone());
-            }
-        }
-    }
 }
 
 /// Checks that an output file can be written before spending GPU time on it.
@@ -397,14 +367,17 @@ impl RunSettings {
         if let Some(preset) = choice.preset {
             spec.preset = preset;
         }
-        merge(&mut spec.settings, &choice.overrides);
+        merge_tables(&mut spec.settings, &choice.overrides);
         Ok(spec)
     }
 
     fn named(&self, name: &str, args: &SettingsArgs, seed: u32) -> Result<TechniqueSpec, CliError> {
+        // The file's own spec where it names this technique, else this technique at the
+        // preset with what the file sets for it as a hybrid's part or as a part's hybrid.
         let mut spec = match &self.file.technique {
             Some(spec) if spec.name == name => spec.clone(),
-            _ => TechniqueSpec::new(name, args.preset),
+            Some(file) => file.under(&TechniqueSpec::new(name, args.preset)),
+            None => TechniqueSpec::new(name, args.preset),
         };
         if args.preset != Preset::Balanced {
             spec.preset = args.preset;
@@ -441,7 +414,7 @@ mod tests {
         assert_eq!(list[1].overrides["samples"].as_integer(), Some(32));
         assert_eq!(list[1].file_stem(), "ssil_visibility_false_samples_32_");
         let mut base: toml::Table = toml::from_str("[update]\nhysteresis = 0.9\nrays = 8").unwrap();
-        merge(&mut base, &toml::from_str("[update]\nrays = 16").unwrap());
+        merge_tables(&mut base, &toml::from_str("[update]\nrays = 16").unwrap());
         assert_eq!(base["update"]["hysteresis"].as_float(), Some(0.9));
         assert_eq!(base["update"]["rays"].as_integer(), Some(16));
         for (bad, expected) in [
@@ -486,10 +459,11 @@ mod tests {
         assert!(parse_size("12x-3").is_err());
     }
 
-    /// A manifest's `[technique]` table lies under a bench spec of the same technique, the
-    /// spec's own keys winning; another technique's spec is left alone.
+    /// A manifest's `[technique]` table lies under a spec of the same technique, the spec's own
+    /// keys winning, and under a hybrid's part or a hybrid's part under a part's spec; another
+    /// technique's spec is left alone.
     #[test]
-    fn a_scenes_technique_table_lies_under_a_spec_of_its_technique() {
+    fn a_scenes_technique_table_lies_under_a_spec_of_its_technique_or_its_parts() {
         let scene = Scene {
             settings: toml::from_str(
                 "[technique]\nname = \"ddgi\"\n[technique.volume]\ncascades = 3\nrays_per_probe = 64",
@@ -499,7 +473,7 @@ mod tests {
         };
         let mut spec = TechniqueSpec::new("ddgi", Preset::Balanced);
         spec.settings = toml::from_str("[volume]\nrays_per_probe = 128").unwrap();
-        let laid = under_scene_table(&spec, &scene);
+        let laid = spec.on_scene(&scene);
         assert_eq!(laid.settings["volume"]["cascades"].as_integer(), Some(3));
         assert_eq!(
             laid.settings["volume"]["rays_per_probe"].as_integer(),
@@ -507,6 +481,39 @@ mod tests {
         );
         assert!(!laid.settings.contains_key("name"));
         let other = TechniqueSpec::new("ssil", Preset::Balanced);
-        assert_eq!(under_scene_table(&other, &scene), other);
+        assert_eq!(other.on_scene(&scene), other);
+        // A hybrid of it takes the table as its part's: the large world's ssil+ddgi ran one
+        // volume over 480 m while its ddgi ran the manifest's cascades.
+        let hybrid = TechniqueSpec::new("ssil+ddgi", Preset::Balanced).on_scene(&scene);
+        assert_eq!(
+            hybrid.settings["ddgi"]["volume"]["cascades"].as_integer(),
+            Some(3)
+        );
+        // As render, compare and soak lay it, the file's preset aside.
+        let args = SettingsArgs {
+            preset: Preset::Quality,
+            settings: None,
+            no_taa: false,
+        };
+        let run = RunSettings::new(&args, &scene, 7).unwrap();
+        let choice = TechniqueChoice::parse("ssil+ddgi{ddgi.volume.rays_per_probe = 32}").unwrap();
+        let spec = run.choice(&choice, &args, 7).unwrap();
+        assert_eq!(spec.preset, Preset::Quality);
+        let volume = &spec.settings["ddgi"]["volume"];
+        assert_eq!(volume["cascades"].as_integer(), Some(3));
+        assert_eq!(volume["rays_per_probe"].as_integer(), Some(32));
+        // A manifest naming the hybrid gives each part its own table.
+        let hybrid_scene = Scene {
+            settings: toml::from_str(
+                "[technique]\nname = \"ssil+ddgi\"\nnear_field = 1.0\n[technique.ddgi.volume]\ncascades = 2",
+            )
+            .unwrap(),
+            ..Default::default()
+        };
+        let part = TechniqueSpec::new("ddgi", Preset::Balanced).on_scene(&hybrid_scene);
+        assert_eq!(part.settings["volume"]["cascades"].as_integer(), Some(2));
+        assert!(!part.settings.contains_key("near_field"));
+        let alone = TechniqueSpec::new("ssil", Preset::Balanced);
+        assert_eq!(alone.on_scene(&hybrid_scene), alone);
     }
 }

@@ -125,8 +125,9 @@ pub fn start(options: &ViewOptions) -> Result<Viewer, ViewError> {
     } else {
         options.technique.as_str()
     };
-    // The spec is checked before the adapter is opened: a bad setting comes first.
-    let spec = parse_spec(first)?;
+    // The spec is checked before the adapter is opened: a bad setting comes first. The
+    // manifest's technique table lies under it.
+    let spec = parse_spec(first)?.on_scene(&loaded.scene);
     let ctx = Arc::new(GpuContext::new(&options.adapter)?);
     let session = Session::new(
         ctx,

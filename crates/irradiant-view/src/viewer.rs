@@ -175,12 +175,12 @@ impl Viewer {
         &self.techniques[self.current]
     }
 
-    /// The spec of technique `name` as last set (its balanced preset if never set).
+    /// The spec of technique `name` as last set (if never set, its balanced preset with what
+    /// the scene's manifest sets for it: the large world's cascades).
     pub fn spec_of(&self, name: &str) -> TechniqueSpec {
-        self.specs
-            .get(name)
-            .cloned()
-            .unwrap_or_else(|| TechniqueSpec::new(name, irradiant::Preset::Balanced))
+        self.specs.get(name).cloned().unwrap_or_else(|| {
+            TechniqueSpec::new(name, irradiant::Preset::Balanced).on_scene(self.session.scene())
+        })
     }
 
     /// Shows technique `name` (or the path tracer) with its last spec. Errors leave the

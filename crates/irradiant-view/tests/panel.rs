@@ -91,3 +91,40 @@ fn a_live_setting_changes_in_place_and_a_structural_one_rebuilds() {
         irradiant::Preset::Quality
     );
 }
+
+/// A manifest's `[technique]` table holds for every technique the viewer shows that it names
+/// a part of: the first one's spec, and a hybrid switched to (the large world's `ssil+ddgi`
+/// ran one volume over 480 m where its `ddgi` ran the manifest's cascades).
+#[test]
+fn a_manifests_technique_table_reaches_a_hybrid_switched_to() {
+    let dir = std::env::temp_dir().join(format!("irradiant-view-table-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let original = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/cornell-box/original.toml");
+    let text = std::fs::read_to_string(&original).unwrap().replace(
+        "../../../shared/",
+        &format!("{}/../../../shared/", env!("CARGO_MANIFEST_DIR")),
+    );
+    let manifest = dir.join("with-table.toml");
+    std::fs::write(
+        &manifest,
+        format!("{text}\n[technique]\nname = \"ddgi\"\n[technique.volume]\nrays_per_probe = 32\n"),
+    )
+    .unwrap();
+    let options = common::options(manifest.to_str().unwrap(), (32, 24));
+    let Some(mut viewer) = common::viewer(&options) else {
+        return;
+    };
+    let rays = |spec: &irradiant::TechniqueSpec, part: Option<&str>| {
+        let settings = match part {
+            Some(part) => spec.settings[part].as_table().unwrap(),
+            None => &spec.settings,
+        };
+        settings["volume"]["rays_per_probe"].as_integer()
+    };
+    assert_eq!(rays(viewer.session.spec(), None), Some(32));
+    viewer.switch_to("ssil+ddgi").unwrap();
+    assert_eq!(viewer.session.spec().name, "ssil+ddgi");
+    assert_eq!(rays(viewer.session.spec(), Some("ddgi")), Some(32));
+    viewer.render(1.0 / 60.0).unwrap();
+}

@@ -166,6 +166,65 @@ impl TechniqueSpec {
     }
 }
 
+impl TechniqueSpec {
+    /// What this spec, a manifest's or a settings file's `[technique]`, sets for technique
+    /// `name`: its own settings where it names `name`; the same under its name where `name` is
+    /// a hybrid with it as a part (a `ddgi` table is `ssil+ddgi`'s `[ddgi]`); its part's table
+    /// where it names a hybrid of which `name` is a part. None where it says nothing of `name`.
+    /// So a scene's probe layout (the large world's cascades) holds for every technique that
+    /// places probes, not only for the one its manifest names.
+    pub fn settings_for(&self, name: &str) -> Option<toml::Table> {
+        let has_part =
+            |hybrid: &str, part: &str| hybrid.contains('+') && hybrid.split('+').any(|p| p == part);
+        if self.name == name {
+            Some(self.settings.clone())
+        } else if has_part(name, &self.name) {
+            let own = toml::Value::Table(self.settings.clone());
+            Some(toml::Table::from_iter([(self.name.clone(), own)]))
+        } else if has_part(&self.name, name) {
+            self.settings.get(name)?.as_table().cloned()
+        } else {
+            None
+        }
+    }
+
+    /// `spec` with what this spec sets for its technique underneath (`settings_for`), the
+    /// keys of `spec` winning; `spec` as it is where this one says nothing of it.
+    pub fn under(&self, spec: &TechniqueSpec) -> TechniqueSpec {
+        let Some(mut settings) = self.settings_for(&spec.name) else {
+            return spec.clone();
+        };
+        merge_tables(&mut settings, &spec.settings);
+        TechniqueSpec {
+            settings,
+            ..spec.clone()
+        }
+    }
+
+    /// This spec as `scene` runs it: what the manifest's `[technique]` table sets for its
+    /// technique (`settings_for`) under its own settings; as it is where the manifest has no
+    /// such table (a malformed one is reported where the manifest's settings are read).
+    pub fn on_scene(&self, scene: &irradiant_scene::Scene) -> TechniqueSpec {
+        let manifest = scene.settings.get("technique").cloned();
+        match manifest.and_then(|table| table.try_into::<TechniqueSpec>().ok()) {
+            Some(manifest) => manifest.under(self),
+            None => self.clone(),
+        }
+    }
+}
+
+/// `over` laid into `base`, table by table, the keys of `over` winning.
+pub fn merge_tables(base: &mut toml::Table, over: &toml::Table) {
+    for (key, value) in over {
+        match (base.get_mut(key), value) {
+            (Some(toml::Value::Table(b)), toml::Value::Table(o)) => merge_tables(b, o),
+            _ => {
+                base.insert(key.clone(), value.clone());
+            }
+        }
+    }
+}
+
 impl Default for TechniqueSpec {
     fn default() -> Self {
         Self::new("ddgi", Preset::Balanced)
