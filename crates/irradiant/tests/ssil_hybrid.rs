@@ -323,3 +323,84 @@ fn the_screen_reaches_farther_while_the_probes_are_young() {
         "settled, the hybrid is {apart} from the near field's"
     );
 }
+
+/// The screen's glossy gather reflects only what nothing else does. In a Cornell box whose
+/// white surfaces are metal (roughness 0.3, nothing sent every way), `ssil` with `glossy` off
+/// gathers nothing on the metal: its light is the same as where the metal is black. On, it
+/// reflects the red and green walls. In the hybrid it runs only on surfaces rougher than
+/// DDGI's traced reflections reach (`reflections.max_roughness`): at 0.5 the rays reflect the
+/// metal, and the hybrid's light is the same with the screen's glossy gather on or off; at
+/// 0.2 they reflect none, and the screen's gather adds its reflections of the near field (the
+/// senders within the hybrid's reach: about 2 % of what `ssil` alone reflects here).
+#[test]
+fn the_screens_glossy_gather_leaves_ddgis_reflections_alone() {
+    let Some(ctx) = gpu() else { return };
+    let box_with_white = |metal: bool| {
+        let mut scene = irradiant_scene::load("cornell").unwrap().scene;
+        for m in scene.materials.iter_mut().filter(|m| m.name == "white") {
+            if metal {
+                m.metallic = 1.0;
+                m.roughness = 0.3;
+            } else {
+                m.base_color = glam::Vec4::new(0.0, 0.0, 0.0, 1.0);
+            }
+        }
+        scene
+    };
+    let (metal, black) = (box_with_white(true), box_with_white(false));
+    let size = (48, 48);
+    let indirect = |scene: &irradiant_scene::Scene, spec: TechniqueSpec| {
+        let mut s = session(&ctx, scene, size, spec);
+        for _ in 0..6 {
+            s.render().unwrap();
+        }
+        s.indirect().unwrap()
+    };
+    let total = |image: &Image| -> f64 {
+        let sum = |p: &[f32; 3]| f64::from(p[0] + p[1] + p[2]);
+        image.pixels.iter().map(sum).sum()
+    };
+    let ssil = |scene: &irradiant_scene::Scene, glossy: bool| {
+        let mut settings = SsilSettings::balanced();
+        settings.glossy = glossy;
+        indirect(scene, TechniqueSpec::with_settings("ssil", &settings))
+    };
+    let (metal_on, metal_off) = (ssil(&metal, true), ssil(&metal, false));
+    let as_black = largest_relative_difference(&ssil(&black, false), &metal_off);
+    let reflected = total(&metal_on) - total(&metal_off);
+    eprintln!(
+        "metal box, ssil: glossy off differs from the black box by at most {as_black:e}; on, \
+         it reflects {reflected:.3} of {:.3}",
+        total(&metal_on)
+    );
+    assert!(
+        as_black <= 1e-5,
+        "with glossy off the screen gathered on the metal, {as_black} from the black box"
+    );
+    assert!(
+        reflected > 0.05 * total(&metal_off),
+        "the glossy gather should reflect the walls"
+    );
+
+    let hybrid = |glossy: bool, reflected_up_to: f32| {
+        let mut settings = HybridSettings::balanced();
+        settings.ssil.glossy = glossy;
+        settings.ddgi.reflections.enabled = true;
+        settings.ddgi.reflections.max_roughness = reflected_up_to;
+        indirect(&metal, TechniqueSpec::with_settings("ssil+ddgi", &settings))
+    };
+    let traced = largest_relative_difference(&hybrid(false, 0.5), &hybrid(true, 0.5));
+    let added = total(&hybrid(true, 0.2)) - total(&hybrid(false, 0.2));
+    eprintln!(
+        "ssil+ddgi: with the metal's reflections traced the glossy gather changes the light by \
+         at most {traced:e}; with none traced it adds {added:.3}"
+    );
+    assert!(
+        traced <= 1e-5,
+        "the screen reflected surfaces DDGI traces, by {traced}"
+    );
+    assert!(
+        added > 0.01 * reflected,
+        "the screen's glossy gather added {added:.3} where DDGI traces no reflection"
+    );
+}
