@@ -3,8 +3,12 @@
 // reflects diffusely, and albedo. Not its highlights: they depend on the view, and a highlight
 // the camera sees is not light the surface sends every way. Not emission: frame/direct already
 // samples every emitter, so an emitter's light gathered again from the screen would be
-// counted twice. frame/pyramid_down makes the levels above.
+// counted twice. The radiance's alpha is the share of what the surface reflects that it sends
+// every way (`diffuse_share`): ssil+ddgi's screen covers a direction only by that share, and
+// leaves the rest (a glossy sender's light toward the receiver, which the screen does not know)
+// to the probes. frame/pyramid_down makes the levels above.
 #import gbuffer
+#import brdf
 
 @group(2) @binding(0) var direct_diffuse: texture_2d<f32>;
 @group(2) @binding(1) var pyramid_normal_depth_level0: texture_storage_2d<rgba32float, write>;
@@ -27,6 +31,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let s = gbuffer_surface(id.xy);
     let view_depth = dot(s.position - frame.camera.position, frame.camera.forward);
     textureStore(pyramid_normal_depth_level0, pixel, vec4<f32>(s.normal, view_depth));
-    textureStore(pyramid_radiance_level0, pixel, vec4<f32>(textureLoad(direct_diffuse, id.xy, 0).rgb, 1.0));
+    let radiance = textureLoad(direct_diffuse, id.xy, 0).rgb;
+    textureStore(pyramid_radiance_level0, pixel, vec4<f32>(radiance, diffuse_share(s)));
     textureStore(pyramid_albedo_level0, pixel, vec4<f32>(s.albedo * (1.0 - s.metallic), 1.0));
 }

@@ -48,7 +48,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let source_size = vec2<i32>(textureDimensions(source_normal_depth));
-    var radiance = vec3<f32>(0.0);
+    var radiance = vec4<f32>(0.0);
     var albedo = vec3<f32>(0.0);
     var count = 0.0;
     var best = vec4<f32>(0.0, 0.0, 0.0, -1.0);
@@ -57,7 +57,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let p = min(vec2<i32>(id.xy) * 2 + vec2<i32>(k & 1, k >> 1), source_size - 1);
         let nd = textureLoad(source_normal_depth, p, 0);
         if nd.w >= 0.0 {
-            radiance += textureLoad(source_radiance, p, 0).rgb;
+            radiance += textureLoad(source_radiance, p, 0);
             albedo += textureLoad(source_albedo, p, 0).rgb;
             count += 1.0;
             let score = vote(p, source_size);
@@ -75,6 +75,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     textureStore(target_normal_depth, pixel, best);
-    textureStore(target_radiance, pixel, vec4<f32>(radiance / count, 1.0));
+    textureStore(target_radiance, pixel, radiance / count);
     textureStore(target_albedo, pixel, vec4<f32>(albedo / count, 1.0));
 }

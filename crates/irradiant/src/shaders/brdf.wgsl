@@ -32,6 +32,14 @@ fn diffuse_weight(s: Surface) -> vec3<f32> {
     return s.albedo * (1.0 - s.metallic) * (1.0 - 0.04 * s.specular);
 }
 
+// The share of what a surface reflects that its diffuse layer sends every way, by the layers'
+// reflectance at normal incidence: 1 for Lambertian (and black) surfaces, 0 for metals.
+fn diffuse_share(s: Surface) -> f32 {
+    let diff = luminance(diffuse_weight(s));
+    let spec = select(0.0, luminance(f0_of(s)), has_specular(s));
+    return select(1.0, diff / (diff + spec), diff + spec > 0.0);
+}
+
 // Probability of sampling the specular lobe rather than the diffuse one.
 fn specular_probability(s: Surface, n_dot_v: f32) -> f32 {
     if !has_specular(s) {

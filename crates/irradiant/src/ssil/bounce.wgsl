@@ -1,7 +1,8 @@
 // ssil/bounce: the light of bounce n, for bounce n + 1 to gather: what leaves each surface of
 // the start level — its emission and direct light plus the diffuse reflection of the light
-// bounce n gathered there (albedo / π × E). Written at the start level; ssil/bounce_down
-// averages it up the levels.
+// bounce n gathered there (albedo / π × E), with the surface's diffuse share in alpha as
+// frame/pyramid writes it. Written at the start level; ssil/bounce_down averages it up the
+// levels.
 #import ssil_common
 
 @group(2) @binding(0) var<uniform> ssil: GpuSsilParams;
@@ -17,8 +18,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    let own = textureLoad(pyramid_radiance, id.xy, ssil.start_level).rgb;
+    let own = textureLoad(pyramid_radiance, id.xy, ssil.start_level);
     let albedo = textureLoad(pyramid_albedo, id.xy, ssil.start_level).rgb;
     let gathered = textureLoad(combined_light, id.xy, 0).rgb;
-    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(own + albedo / PI * gathered, 1.0));
+    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(own.rgb + albedo / PI * gathered, own.a));
 }

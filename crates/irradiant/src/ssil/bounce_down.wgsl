@@ -17,14 +17,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let last = vec2<i32>(level_size(level - 1u)) - 1;
-    var sum = vec3<f32>(0.0);
+    var sum = vec4<f32>(0.0);
     var count = 0.0;
     for (var k = 0; k < 4; k++) {
         let p = min(vec2<i32>(id.xy) * 2 + vec2<i32>(k & 1, k >> 1), last);
         if textureLoad(pyramid_normal_depth, vec2<u32>(p), level - 1u).w >= 0.0 {
-            sum += textureLoad(source_radiance, p, 0).rgb;
+            sum += textureLoad(source_radiance, p, 0);
             count += 1.0;
         }
     }
-    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(sum / max(count, 1.0), 1.0));
+    textureStore(target_radiance, vec2<i32>(id.xy), sum / max(count, 1.0));
 }

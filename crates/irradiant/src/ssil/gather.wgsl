@@ -9,7 +9,7 @@
 // For the last bounce the samples are importance-sampled around the mirror direction
 // projected on the screen (f(θ) = α + exp(−s (θr − θ)² / 2π)) and the full BRDF gathers them.
 // Writes (E: cosine-weighted incident radiance ∫L cos dω, coverage: the share of the cosine
-// lobe the samples covered) and the glossy radiance; with ssil+ddgi's bent fill also the
+// lobe the samples covered, each by its sender's diffuse share) and the glossy radiance; with ssil+ddgi's bent fill also the
 // covered directions (covered_directions.wgsl). GATHER_LANES threads share a texel, each
 // taking every GATHER_LANES-th sample; their sums meet in workgroup memory.
 #import ssil_common
@@ -183,11 +183,15 @@ fn gather_lane(texel: vec2<u32>, lane: u32) -> LaneSum {
         if ssil.visibility == 1u && occluded(vec2<f32>(texel) + 0.5, nd.w, vec2<f32>(qi) + 0.5, ndq.w, level) {
             continue;
         }
-        let l = textureLoad(source_radiance, qi, ssil_pass.radiance_level).rgb;
-        sum.light += vec4<f32>(l * g, g / PI);
+        // The sender's light and the share of what it reflects that it sends every way: the
+        // screen covers its direction by that share only (frame/pyramid).
+        let sent = textureLoad(source_radiance, qi, ssil_pass.radiance_level);
+        let l = sent.rgb;
+        let covered = sent.a * g / PI;
+        sum.light += vec4<f32>(l * g, covered);
         // Only the last bounce's directions are read (ssil/temporal).
         if COVERS_DIRECTIONS && ssil_pass.last_bounce == 1u {
-            sum.covered += wi * (g / PI);
+            sum.covered += wi * covered;
         }
         if glossy {
             let f = brdf_eval(receiver, wo, wi) - diffuse_weight(receiver) / PI;

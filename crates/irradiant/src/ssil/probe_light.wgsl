@@ -1,7 +1,8 @@
 // ssil/probe_light (ssil+ddgi): the light the first bounce gathers, with the probes' light in
 // it: what leaves each surface of the start level — its direct light plus the diffuse light
 // DDGI's probes put there (frame `indirect`, already albedo-weighted; averaged over the
-// texel's block of full-resolution pixels). The screen then carries every bounce the probes
+// texel's block of full-resolution pixels), and the surface's diffuse share in alpha
+// (frame/pyramid). The screen then carries every bounce the probes
 // hold, where it can see the sender, and the probes light the rest (ssil/temporal) — neither
 // counted twice. ssil/bounce averages it up the levels.
 #import ssil_common
@@ -32,6 +33,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
     }
-    let own = textureLoad(pyramid_radiance, id.xy, ssil.start_level).rgb;
-    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(own + probes / max(count, 1.0), 1.0));
+    let own = textureLoad(pyramid_radiance, id.xy, ssil.start_level);
+    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(own.rgb + probes / max(count, 1.0), own.a));
 }
