@@ -382,16 +382,29 @@ impl RunSettings {
         if args.preset != Preset::Balanced {
             spec.preset = args.preset;
         }
-        // The DDGI family seeds its ray rotations from the command's seed; elsewhere the key
-        // would be unknown.
-        if name == "ddgi" || name == "classic-probes" {
-            let update = spec
-                .settings
-                .entry("update")
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            if let toml::Value::Table(t) = update {
-                t.insert("seed".into(), (seed as i64).into());
+        // The DDGI family seeds its ray rotations from the command's seed, and so does a
+        // hybrid's DDGI part; elsewhere the key would be unknown.
+        let update: &[&str] = match name {
+            "ddgi" | "classic-probes" => &["update"],
+            _ if name.contains('+') && name.split('+').any(|part| part == "ddgi") => {
+                &["ddgi", "update"]
             }
+            _ => &[],
+        };
+        if !update.is_empty() {
+            let mut table = &mut spec.settings;
+            for key in update {
+                let entry = table
+                    .entry(*key)
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                let toml::Value::Table(inner) = entry else {
+                    return Err(CliError::Usage(format!(
+                        "technique {name}: the setting {key} must be a table"
+                    )));
+                };
+                table = inner;
+            }
+            table.insert("seed".into(), (seed as i64).into());
         }
         Ok(spec)
     }
@@ -502,6 +515,10 @@ mod tests {
         let volume = &spec.settings["ddgi"]["volume"];
         assert_eq!(volume["cascades"].as_integer(), Some(3));
         assert_eq!(volume["rays_per_probe"].as_integer(), Some(32));
+        assert_eq!(
+            spec.settings["ddgi"]["update"]["seed"].as_integer(),
+            Some(7)
+        );
         // A manifest naming the hybrid gives each part its own table.
         let hybrid_scene = Scene {
             settings: toml::from_str(
