@@ -287,7 +287,7 @@ pub fn all_layouts() -> Vec<Expected> {
             motion_pixels,
             depth_tolerance,
             normal_tolerance,
-            history_valid,
+            history_frames,
             hybrid,
             reach,
             glossy_above,

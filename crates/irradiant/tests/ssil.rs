@@ -301,6 +301,56 @@ fn visibility_only_removes_light() {
     assert!(mean_with < mean_without);
 }
 
+/// After a reset the screen's history is a running mean until it holds `hysteresis`: with the
+/// same samples, the light after the second and third frames is the mean of the frames so
+/// far, which a filter with no history (hysteresis 0) shows one by one. A first frame kept at
+/// the full hysteresis weighed 0.9 against the second's 0.1, and its noise lingered for tens of
+/// frames (ssil+ddgi's first 30 frames after a cut, docs/ssil.md).
+#[test]
+fn the_screens_history_starts_as_a_running_mean() {
+    let Some(ctx) = gpu() else { return };
+    let scene = irradiant_scene::load("cornell").unwrap().scene;
+    let size = (32, 32);
+    let frames = |hysteresis: f32| {
+        let mut settings = SsilSettings::balanced();
+        settings.hysteresis = hysteresis;
+        let mut s = session(&ctx, &scene, size, ssil_spec(&settings));
+        (0..3)
+            .map(|_| {
+                s.render().unwrap();
+                s.indirect().unwrap()
+            })
+            .collect::<Vec<_>>()
+    };
+    let (filtered, raw) = (frames(0.9), frames(0.0));
+    let mut worst = 0.0f32;
+    for n in 1..3 {
+        for (i, got) in filtered[n].pixels.iter().enumerate() {
+            for c in 0..3 {
+                let mean = (0..=n).map(|k| raw[k].pixels[i][c]).sum::<f32>() / (n + 1) as f32;
+                worst = worst.max((got[c] - mean).abs() / (1e-3 + mean.abs()));
+            }
+        }
+    }
+    let moved: f32 = raw[1]
+        .pixels
+        .iter()
+        .zip(&raw[0].pixels)
+        .map(|(a, b)| (a[1] - b[1]).abs())
+        .sum();
+    eprintln!(
+        "frames 2 and 3 against the mean of the frames so far: {worst:e}; frame 2 moved {moved:.3}"
+    );
+    assert!(
+        moved > 0.01,
+        "the frames should differ for the test to tell"
+    );
+    assert!(
+        worst <= 5e-3,
+        "the history is {worst} from the running mean"
+    );
+}
+
 /// Against the path tracer on the Cornell box: screen-space light, alone and with DDGI's
 /// probes, must bring the image closer to the reference than direct light alone.
 #[test]

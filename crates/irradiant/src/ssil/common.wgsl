@@ -25,7 +25,7 @@ struct GpuSsilParams {
     depth_tolerance: f32,
     normal_tolerance: f32,
     // 0 on the first frame after a reset: no history to blend
-    history_valid: u32,
+    history_frames: u32,
     // 1: probe light fills what the screen does not cover (ssil+ddgi)
     hybrid: u32,
     // the farthest a sender may lie from its receiver (ssil+ddgi's near field); < 0: no limit

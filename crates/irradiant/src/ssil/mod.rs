@@ -517,7 +517,7 @@ impl Technique for Ssil {
             motion_pixels: s.motion_pixels,
             depth_tolerance: s.depth_tolerance,
             normal_tolerance: s.normal_tolerance,
-            history_valid: (self.frames > 0) as u32,
+            history_frames: self.frames,
             hybrid: self.hybrid as u32,
             reach: self.reach,
             glossy_above,

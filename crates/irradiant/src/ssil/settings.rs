@@ -70,7 +70,8 @@ pub struct SsilSettings {
     /// paper): how many samples still go to directions far from the lobe.
     pub importance_alpha: f32,
     /// Share of last frame's filtered light kept each frame (eq. 6's a) for a still diffuse
-    /// pixel; lowered for moving and glossy pixels. Higher: less noise, more lag.
+    /// pixel; lowered for moving and glossy pixels, and in the frames after a reset, where the
+    /// history is a running mean until it holds this share. Higher: less noise, more lag.
     pub hysteresis: f32,
     /// Motion, in pixels a frame, at which the hysteresis has fallen to a third.
     pub motion_pixels: f32,

@@ -48,14 +48,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var specular = textureLoad(ssil_full_specular, texel, 0).rgb;
     var covered = source_covered(texel);
     let s = gbuffer_surface(id.xy);
-    if ssil.history_valid == 1u {
+    if ssil.history_frames > 0u {
         let previous = history_position(id.xy);
         if all(previous >= vec2<f32>(0.0)) && all(previous < frame_size()) {
             let p = vec2<i32>(previous);
             let old = textureLoad(ssil_history_geometry, p, 0);
             let x = level_position(id.xy, 0u, here.w);
             if same_surface(old, x, here.xyz, ssil.depth_tolerance, ssil.normal_tolerance) {
-                let a = ssil.hysteresis * exp(-length(gbuffer_motion_at(id.xy)) / ssil.motion_pixels);
+                // A running mean of the frames since a reset until it reaches the hysteresis:
+                // the first frame after a reset (a cut, or ssil+ddgi's reach returning to the
+                // near field) weighs no more than the ones after it.
+                let frames = f32(ssil.history_frames);
+                let held = min(ssil.hysteresis, frames / (frames + 1.0));
+                let a = held * exp(-length(gbuffer_motion_at(id.xy)) / ssil.motion_pixels);
                 let a_specular = a * clamp(2.0 * s.roughness, 0.2, 1.0);
                 light = mix(light, textureLoad(ssil_history, p, 0), a);
                 covered = mix(covered, history_covered(p), a);

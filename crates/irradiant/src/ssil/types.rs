@@ -36,8 +36,8 @@ pub struct GpuSsilParams {
     pub depth_tolerance: f32,
     /// Smallest cosine between this and last frame's normal for the history to count.
     pub normal_tolerance: f32,
-    /// 0 on the first frame after a reset.
-    pub history_valid: u32,
+    /// Frames the screen's history holds: 0 on the first frame after a reset.
+    pub history_frames: u32,
     /// 1: probe light fills what the screen does not cover.
     pub hybrid: u32,
     /// The farthest a sender may lie from its receiver (ssil+ddgi's near field, scene units);
