@@ -324,11 +324,12 @@ fn the_screens_history_starts_as_a_running_mean() {
     };
     let (filtered, raw) = (frames(0.9), frames(0.0));
     let mut worst = 0.0f32;
-    for n in 1..3 {
-        for (i, got) in filtered[n].pixels.iter().enumerate() {
-            for c in 0..3 {
-                let mean = (0..=n).map(|k| raw[k].pixels[i][c]).sum::<f32>() / (n + 1) as f32;
-                worst = worst.max((got[c] - mean).abs() / (1e-3 + mean.abs()));
+    for (n, image) in filtered.iter().enumerate().skip(1) {
+        for (i, got) in image.pixels.iter().enumerate() {
+            for (c, value) in got.iter().enumerate() {
+                let so_far = raw[..=n].iter().map(|frame| frame.pixels[i][c]);
+                let mean = so_far.sum::<f32>() / (n + 1) as f32;
+                worst = worst.max((value - mean).abs() / (1e-3 + mean.abs()));
             }
         }
     }
