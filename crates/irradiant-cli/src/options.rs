@@ -386,9 +386,7 @@ impl RunSettings {
         // hybrid's DDGI part; elsewhere the key would be unknown.
         let update: &[&str] = match name {
             "ddgi" | "classic-probes" => &["update"],
-            _ if name.contains('+') && name.split('+').any(|part| part == "ddgi") => {
-                &["ddgi", "update"]
-            }
+            _ if irradiant::settings::is_part_of("ddgi", name) => &["ddgi", "update"],
             _ => &[],
         };
         if !update.is_empty() {
@@ -399,7 +397,8 @@ impl RunSettings {
                     .or_insert_with(|| toml::Value::Table(toml::Table::new()));
                 let toml::Value::Table(inner) = entry else {
                     return Err(CliError::Usage(format!(
-                        "technique {name}: the setting {key} must be a table"
+                        "technique {name}: the setting {} must be a table",
+                        update.join(".")
                     )));
                 };
                 table = inner;
@@ -486,7 +485,7 @@ mod tests {
         };
         let mut spec = TechniqueSpec::new("ddgi", Preset::Balanced);
         spec.settings = toml::from_str("[volume]\nrays_per_probe = 128").unwrap();
-        let laid = spec.on_scene(&scene);
+        let laid = spec.on_scene(&scene).unwrap();
         assert_eq!(laid.settings["volume"]["cascades"].as_integer(), Some(3));
         assert_eq!(
             laid.settings["volume"]["rays_per_probe"].as_integer(),
@@ -494,10 +493,12 @@ mod tests {
         );
         assert!(!laid.settings.contains_key("name"));
         let other = TechniqueSpec::new("ssil", Preset::Balanced);
-        assert_eq!(other.on_scene(&scene), other);
+        assert_eq!(other.on_scene(&scene).unwrap(), other);
         // A hybrid of it takes the table as its part's: the large world's ssil+ddgi ran one
         // volume over 480 m while its ddgi ran the manifest's cascades.
-        let hybrid = TechniqueSpec::new("ssil+ddgi", Preset::Balanced).on_scene(&scene);
+        let hybrid = TechniqueSpec::new("ssil+ddgi", Preset::Balanced)
+            .on_scene(&scene)
+            .unwrap();
         assert_eq!(
             hybrid.settings["ddgi"]["volume"]["cascades"].as_integer(),
             Some(3)
@@ -527,10 +528,23 @@ mod tests {
             .unwrap(),
             ..Default::default()
         };
-        let part = TechniqueSpec::new("ddgi", Preset::Balanced).on_scene(&hybrid_scene);
+        let part = TechniqueSpec::new("ddgi", Preset::Balanced)
+            .on_scene(&hybrid_scene)
+            .unwrap();
         assert_eq!(part.settings["volume"]["cascades"].as_integer(), Some(2));
         assert!(!part.settings.contains_key("near_field"));
+        // A table that does not read as a technique's is an error naming the scene.
+        let broken = Scene {
+            name: "broken".into(),
+            settings: toml::from_str("[technique]\npreset = \"best\"").unwrap(),
+            ..Default::default()
+        };
+        let e = TechniqueSpec::new("ddgi", Preset::Balanced)
+            .on_scene(&broken)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("broken") && e.contains("[technique]"), "{e}");
         let alone = TechniqueSpec::new("ssil", Preset::Balanced);
-        assert_eq!(alone.on_scene(&hybrid_scene), alone);
+        assert_eq!(alone.on_scene(&hybrid_scene).unwrap(), alone);
     }
 }

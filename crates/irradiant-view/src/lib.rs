@@ -125,9 +125,10 @@ pub fn start(options: &ViewOptions) -> Result<Viewer, ViewError> {
     } else {
         options.technique.as_str()
     };
-    // The spec is checked before the adapter is opened: a bad setting comes first. The
-    // manifest's technique table lies under it.
-    let spec = parse_spec(first)?.on_scene(&loaded.scene);
+    // The spec, with the manifest's technique table under it, is checked before the adapter
+    // is opened: a bad setting comes first.
+    let spec = parse_spec(first)?.on_scene(&loaded.scene)?;
+    spec.kind()?.check(&spec)?;
     let ctx = Arc::new(GpuContext::new(&options.adapter)?);
     let session = Session::new(
         ctx,

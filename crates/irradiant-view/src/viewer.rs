@@ -179,7 +179,9 @@ impl Viewer {
     /// the scene's manifest sets for it: the large world's cascades).
     pub fn spec_of(&self, name: &str) -> TechniqueSpec {
         self.specs.get(name).cloned().unwrap_or_else(|| {
-            TechniqueSpec::new(name, irradiant::Preset::Balanced).on_scene(self.session.scene())
+            let spec = TechniqueSpec::new(name, irradiant::Preset::Balanced);
+            // The manifest's table read as a spec when the viewer started (`start`).
+            spec.on_scene(self.session.scene()).unwrap_or(spec)
         })
     }
 
@@ -226,7 +228,7 @@ impl Viewer {
         if text == PATH {
             return self.switch_to(PATH);
         }
-        let spec = crate::parse_spec(text)?;
+        let spec = crate::parse_spec(text)?.on_scene(self.session.scene())?;
         self.apply(spec)
     }
 

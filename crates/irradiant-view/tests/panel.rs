@@ -93,7 +93,7 @@ fn a_live_setting_changes_in_place_and_a_structural_one_rebuilds() {
 }
 
 /// A manifest's `[technique]` table holds for every technique the viewer shows that it names
-/// a part of: the first one's spec, and a hybrid switched to (the large world's `ssil+ddgi`
+/// a part of: the first one's spec, a hybrid switched to and a spec typed (the large world's `ssil+ddgi`
 /// ran one volume over 480 m where its `ddgi` ran the manifest's cascades).
 #[test]
 fn a_manifests_technique_table_reaches_a_hybrid_switched_to() {
@@ -127,4 +127,7 @@ fn a_manifests_technique_table_reaches_a_hybrid_switched_to() {
     assert_eq!(viewer.session.spec().name, "ssil+ddgi");
     assert_eq!(rays(viewer.session.spec(), Some("ddgi")), Some(32));
     viewer.render(1.0 / 60.0).unwrap();
+    // A spec typed in the panel or a script's step lays the table too.
+    viewer.apply_text("ssil+ddgi{near_field = 0.25}").unwrap();
+    assert_eq!(rays(viewer.session.spec(), Some("ddgi")), Some(32));
 }

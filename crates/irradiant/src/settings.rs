@@ -164,24 +164,20 @@ impl TechniqueSpec {
             settings: as_table(settings),
         }
     }
-}
 
-impl TechniqueSpec {
     /// What this spec, a manifest's or a settings file's `[technique]`, sets for technique
     /// `name`: its own settings where it names `name`; the same under its name where `name` is
     /// a hybrid with it as a part (a `ddgi` table is `ssil+ddgi`'s `[ddgi]`); its part's table
     /// where it names a hybrid of which `name` is a part. None where it says nothing of `name`.
-    /// So a scene's probe layout (the large world's cascades) holds for every technique that
-    /// places probes, not only for the one its manifest names.
+    /// So a scene's probe layout (the large world's cascades) holds for DDGI alone and for
+    /// `ssil+ddgi`'s DDGI part, not only for the one its manifest names.
     pub fn settings_for(&self, name: &str) -> Option<toml::Table> {
-        let has_part =
-            |hybrid: &str, part: &str| hybrid.contains('+') && hybrid.split('+').any(|p| p == part);
         if self.name == name {
             Some(self.settings.clone())
-        } else if has_part(name, &self.name) {
+        } else if is_part_of(&self.name, name) {
             let own = toml::Value::Table(self.settings.clone());
             Some(toml::Table::from_iter([(self.name.clone(), own)]))
-        } else if has_part(&self.name, name) {
+        } else if is_part_of(name, &self.name) {
             self.settings.get(name)?.as_table().cloned()
         } else {
             None
@@ -203,14 +199,26 @@ impl TechniqueSpec {
 
     /// This spec as `scene` runs it: what the manifest's `[technique]` table sets for its
     /// technique (`settings_for`) under its own settings; as it is where the manifest has no
-    /// such table (a malformed one is reported where the manifest's settings are read).
-    pub fn on_scene(&self, scene: &irradiant_scene::Scene) -> TechniqueSpec {
-        let manifest = scene.settings.get("technique").cloned();
-        match manifest.and_then(|table| table.try_into::<TechniqueSpec>().ok()) {
-            Some(manifest) => manifest.under(self),
-            None => self.clone(),
-        }
+    /// such table. A table that does not read as a technique's is an error naming the scene.
+    pub fn on_scene(&self, scene: &irradiant_scene::Scene) -> Result<TechniqueSpec, SettingsError> {
+        let Some(table) = scene.settings.get("technique") else {
+            return Ok(self.clone());
+        };
+        let manifest: TechniqueSpec =
+            table
+                .clone()
+                .try_into()
+                .map_err(|e: toml::de::Error| SettingsError::Malformed {
+                    source_name: format!("scene {}", scene.name),
+                    message: format!("its [technique] table: {e}"),
+                })?;
+        Ok(manifest.under(self))
     }
+}
+
+/// Whether technique `part` is one of hybrid `hybrid`'s parts (`ddgi` of `ssil+ddgi`).
+pub fn is_part_of(part: &str, hybrid: &str) -> bool {
+    hybrid.contains('+') && hybrid.split('+').any(|p| p == part)
 }
 
 /// `over` laid into `base`, table by table, the keys of `over` winning.

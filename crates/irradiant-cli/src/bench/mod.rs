@@ -355,7 +355,7 @@ pub fn run(args: &BenchArgs, adapter: &AdapterChoice) -> Result<(), CliError> {
                 ..warmup
             };
             for (choice, spec) in techniques.iter().zip(&technique_specs) {
-                let spec = spec.on_scene(&scene);
+                let spec = spec.on_scene(&scene)?;
                 let mut r = frames.time(&spec, frame_warmup)?;
                 r.variant = choice.label.clone();
                 record.techniques.push(r);

@@ -21,5 +21,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let own = textureLoad(pyramid_radiance, id.xy, ssil.start_level);
     let albedo = textureLoad(pyramid_albedo, id.xy, ssil.start_level).rgb;
     let gathered = textureLoad(combined_light, id.xy, 0).rgb;
-    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(own.rgb + albedo / PI * gathered, own.a));
+    let sent = own.rgb + albedo / PI * gathered;
+    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(sent, own.a));
 }

@@ -24,7 +24,7 @@ struct GpuSsilParams {
     motion_pixels: f32,
     depth_tolerance: f32,
     normal_tolerance: f32,
-    // 0 on the first frame after a reset: no history to blend
+    // Frames the screen's history holds: 0 on the first frame after a reset
     history_frames: u32,
     // 1: probe light fills what the screen does not cover (ssil+ddgi)
     hybrid: u32,

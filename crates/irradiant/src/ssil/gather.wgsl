@@ -9,9 +9,10 @@
 // For the last bounce the samples are importance-sampled around the mirror direction
 // projected on the screen (f(θ) = α + exp(−s (θr − θ)² / 2π)) and the full BRDF gathers them.
 // Writes (E: cosine-weighted incident radiance ∫L cos dω, coverage: the share of the cosine
-// lobe the samples covered, each by its sender's diffuse share) and the glossy radiance; with ssil+ddgi's bent fill also the
-// covered directions (covered_directions.wgsl). GATHER_LANES threads share a texel, each
-// taking every GATHER_LANES-th sample; their sums meet in workgroup memory.
+// lobe the samples covered, each by its sender's diffuse share) and the glossy radiance; with
+// ssil+ddgi's bent fill also the covered directions (covered_directions.wgsl). GATHER_LANES
+// threads share a texel, each taking every GATHER_LANES-th sample; their sums meet in
+// workgroup memory.
 #import ssil_common
 #import gbuffer
 #import brdf

@@ -475,7 +475,8 @@ impl Ssil {
         upsample.dispatch(encoder, profiler.as_deref_mut(), *groups);
         let (temporal, groups) = &self.temporal[self.frames as usize % 2];
         temporal.dispatch(encoder, profiler, *groups);
-        self.frames += 1;
+        // Wrapping keeps the ping-pong's parity (2³² is even).
+        self.frames = self.frames.wrapping_add(1);
     }
 }
 

@@ -34,5 +34,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     let own = textureLoad(pyramid_radiance, id.xy, ssil.start_level);
-    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(own.rgb + probes / max(count, 1.0), own.a));
+    let sent = own.rgb + probes / max(count, 1.0);
+    textureStore(target_radiance, vec2<i32>(id.xy), vec4<f32>(sent, own.a));
 }
