@@ -3,7 +3,8 @@
 # emitters (issue 41, item 3): `balanced`, `quality`, `quality` less each piece, and `balanced`
 # plus each piece, on the many-emitter scenes and the Cornell box, one compare a scene
 # (320×240, 300 frames, 4096-sample references); BINS="before irradiant" compares two binaries,
-# BENCH=1 also times `quality` at 1920×1080 (BENCH_TECHNIQUES: others instead), TECHNIQUES
+# BENCH=1 also times `quality` at 1920×1080 (BENCH_TECHNIQUES: others instead; BENCH_SCENES:
+# only those scenes), TECHNIQUES
 # replaces the list. The binaries share the references (CACHE: a folder that outlives the
 # call, so that a second call with other techniques renders none again). Expects .dev/ as tools/device/pack.sh lays it
 # out; writes into $OUT.
@@ -24,11 +25,13 @@ bench_techniques=${BENCH_TECHNIQUES:-$bench_techniques}
 techniques=${TECHNIQUES:-$techniques}
 for bin in $bins; do
 for scene in ${SCENES:-many-lights scenes/many-lights/four-halls.toml cornell}; do
-    name=$(basename "${scene%.*}")
+    # scenes/sponza/glossy-floor.toml → sponza-glossy-floor: two manifests share a file name.
+    name=$(echo "${scene%.*}" | sed 's|^scenes/||; s|/|-|g')
     ../$bin compare --scene "$scene" --techniques "$techniques" --size 320x240 --frames 300 \
         --reference-spp 4096 --cache "${CACHE:-$OUT/cache}" --out "$OUT/$bin-$name" 2>&1 | grep -E "FLIP" | sed "s|^|$bin $name |" | tee -a "$OUT/presets.txt"
-    if [ -n "${BENCH:-}" ]; then
-        ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --techniques "$bench_techniques" \
+    if [ -n "${BENCH:-}" ] && { [ -z "${BENCH_SCENES:-}" ] || [[ " $BENCH_SCENES " == *" $scene "* ]]; }; then
+        ../$bin bench --scene "$scene" --size 1920x1080 --iterations 30 --warmup-ms 500 \
+            --techniques "$bench_techniques" --json "$OUT/bench-$bin-$name.json" \
             > "$OUT/bench-$bin-$name.txt" 2>&1
     fi
 done

@@ -10,7 +10,8 @@
 //
 // FILTER_FIRST: the source is this frame's mean (rgb, gathers in a) and its moment; later
 // passes read the last pass's (rgb, variance of the mean). FILTER_LAST writes the frame's
-// `indirect` (rgb, weight 1).
+// `indirect` (rgb, weight 1), or with `gather.half_resolution` (GATHER_SCALE 2, a texel a 2×2
+// block, read on its top-left pixel's surface) ddgi/gather_upsample's source.
 #import gbuffer
 #import history
 #import sampling
@@ -65,7 +66,7 @@ fn smoothed_variance(pixel: vec2<i32>, own: f32, size: vec2<i32>) -> f32 {
     for (var dy = -1; dy <= 1; dy++) {
         for (var dx = -1; dx <= 1; dx++) {
             let q = pixel + vec2<i32>(dx, dy);
-            if all(q >= vec2<i32>(0)) && all(q < size) && gbuffer_depth_at(vec2<u32>(q)) >= 0.0 {
+            if all(q >= vec2<i32>(0)) && all(q < size) && gbuffer_depth_at(scaled_pixel(vec2<u32>(q), GATHER_SCALE)) >= 0.0 {
                 let w = kernel(abs(dx)) * kernel(abs(dy));
                 variance += w * source_light(q).variance;
                 around += w;
@@ -77,19 +78,20 @@ fn smoothed_variance(pixel: vec2<i32>, own: f32, size: vec2<i32>) -> f32 {
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if !in_frame(id.xy) {
+    let size = vec2<i32>(scaled_size(GATHER_SCALE));
+    if any(vec2<i32>(id.xy) >= size) {
         return;
     }
     let pixel = vec2<i32>(id.xy);
-    let depth = gbuffer_depth_at(id.xy);
+    let surface_pixel = scaled_pixel(id.xy, GATHER_SCALE);
+    let depth = gbuffer_depth_at(surface_pixel);
     let here = source_light(pixel);
     if depth < 0.0 {
         textureStore(filter_target, pixel, vec4<f32>(0.0));
         return;
     }
-    let x = gbuffer_position(id.xy, depth);
-    let n = gbuffer_normal_at(id.xy);
-    let size = vec2<i32>(frame_size());
+    let x = gbuffer_position(surface_pixel, depth);
+    let n = gbuffer_normal_at(surface_pixel);
     let error = sqrt(smoothed_variance(pixel, here.variance, size));
     let l = luminance(here.rgb);
     var sum = vec3<f32>(0.0);
@@ -101,7 +103,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             if any(q < vec2<i32>(0)) || any(q >= size) {
                 continue;
             }
-            let q_depth = gbuffer_depth_at(vec2<u32>(q));
+            let q_pixel = scaled_pixel(vec2<u32>(q), GATHER_SCALE);
+            let q_depth = gbuffer_depth_at(q_pixel);
             if q_depth < 0.0 {
                 continue;
             }
@@ -109,7 +112,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             var w = kernel(abs(tx)) * kernel(abs(ty));
             if tx != 0 || ty != 0 {
                 let apart = abs(luminance(there.rgb) - l) / (LIGHT_SIGMA * error + 1e-9 + 1e-3 * l);
-                w *= surface_agreement(x, n, vec2<u32>(q), q_depth) * exp(-apart);
+                w *= surface_agreement(x, n, q_pixel, q_depth) * exp(-apart);
             }
             sum += w * there.rgb;
             sum_variance += w * w * there.variance;

@@ -160,7 +160,8 @@ impl TechniqueKind for DdgiKind {
             })
             .collect();
         if settings.gather.rays_per_pixel > 0 {
-            all.extend(gather::plan(size, settings.gather.filter_passes));
+            let g = &settings.gather;
+            all.extend(gather::plan(size, g.filter_passes, g.half_resolution));
         }
         if settings.reflections.enabled {
             all.extend(reflections::plan(size));
@@ -182,15 +183,21 @@ impl TechniqueKind for DdgiKind {
                 DdgiDispatches::new(&grid, &settings, size, false).all()
             })
             .collect();
-        if settings.gather.rays_per_pixel > 0 {
-            all.push(("ddgi/temporal", gather::workgroups(size)));
-            for _ in 0..settings.gather.filter_passes {
-                all.push(("ddgi/gather_filter", gather::workgroups(size)));
+        let g = &settings.gather;
+        if g.rays_per_pixel > 0 {
+            let own = gather::workgroups(size, g.half_resolution);
+            all.push(("ddgi/temporal", own));
+            for _ in 0..g.filter_passes {
+                all.push(("ddgi/gather_filter", own));
+            }
+            if g.half_resolution {
+                all.push(("ddgi/gather", own));
+                all.push(("ddgi/gather_upsample", gather::workgroups(size, false)));
             }
         }
         if settings.reflections.enabled {
             all.push(("ddgi/reflect", settings.reflections.trace_workgroups(size)));
-            all.push(("ddgi/reflect_filter", gather::workgroups(size)));
+            all.push(("ddgi/reflect_filter", gather::workgroups(size, false)));
         }
         Ok(all)
     }
@@ -342,12 +349,17 @@ impl Ddgi {
         };
         let gather = match &pipelines.temporal {
             Some(temporal) => {
-                let first = volumes[0].resources.table();
+                let tables: Vec<_> = volumes.iter().map(|v| v.resources.table()).collect();
+                let passes = gather::GatherPipelines {
+                    temporal,
+                    filters: &pipelines.gather_filter,
+                    half: pipelines.half_gather.as_ref(),
+                };
                 Some(gather::GatherHistory::new(
                     cx.ctx,
-                    temporal,
-                    &pipelines.gather_filter,
-                    &[&scene_table, &frame_table, &first],
+                    passes,
+                    &[&scene_table, &frame_table],
+                    &tables,
                     cx.frame.resources.view("indirect"),
                     cx.frame.size(),
                 )?)
@@ -452,9 +464,15 @@ impl Technique for Ddgi {
         ]);
         let mut resolve = vec!["ddgi/resolve"];
         if s.gather.rays_per_pixel > 0 {
+            if s.gather.half_resolution {
+                resolve.push("ddgi/gather");
+            }
             resolve.push("ddgi/temporal");
             if s.gather.filter_passes > 0 {
                 resolve.push("ddgi/gather_filter");
+            }
+            if s.gather.half_resolution {
+                resolve.push("ddgi/gather_upsample");
             }
         }
         if s.reflections.enabled {

@@ -38,6 +38,9 @@ pub struct DdgiPipelines {
     pub resolve: Arc<ComputePass>,
     /// Present with the final gather (`gather.rays_per_pixel` > 0): its running mean.
     pub temporal: Option<Arc<ComputePass>>,
+    /// With `gather.half_resolution`: ddgi/gather, each volume's share of the gather on the
+    /// half-size image (ddgi/resolve then holds the query alone), and ddgi/gather_upsample.
+    pub half_gather: Option<(Arc<ComputePass>, Arc<ComputePass>)>,
     /// ddgi/gather_filter, one a pass (`gather.filter_passes`; none without the gather).
     pub gather_filter: Vec<Arc<ComputePass>>,
     /// ddgi/reflect and ddgi/reflect_filter, with `reflections.enabled`.
@@ -88,22 +91,25 @@ impl DdgiPipelines {
                 crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
             };
         // The light at a pixel: the query, or the final gather (resolve.wgsl's `pixel_light`).
+        // With the gather at half resolution ddgi/gather traces, and ddgi/resolve queries.
         let gather_rays = settings.gather.rays_per_pixel;
-        let (light_source, gather_constants) = if gather_rays > 0 {
+        let half = gather_rays > 0 && settings.gather.half_resolution;
+        let gather_constants = vec![
+            ("GATHER_RAYS", format!("{gather_rays}u")),
             (
-                include_str!("resolve_gather.wgsl"),
-                vec![
-                    ("GATHER_RAYS", format!("{gather_rays}u")),
-                    (
-                        "GATHER_FIREFLY_CLAMP",
-                        format!("{:?}", settings.gather.firefly_clamp),
-                    ),
-                ],
-            )
+                "GATHER_FIREFLY_CLAMP",
+                format!("{:?}", settings.gather.firefly_clamp),
+            ),
+        ];
+        let blend = include_str!("resolve_blend.wgsl");
+        let gathered = include_str!("resolve_gather.wgsl");
+        let (light_source, resolve_constants) = if gather_rays > 0 && !half {
+            (gathered, gather_constants.clone())
         } else {
             (include_str!("resolve_query.wgsl"), vec![])
         };
-        let resolve_source = format!("{}\n{light_source}", include_str!("resolve.wgsl"));
+        let resolve_source = format!("{}\n{blend}\n{light_source}", include_str!("resolve.wgsl"));
+        let gather_source = format!("{}\n{blend}\n{gathered}", include_str!("gather.wgsl"));
         Ok(Self {
             ray_directions: compile_plain(
                 "ddgi/ray_directions",
@@ -185,7 +191,19 @@ impl DdgiPipelines {
                 include_str!("blend_distance.wgsl"),
                 blend_constants(v.distance_texels),
             )?,
-            resolve: compile("ddgi/resolve", &resolve_source, gather_constants)?,
+            resolve: compile("ddgi/resolve", &resolve_source, resolve_constants)?,
+            half_gather: if half {
+                Some((
+                    compile("ddgi/gather", &gather_source, gather_constants)?,
+                    compile_plain(
+                        "ddgi/gather_upsample",
+                        include_str!("gather_upsample.wgsl"),
+                        vec![],
+                    )?,
+                ))
+            } else {
+                None
+            },
             temporal: if gather_rays > 0 {
                 Some(compile_plain(
                     "ddgi/temporal",
@@ -290,6 +308,11 @@ fn shader_constants(settings: &DdgiSettings) -> Vec<(&'static str, String)> {
         (
             "BLIND_THRESHOLD",
             format!("{:?}", settings.update.blind_threshold),
+        ),
+        // The final gather's image: a texel a pixel, or a 2×2 block (`half_resolution`).
+        (
+            "GATHER_SCALE",
+            format!("{}u", 1 + settings.gather.half_resolution as u32),
         ),
     ]
 }

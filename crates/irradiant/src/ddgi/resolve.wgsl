@@ -4,9 +4,7 @@
 // everything, as it always did. The light at a pixel, `pixel_light`, comes
 // from one of two files compiled after this one (DdgiPipelines): resolve_query.wgsl, the
 // query; or with the final gather, resolve_gather.wgsl. The query's resolve thus carries no
-// tracing code.
-#import gbuffer
-#import brdf
+// tracing code. Each pixel's share: resolve_blend.wgsl, which ddgi/gather (gather.wgsl) shares.
 
 @group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
 
@@ -19,17 +17,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     if volume.volume_index > 0u {
         sum = textureLoad(indirect, id.xy);
     }
-    if gbuffer_depth_at(id.xy) < 0.0 {
-        textureStore(indirect, id.xy, sum);
-        return;
-    }
-    let s = gbuffer_surface(id.xy);
-    let weight = volume_share(s.position, sum.a);
-    if weight <= 0.0 {
-        textureStore(indirect, id.xy, sum);
-        return;
-    }
-    let light = diffuse_weight(s) * pixel_light(s, id.xy, tile.xy, local_index);
-    textureStore(indirect, id.xy, sum + vec4<f32>(light * weight, weight));
+    textureStore(indirect, id.xy, blended_light(id.xy, tile.xy, local_index, sum));
 }
-

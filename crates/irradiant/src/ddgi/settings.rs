@@ -309,6 +309,13 @@ pub struct DdgiGatherSettings {
     /// goes and edges and contact shadows stay. More reach farther, against a pass over the
     /// image each and the blur of detail finer than the noise.
     pub filter_passes: u32,
+    /// The gather, its mean and its filter on a half-size image: one ray from the top-left
+    /// pixel of each 2×2 block, brought to every pixel by ddgi/gather_upsample (joint
+    /// bilateral, times the query's detail within the block). A quarter of the rays and of
+    /// the mean's and filter's passes, against light finer than two pixels and thin objects
+    /// no block's pixel lies on, which keep the query.
+    #[serde(default)]
+    pub half_resolution: bool,
 }
 
 /// Frames of probe relocation at the start (003 §5 uses five: enough for almost every probe,
@@ -402,6 +409,7 @@ impl DdgiSettings {
                 history_frames: 32,
                 firefly_clamp: 0.0,
                 filter_passes: 0,
+                half_resolution: false,
             },
             reflections: DdgiReflectionSettings::half(),
         }

@@ -5,14 +5,16 @@
 // until the pixel's tile gathers. The mean, the gathers in it (a), the mean of the gathers'
 // squared luminance (ddgi/gather_filter's estimate of the mean's error) and the geometry it
 // was taken on are next frame's history (two sets, ping-ponged). f32, so that a long mean does
-// not stall on f16's rounding.
+// not stall on f16's rounding. With `gather.half_resolution` (GATHER_SCALE 2) a texel is a 2×2
+// block, its geometry the block's top-left pixel's, and `gather_source` is ddgi/gather's
+// half-size image; else it is the frame's `indirect`, which this pass then writes.
 #import ddgi_volume
 #import gbuffer
 #import history
 #import sampling
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
+@group(2) @binding(10) var gather_source: texture_storage_2d<rgba32float, read_write>;
 @group(2) @binding(20) var gather_history: texture_2d<f32>;
 @group(2) @binding(21) var gather_history_geometry: texture_2d<f32>;
 @group(2) @binding(22) var gather_mean: texture_storage_2d<rgba32float, write>;
@@ -22,11 +24,12 @@
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) tile: vec3<u32>) {
-    if !in_frame(id.xy) {
+    if any(id.xy >= scaled_size(GATHER_SCALE)) {
         return;
     }
     let pixel = vec2<i32>(id.xy);
-    let here = history_geometry(id.xy);
+    let surface_pixel = scaled_pixel(id.xy, GATHER_SCALE);
+    let here = history_geometry(surface_pixel);
     textureStore(gather_mean_geometry, pixel, here);
     if here.w < 0.0 {
         textureStore(gather_mean, pixel, vec4<f32>(0.0));
@@ -35,7 +38,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
     }
     // What frame/compose would read: the volumes' weighted sum over its weight. It is this
     // frame's gather where the tile traced (ddgi/resolve), else the probes' query.
-    let now = textureLoad(indirect, pixel);
+    let now = textureLoad(gather_source, pixel);
     var light = now.rgb / max(now.a, 1.0);
     let traced = gather_tile_traces(tile.xy, frame.frame_index);
     // Gathers in the mean (0: it holds the query alone), at most those of history_frames.
@@ -43,7 +46,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
     let square = luminance(light) * luminance(light);
     var moment = select(0.0, square, traced);
     let most = max(f32(volume.gather_history_frames / max(volume.gather_interval, 1u)), 1.0);
-    let p = same_surface_texel(id.xy, here.xyz, gather_history_geometry);
+    let p = same_surface_texel_scaled(surface_pixel, here.xyz, gather_history_geometry, GATHER_SCALE);
     if p.x >= 0 {
         let old = textureLoad(gather_history, p, 0);
         let old_moment = textureLoad(gather_history_moment, p, 0).r;
@@ -59,5 +62,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
     }
     textureStore(gather_mean, pixel, vec4<f32>(light, gathers));
     textureStore(gather_moment, pixel, vec4<f32>(moment));
-    textureStore(indirect, pixel, vec4<f32>(light, 1.0));
+    textureStore(gather_source, pixel, vec4<f32>(light, 1.0));
 }

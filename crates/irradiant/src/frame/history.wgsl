@@ -42,14 +42,30 @@ fn same_surface(old: vec4<f32>, x: vec3<f32>, n: vec3<f32>, depth_tolerance: f32
 // (-1, -1) where it is another, the motion leads out of the frame or the frame's history
 // restarted.
 fn same_surface_texel(pixel: vec2<u32>, n: vec3<f32>, geometry: texture_2d<f32>) -> vec2<i32> {
+    return same_surface_texel_scaled(pixel, n, geometry, 1u);
+}
+
+// same_surface_texel for a history kept at 1/scale of the image per axis, each texel holding
+// the geometry of its block's top-left pixel (scaled_pixel).
+fn same_surface_texel_scaled(pixel: vec2<u32>, n: vec3<f32>, geometry: texture_2d<f32>, scale: u32) -> vec2<i32> {
     let previous = history_position(pixel);
     if frame.history_frames == 0u || any(previous < vec2<f32>(0.0)) || any(previous >= frame_size()) {
         return vec2<i32>(-1);
     }
-    let p = vec2<i32>(previous);
+    let p = vec2<i32>(previous) / i32(scale);
     let x = gbuffer_position(pixel, gbuffer_depth_at(pixel));
     if !same_surface(textureLoad(geometry, p, 0), x, n, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
         return vec2<i32>(-1);
     }
     return p;
+}
+
+// A history kept at 1/scale of the image per axis: the G-buffer pixel that texel `texel`
+// stands for (the top-left of its block), and the texels per axis.
+fn scaled_pixel(texel: vec2<u32>, scale: u32) -> vec2<u32> {
+    return texel * scale;
+}
+
+fn scaled_size(scale: u32) -> vec2<u32> {
+    return (vec2<u32>(frame.width, frame.height) + scale - 1u) / scale;
 }
