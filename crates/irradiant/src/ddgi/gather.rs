@@ -1,10 +1,9 @@
 //! The final gather's history (`DdgiGatherSettings`): ddgi/temporal's running mean of the
 //! gathered light, its second moment and the geometry it was taken on, two sets ping-ponged
 //! (this frame's is the next frame's history), the pass bound to each, and ddgi/gather_filter's
-//! passes from this frame's mean into the frame's `indirect`. With `half_resolution` all of it
-//! is on a half-size image: ddgi/gather traces there (a pass a volume, into `gathered`), the
-//! filter's last pass writes a scratch image and ddgi/gather_upsample brings that to
-//! `indirect`.
+//! passes over this frame's mean, all on the gather's own image (the frame's, or half of it
+//! with `half_resolution`): ddgi/gather traces there (a pass a volume, into `gathered`), and
+//! ddgi/gather_upsample brings the filter's last pass into the frame's `indirect`.
 
 use std::sync::Arc;
 
@@ -37,12 +36,12 @@ const FORMATS: [(wgpu::TextureFormat, u64); 3] = [
     (wgpu::TextureFormat::Rgba32Float, 16),
     (wgpu::TextureFormat::R32Float, 4),
 ];
-/// Between filter passes that do not write the frame's `indirect`: (light, variance). Half
-/// size takes both (no pass writes `indirect`), full size the first from two passes on.
+/// Between filter passes, and after the last (ddgi/gather_upsample's source): (light,
+/// variance), the passes taking the two in turn.
 const FILTER_SCRATCH: [&str; 2] = ["ddgi/gather_filtered", "ddgi/gather_filtered_1"];
-/// With `half_resolution`: ddgi/gather's light (weighted sum, weight) and the query at each
-/// texel's pixel (ddgi/gather_upsample's scale).
-const HALF_IMAGES: [&str; 2] = ["ddgi/gathered", "ddgi/gather_query"];
+/// ddgi/gather's light (weighted sum, weight) and the query at each texel's pixel (rgb, and
+/// the luminance ddgi/gather_upsample scales by), the light arriving.
+const GATHER_IMAGES: [&str; 2] = ["ddgi/gathered", "ddgi/gather_query"];
 const RGBA32: (wgpu::TextureFormat, u64) = (wgpu::TextureFormat::Rgba32Float, 16);
 
 /// The gather's image at an image size: the image, or half of it rounded up.
@@ -51,23 +50,15 @@ pub fn image_size((width, height): (u32, u32), half: bool) -> (u32, u32) {
     (width.div_ceil(scale), height.div_ceil(scale))
 }
 
-/// ddgi/temporal's, ddgi/gather_filter's and ddgi/gather's workgroups: one thread a texel of
-/// the gather's image.
+/// One thread a texel of the gather's image (ddgi/gather, ddgi/temporal,
+/// ddgi/gather_filter), or with `half` false of the frame's (ddgi/gather_upsample).
 pub fn workgroups(size: (u32, u32), half: bool) -> Workgroups {
     let (width, height) = image_size(size, half);
     Workgroups::for_image(width, height, crate::frame::IMAGE_TILE)
 }
 
-/// The scratch images `filter_passes` needs: see FILTER_SCRATCH.
-fn scratch_count(filter_passes: u32, half: bool) -> usize {
-    match half {
-        true => filter_passes.min(2) as usize,
-        false => (filter_passes >= 2) as usize,
-    }
-}
-
-/// The history's allocations at an image size, with the filter's scratch and the half-size
-/// gather's images where they are needed.
+/// The history's allocations at an image size, with the gather's images and the filter's
+/// scratch.
 pub fn plan(size: (u32, u32), filter_passes: u32, half: bool) -> Vec<Allocation> {
     let own = image_size(size, half);
     let texture =
@@ -77,31 +68,31 @@ pub fn plan(size: (u32, u32), filter_passes: u32, half: bool) -> Vec<Allocation>
         .flat_map(|set| set.iter().zip(FORMATS))
         .map(|(label, (_, bytes))| texture(label, bytes, HISTORY_SETTING))
         .collect();
-    let scratch = FILTER_SCRATCH[..scratch_count(filter_passes, half)].iter();
+    let scratch = FILTER_SCRATCH[..filter_passes.min(2) as usize].iter();
     all.extend(scratch.map(|label| texture(label, RGBA32.1, FILTER_SETTING)));
-    if half {
-        all.extend(HALF_IMAGES.map(|label| texture(label, RGBA32.1, HISTORY_SETTING)));
-    }
+    all.extend(GATHER_IMAGES.map(|label| texture(label, RGBA32.1, HISTORY_SETTING)));
     all
 }
 
 /// The gather's passes, as DdgiPipelines compiled them.
 pub struct GatherPipelines<'a> {
+    /// ddgi/gather and ddgi/gather_upsample.
+    pub gather: &'a (Arc<ComputePass>, Arc<ComputePass>),
     pub temporal: &'a Arc<ComputePass>,
     pub filters: &'a [Arc<ComputePass>],
-    /// ddgi/gather and ddgi/gather_upsample, with `half_resolution`.
-    pub half: Option<&'a (Arc<ComputePass>, Arc<ComputePass>)>,
+    /// `gather.half_resolution`: the gather's image is half the frame's.
+    pub half: bool,
 }
 
-/// What one frame of the two ping-ponged sets records, in order.
+/// What one frame of the two ping-ponged sets records after ddgi/gather, in order.
 struct FramePasses {
     temporal: BoundPass,
     filters: Vec<BoundPass>,
-    upsample: Option<BoundPass>,
+    upsample: BoundPass,
 }
 
 pub struct GatherHistory {
-    /// ddgi/gather for each volume, finest first (half size only).
+    /// ddgi/gather for each volume, finest first.
     gathers: Vec<BoundPass>,
     /// Writing set 0 (reading set 1), and writing set 1.
     frames: [FramePasses; 2],
@@ -113,49 +104,42 @@ pub struct GatherHistory {
 }
 
 impl GatherHistory {
-    /// `tables`: the scene's and the frame's; `volumes`: each volume's own, finest first (the
-    /// first's `gather_history_frames` is ddgi/temporal's); `indirect`: the frame's view of
-    /// the technique's light.
+    /// `tables`: the scene's and the frame's (whose `indirect` ddgi/resolve has written the
+    /// query into); `volumes`: each volume's own, finest first (the first's
+    /// `gather_history_frames` is ddgi/temporal's).
     pub fn new(
         ctx: &GpuContext,
         pipelines: GatherPipelines,
         tables: &[&ResourceTable],
         volumes: &[ResourceTable],
-        indirect: &wgpu::TextureView,
         size: (u32, u32),
     ) -> Result<Self, RenderError> {
-        let half = pipelines.half.is_some();
-        let passes = pipelines.filters.len() as u32;
-        ctx.check_allocations(&plan(size, passes, half))?;
-        let own = image_size(size, half);
+        let passes = pipelines.filters.len();
+        ctx.check_allocations(&plan(size, passes as u32, pipelines.half))?;
+        let own = image_size(size, pipelines.half);
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
         let texture = |label: &str, format| {
             irradiant_gpu::texture_2d(&ctx.device, label, own, format, 1, usage)
         };
-        let sets: Vec<Vec<wgpu::Texture>> = LABELS
+        // [mean, geometry, moment] of each set, then the scratch, then the gather's images.
+        let textures: Vec<wgpu::Texture> = LABELS
             .iter()
-            .map(|set| {
-                set.iter()
-                    .zip(FORMATS)
-                    .map(|(l, (f, _))| texture(l, f))
-                    .collect()
-            })
+            .flat_map(|set| set.iter().zip(FORMATS))
+            .map(|(label, (format, _))| texture(label, format))
+            .chain(
+                FILTER_SCRATCH[..passes.min(2)]
+                    .iter()
+                    .map(|l| texture(l, RGBA32.0)),
+            )
+            .chain(GATHER_IMAGES.iter().map(|l| texture(l, RGBA32.0)))
             .collect();
-        let scratch: Vec<wgpu::Texture> = FILTER_SCRATCH[..scratch_count(passes, half)]
+        let views: Vec<wgpu::TextureView> = textures
             .iter()
-            .map(|label| texture(label, RGBA32.0))
+            .map(|t| t.create_view(&Default::default()))
             .collect();
-        let half_images: Vec<wgpu::Texture> = match half {
-            true => HALF_IMAGES.iter().map(|l| texture(l, RGBA32.0)).collect(),
-            false => Vec::new(),
-        };
-        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let set_views: Vec<Vec<wgpu::TextureView>> = sets
-            .iter()
-            .map(|set| set.iter().map(view).collect())
-            .collect();
-        let scratch_views: Vec<wgpu::TextureView> = scratch.iter().map(view).collect();
-        let half_views: Vec<wgpu::TextureView> = half_images.iter().map(view).collect();
+        let set = |now: usize, item: usize| &views[3 * now + item];
+        let scratch = &views[6..6 + passes.min(2)];
+        let (gathered, query) = (&views[views.len() - 2], &views[views.len() - 1]);
         let bind = |pass: &Arc<ComputePass>, own: ResourceTable, volume: &ResourceTable| {
             let mut all = tables.to_vec();
             all.push(volume);
@@ -163,79 +147,60 @@ impl GatherHistory {
             pass.bind(ctx, &all)
         };
         let first = &volumes[0];
-        // The temporal's source: ddgi/gather's image, or the frame's light.
-        let source = half_views.first().unwrap_or(indirect);
         let frame_passes = |now: usize| -> Result<FramePasses, RenderError> {
             let before = 1 - now;
             let temporal = bind(
                 pipelines.temporal,
                 ResourceTable::new()
-                    .texture("gather_source", source)
-                    .texture("gather_history", &set_views[before][0])
-                    .texture("gather_history_geometry", &set_views[before][1])
-                    .texture("gather_history_moment", &set_views[before][2])
-                    .texture("gather_mean", &set_views[now][0])
-                    .texture("gather_mean_geometry", &set_views[now][1])
-                    .texture("gather_moment", &set_views[now][2]),
+                    .texture("gather_source", gathered)
+                    .texture("gather_history", set(before, 0))
+                    .texture("gather_history_geometry", set(before, 1))
+                    .texture("gather_history_moment", set(before, 2))
+                    .texture("gather_mean", set(now, 0))
+                    .texture("gather_mean_geometry", set(now, 1))
+                    .texture("gather_moment", set(now, 2)),
                 first,
             )?;
-            let mut from = &set_views[now][0];
+            let mut from = set(now, 0);
             let mut filters = Vec::new();
             for (k, pass) in pipelines.filters.iter().enumerate() {
-                let target = filter_target(k, passes as usize, half, &scratch_views, indirect);
                 let own = ResourceTable::new()
                     .texture("filter_source", from)
-                    .texture("filter_moment", &set_views[now][2])
-                    .texture("filter_target", target);
+                    .texture("filter_moment", set(now, 2))
+                    .texture("filter_target", &scratch[k % 2]);
                 filters.push(bind(pass, own, first)?);
-                from = target;
+                from = &scratch[k % 2];
             }
-            let upsample = match (pipelines.half, half_views.get(1)) {
-                (Some((_, upsample)), Some(query)) => Some(bind(
-                    upsample,
-                    ResourceTable::new()
-                        .texture("upsample_source", from)
-                        .texture("upsample_query", query),
-                    first,
-                )?),
-                _ => None,
-            };
+            let upsample = ResourceTable::new()
+                .texture("upsample_source", from)
+                .texture("upsample_query", query);
             Ok(FramePasses {
                 temporal,
                 filters,
-                upsample,
+                upsample: bind(&pipelines.gather.1, upsample, first)?,
             })
         };
-        let gathers = match (pipelines.half, half_views.as_slice()) {
-            (Some((gather, _)), [gathered, query]) => volumes
-                .iter()
-                .map(|volume| {
-                    let own = ResourceTable::new()
-                        .texture("gathered", gathered)
-                        .texture("gather_query", query);
-                    bind(gather, own, volume)
-                })
-                .collect::<Result<_, _>>()?,
-            _ => Vec::new(),
-        };
-        let frames = [frame_passes(0)?, frame_passes(1)?];
+        let gathers = volumes
+            .iter()
+            .map(|volume| {
+                let own = ResourceTable::new()
+                    .texture("gathered", gathered)
+                    .texture("gather_query", query);
+                bind(&pipelines.gather.0, own, volume)
+            })
+            .collect::<Result<_, _>>()?;
         Ok(Self {
             gathers,
-            frames,
+            frames: [frame_passes(0)?, frame_passes(1)?],
             image: workgroups(size, false),
-            own_image: workgroups(size, half),
+            own_image: workgroups(size, pipelines.half),
             count: 0,
-            _textures: sets
-                .into_iter()
-                .flatten()
-                .chain(scratch)
-                .chain(half_images)
-                .collect(),
+            _textures: textures,
         })
     }
 
-    /// Records, after every volume's ddgi/resolve: ddgi/gather for each volume (half size),
-    /// ddgi/temporal, the filter's passes and ddgi/gather_upsample (half size).
+    /// Records, after every volume's ddgi/resolve: ddgi/gather for each volume, ddgi/temporal,
+    /// the filter's passes and ddgi/gather_upsample.
     pub fn record(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -250,29 +215,7 @@ impl GatherHistory {
         for filter in &now.filters {
             filter.dispatch(encoder, profiler.as_deref_mut(), self.own_image);
         }
-        if let Some(upsample) = &now.upsample {
-            upsample.dispatch(encoder, profiler, self.image);
-        }
+        now.upsample.dispatch(encoder, profiler, self.image);
         self.count += 1;
-    }
-}
-
-/// Where filter pass `k` of `passes` writes. Full size: the last `indirect`, the ones before
-/// it alternately the scratch and `indirect`, so that no pass reads what it writes. Half size:
-/// the two scratch images in turn (ddgi/gather_upsample writes `indirect`).
-fn filter_target<'v>(
-    k: usize,
-    passes: usize,
-    half: bool,
-    scratch: &'v [wgpu::TextureView],
-    indirect: &'v wgpu::TextureView,
-) -> &'v wgpu::TextureView {
-    if half {
-        return &scratch[k % 2];
-    }
-    match (passes - 1 - k).is_multiple_of(2) {
-        true => indirect,
-        // A pass goes to the scratch only where there are two or more, and then it exists.
-        false => &scratch[0],
     }
 }

@@ -1,14 +1,20 @@
-// ddgi/gather: the final gather on a half-size image (`gather.half_resolution`). Where a
-// tile of `gathered` gathers this frame, one texel a 2×2 block: the gathered light at the
-// block's top-left pixel (resolve_gather.wgsl), this volume's share of it blended over the
-// finer volumes' as ddgi/resolve blends `indirect`. Elsewhere, and for every texel in
-// `gather_query`, the probes' query at that pixel, which ddgi/resolve wrote into `indirect`
-// before: ddgi/temporal holds it where no gather is, ddgi/gather_upsample scales by it.
+// ddgi/gather: the final gather on its own image, a texel a pixel or, with
+// `gather.half_resolution` (GATHER_SCALE 2), a texel a 2×2 block, read at the block's top-left
+// pixel (scaled_pixel). Where a tile of `gathered` gathers this frame: the light gathered there
+// (resolve_gather.wgsl), this volume's share of it blended over the finer volumes' as
+// ddgi/resolve blends `indirect`. Elsewhere, and for every texel in `gather_query`, the probes'
+// query there: ddgi/temporal holds it where no gather is, ddgi/gather_upsample scales by it.
+// All of it is the light arriving, before the surface's diffuse weight (its albedo), so that
+// ddgi/gather_filter never blurs a texture and ddgi/gather_upsample weighs each pixel by its
+// own.
 #import history
+#import ddgi_gather
 
 @group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
 @group(2) @binding(11) var gathered: texture_storage_2d<rgba32float, read_write>;
 @group(2) @binding(12) var gather_query: texture_storage_2d<rgba32float, write>;
+
+const BLEND_DIFFUSE_WEIGHT: bool = false;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) tile: vec3<u32>) {
@@ -19,10 +25,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     let pixel = scaled_pixel(id.xy, GATHER_SCALE);
     let traces = gather_tile_traces(tile.xy, frame.frame_index);
     if volume.volume_index == 0u {
-        let query = textureLoad(indirect, pixel);
+        let query = arriving_query(pixel);
         textureStore(gather_query, texel, query);
         if !traces {
-            textureStore(gathered, texel, query);
+            textureStore(gathered, texel, vec4<f32>(query.rgb, 1.0));
         }
     }
     if !traces {
@@ -33,4 +39,23 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
         sum = textureLoad(gathered, texel);
     }
     textureStore(gathered, texel, blended_light(pixel, tile.xy, local_index, sum));
+}
+
+// The query ddgi/resolve wrote into `indirect` at `pixel` (every volume's, weighted), over the
+// surface's diffuse weight (rgb; where a channel of that weight is too dark to divide by, the
+// finest volume's query itself), and its luminance as ddgi/gather_upsample measures a pixel's
+// (a: `arriving_luminance`).
+fn arriving_query(pixel: vec2<u32>) -> vec4<f32> {
+    if gbuffer_depth_at(pixel) < 0.0 {
+        return vec4<f32>(0.0);
+    }
+    let s = gbuffer_surface(pixel);
+    let weight = diffuse_weight(s);
+    let resolved = textureLoad(indirect, pixel);
+    let measured = arriving_luminance(resolved, weight);
+    if min(weight.r, min(weight.g, weight.b)) < 1e-3 {
+        let query = ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance;
+        return vec4<f32>(query, select(luminance(query), measured, luminance(weight) >= DARKEST_DIFFUSE));
+    }
+    return vec4<f32>(resolved.rgb / max(resolved.a, 1.0) / weight, measured);
 }

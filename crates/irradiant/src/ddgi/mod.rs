@@ -186,14 +186,11 @@ impl TechniqueKind for DdgiKind {
         let g = &settings.gather;
         if g.rays_per_pixel > 0 {
             let own = gather::workgroups(size, g.half_resolution);
-            all.push(("ddgi/temporal", own));
+            all.extend([("ddgi/gather", own), ("ddgi/temporal", own)]);
             for _ in 0..g.filter_passes {
                 all.push(("ddgi/gather_filter", own));
             }
-            if g.half_resolution {
-                all.push(("ddgi/gather", own));
-                all.push(("ddgi/gather_upsample", gather::workgroups(size, false)));
-            }
+            all.push(("ddgi/gather_upsample", gather::workgroups(size, false)));
         }
         if settings.reflections.enabled {
             all.push(("ddgi/reflect", settings.reflections.trace_workgroups(size)));
@@ -347,24 +344,24 @@ impl Ddgi {
             }
             None => Vec::new(),
         };
-        let gather = match &pipelines.temporal {
-            Some(temporal) => {
+        let gather = match (&pipelines.gather, &pipelines.temporal) {
+            (Some(gather), Some(temporal)) => {
                 let tables: Vec<_> = volumes.iter().map(|v| v.resources.table()).collect();
                 let passes = gather::GatherPipelines {
+                    gather,
                     temporal,
                     filters: &pipelines.gather_filter,
-                    half: pipelines.half_gather.as_ref(),
+                    half: settings.gather.half_resolution,
                 };
                 Some(gather::GatherHistory::new(
                     cx.ctx,
                     passes,
                     &[&scene_table, &frame_table],
                     &tables,
-                    cx.frame.resources.view("indirect"),
                     cx.frame.size(),
                 )?)
             }
-            None => None,
+            _ => None,
         };
         let reflections = match &pipelines.reflections {
             Some((trace, filter)) => {
@@ -464,16 +461,11 @@ impl Technique for Ddgi {
         ]);
         let mut resolve = vec!["ddgi/resolve"];
         if s.gather.rays_per_pixel > 0 {
-            if s.gather.half_resolution {
-                resolve.push("ddgi/gather");
-            }
-            resolve.push("ddgi/temporal");
+            resolve.extend(["ddgi/gather", "ddgi/temporal"]);
             if s.gather.filter_passes > 0 {
                 resolve.push("ddgi/gather_filter");
             }
-            if s.gather.half_resolution {
-                resolve.push("ddgi/gather_upsample");
-            }
+            resolve.push("ddgi/gather_upsample");
         }
         if s.reflections.enabled {
             resolve.extend(["ddgi/reflect", "ddgi/reflect_filter"]);

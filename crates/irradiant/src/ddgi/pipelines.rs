@@ -38,9 +38,9 @@ pub struct DdgiPipelines {
     pub resolve: Arc<ComputePass>,
     /// Present with the final gather (`gather.rays_per_pixel` > 0): its running mean.
     pub temporal: Option<Arc<ComputePass>>,
-    /// With `gather.half_resolution`: ddgi/gather, each volume's share of the gather on the
-    /// half-size image (ddgi/resolve then holds the query alone), and ddgi/gather_upsample.
-    pub half_gather: Option<(Arc<ComputePass>, Arc<ComputePass>)>,
+    /// With the final gather: ddgi/gather, each volume's share of it on the gather's image
+    /// (ddgi/resolve holds the query alone), and ddgi/gather_upsample.
+    pub gather: Option<(Arc<ComputePass>, Arc<ComputePass>)>,
     /// ddgi/gather_filter, one a pass (`gather.filter_passes`; none without the gather).
     pub gather_filter: Vec<Arc<ComputePass>>,
     /// ddgi/reflect and ddgi/reflect_filter, with `reflections.enabled`.
@@ -91,9 +91,8 @@ impl DdgiPipelines {
                 crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
             };
         // The light at a pixel: the query, or the final gather (resolve.wgsl's `pixel_light`).
-        // With the gather at half resolution ddgi/gather traces, and ddgi/resolve queries.
+        // ddgi/resolve queries; with the final gather ddgi/gather traces.
         let gather_rays = settings.gather.rays_per_pixel;
-        let half = gather_rays > 0 && settings.gather.half_resolution;
         let gather_constants = vec![
             ("GATHER_RAYS", format!("{gather_rays}u")),
             (
@@ -102,14 +101,16 @@ impl DdgiPipelines {
             ),
         ];
         let blend = include_str!("resolve_blend.wgsl");
-        let gathered = include_str!("resolve_gather.wgsl");
-        let (light_source, resolve_constants) = if gather_rays > 0 && !half {
-            (gathered, gather_constants.clone())
-        } else {
-            (include_str!("resolve_query.wgsl"), vec![])
-        };
-        let resolve_source = format!("{}\n{blend}\n{light_source}", include_str!("resolve.wgsl"));
-        let gather_source = format!("{}\n{blend}\n{gathered}", include_str!("gather.wgsl"));
+        let resolve_source = format!(
+            "{}\n{blend}\n{}",
+            include_str!("resolve.wgsl"),
+            include_str!("resolve_query.wgsl")
+        );
+        let gather_source = format!(
+            "{}\n{blend}\n{}",
+            include_str!("gather.wgsl"),
+            include_str!("resolve_gather.wgsl")
+        );
         Ok(Self {
             ray_directions: compile_plain(
                 "ddgi/ray_directions",
@@ -191,8 +192,8 @@ impl DdgiPipelines {
                 include_str!("blend_distance.wgsl"),
                 blend_constants(v.distance_texels),
             )?,
-            resolve: compile("ddgi/resolve", &resolve_source, resolve_constants)?,
-            half_gather: if half {
+            resolve: compile("ddgi/resolve", &resolve_source, vec![])?,
+            gather: if gather_rays > 0 {
                 Some((
                     compile("ddgi/gather", &gather_source, gather_constants)?,
                     compile_plain(

@@ -1,15 +1,12 @@
-// ddgi/resolve's light at a pixel (`pixel_light`) with the final gather (GATHER_RAYS =
-// DdgiGatherSettings::rays_per_pixel): where the pixel's tile gathers this frame
-// (gather_tile_traces), that many cosine-distributed rays, each hit shaded as a probe ray's
-// (ddgi_hit_light), each bounded by GATHER_FIREFLY_CLAMP (DdgiGatherSettings::firefly_clamp)
-// times the probes' light at the pixel; elsewhere the query. ddgi/temporal averages it over
-// frames.
+// ddgi/gather's light at a pixel (`pixel_light`), the final gather (GATHER_RAYS =
+// DdgiGatherSettings::rays_per_pixel): that many cosine-distributed rays, each hit shaded as a
+// probe ray's (ddgi_hit_light), each bounded by GATHER_FIREFLY_CLAMP
+// (DdgiGatherSettings::firefly_clamp) times the probes' light at the pixel. ddgi/gather calls
+// it where the pixel's tile gathers this frame (gather_tile_traces); ddgi/temporal averages it
+// over frames.
 #import ddgi_hit_light
 
 fn pixel_light(s: Surface, pixel: vec2<u32>, tile: vec2<u32>, local_index: u32) -> vec3<f32> {
-    if !gather_tile_traces(tile, frame.frame_index) {
-        return ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance;
-    }
     bvh_thread(local_index);
     return gathered_light(s, pixel);
 }

@@ -83,6 +83,7 @@ pub fn library() -> &'static ShaderLibrary {
             .with("ddgi_volume", include_str!("../ddgi/volume.wgsl"))
             .with("ddgi_query", include_str!("../ddgi/query.wgsl"))
             .with("ddgi_hit_light", include_str!("../ddgi/hit_light.wgsl"))
+            .with("ddgi_gather", include_str!("../ddgi/gather_common.wgsl"))
             .with("ddgi_probes", include_str!("../ddgi/probes.wgsl"))
             .with("ddgi_rays", include_str!("../ddgi/rays.wgsl"))
             .with("ddgi_states", include_str!("../ddgi/states.wgsl"))
