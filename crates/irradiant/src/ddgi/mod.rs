@@ -9,8 +9,9 @@
 //! and the blends are dispatched indirectly over the probes that update, which
 //! ddgi/probe_states lists for the next frame), and `ddgi/resolve` blends its indirect diffuse
 //! light into the frame's, finest volume first. With the final gather (`gather.rays_per_pixel`)
-//! each pixel's light is traced rays whose hits the probes light, and `ddgi/temporal` averages
-//! it over frames (gather.rs). The pipelines are compiled once (pipelines.rs) and shared by
+//! `ddgi/gather` traces rays from the pixels (or one pixel of each 2×2 block) whose hits the
+//! probes light, `ddgi/temporal` averages them over frames, `ddgi/gather_filter` across the
+//! image and `ddgi/gather_upsample` writes them over the query (gather.rs). The pipelines are compiled once (pipelines.rs) and shared by
 //! every volume ([`DdgiVolume`]).
 
 mod cascades;

@@ -1,20 +1,20 @@
-// ddgi/temporal: with the final gather (DdgiGatherSettings), the frame's indirect light as a
+// ddgi/temporal: with the final gather (DdgiGatherSettings), the light arriving as a
 // running mean of the gathers of up to `gather_history_frames` frames, reprojected along the
 // motion vectors where last frame's pixel held the same surface (the module `history`);
 // elsewhere, and after the frame's history resets, it starts over, from the probes' query
 // until the pixel's tile gathers. The mean, the gathers in it (a), the mean of the gathers'
 // squared luminance (ddgi/gather_filter's estimate of the mean's error) and the geometry it
 // was taken on are next frame's history (two sets, ping-ponged). f32, so that a long mean does
-// not stall on f16's rounding. With `gather.half_resolution` (GATHER_SCALE 2) a texel is a 2×2
-// block, its geometry the block's top-left pixel's, and `gather_source` is ddgi/gather's
-// half-size image; else it is the frame's `indirect`, which this pass then writes.
+// not stall on f16's rounding. `gather_source` is ddgi/gather's image, a texel a pixel or with
+// `gather.half_resolution` (GATHER_SCALE 2) a 2×2 block, its geometry the block's top-left
+// pixel's.
 #import ddgi_volume
 #import gbuffer
 #import history
 #import sampling
 
 @group(2) @binding(0) var<uniform> volume: GpuDdgiVolume;
-@group(2) @binding(10) var gather_source: texture_storage_2d<rgba32float, read_write>;
+@group(2) @binding(10) var gather_source: texture_2d<f32>;
 @group(2) @binding(20) var gather_history: texture_2d<f32>;
 @group(2) @binding(21) var gather_history_geometry: texture_2d<f32>;
 @group(2) @binding(22) var gather_mean: texture_storage_2d<rgba32float, write>;
@@ -36,9 +36,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
         textureStore(gather_moment, pixel, vec4<f32>(0.0));
         return;
     }
-    // What frame/compose would read: the volumes' weighted sum over its weight. It is this
-    // frame's gather where the tile traced (ddgi/resolve), else the probes' query.
-    let now = textureLoad(gather_source, pixel);
+    // The volumes' weighted sum over its weight: this frame's gather where the tile traced,
+    // else the probes' query (ddgi/gather).
+    let now = textureLoad(gather_source, pixel, 0);
     var light = now.rgb / max(now.a, 1.0);
     let traced = gather_tile_traces(tile.xy, frame.frame_index);
     // Gathers in the mean (0: it holds the query alone), at most those of history_frames.
@@ -62,5 +62,4 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(workgroup_id) til
     }
     textureStore(gather_mean, pixel, vec4<f32>(light, gathers));
     textureStore(gather_moment, pixel, vec4<f32>(moment));
-    textureStore(gather_source, pixel, vec4<f32>(light, 1.0));
 }
