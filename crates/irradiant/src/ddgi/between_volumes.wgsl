@@ -38,7 +38,7 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
         read = ddgi_irradiance(s.position, s.normal, wo);
     }
     var rng = rng_seed(index, owner.frame, 0x3c6ef372u + volume.volume_index);
-    owner_samples[index].radiance += share * hit_probe_light(s, read, BLIND_BOUNCES, &rng);
+    owner_samples[index].radiance += share * hit_probe_light(s, wo, read, BLIND_BOUNCES, &rng);
     r.weight_b_taken = pack2x16float(vec2<f32>(s.albedo.b, taken + share));
     owner_deferred_reads[index] = r;
 }

@@ -41,18 +41,35 @@ fn probes_blind_to(read: ProbeRead, bounces_left: u32) -> bool {
 // A probe ray's hit, beyond its punctual lights: one emitter sample and the probes' light.
 fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
     let l = hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng);
-    return l + hit_probe_light(s, ddgi_irradiance(s.position, s.normal, wo), BLIND_BOUNCES, rng);
+    return l + hit_probe_light(s, wo, ddgi_irradiance(s.position, s.normal, wo), BLIND_BOUNCES, rng);
 }
 
 // The probes' light a surface reflects, `read` there: their irradiance, or where they are too
 // blind to it and `bounces` are left, what one ray traced on brings back. `bounces` is a
 // parameter, not the constant: `BLIND_BOUNCES - 1u` would be a constant expression, and one
 // that overflows where BLIND_BOUNCES is 0.
-fn hit_probe_light(s: Surface, read: ProbeRead, bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
+fn hit_probe_light(s: Surface, wo: vec3<f32>, read: ProbeRead, bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
     if probes_blind_to(read, bounces) {
         return reflected_from_a_traced_ray(s, bounces - 1u, rng);
     }
-    return diffuse_weight(s) * read.irradiance;
+    return probes_reflected(s, wo, read);
+}
+
+// What a surface sends back along wo of the probes' light, `read` about its normal: its
+// diffuse layer's share, and where its specular layer reflects more than its diffuse one
+// (diffuse_share under a half: metals, dark glossy dielectrics) that layer's share of the
+// probes' light about the mirror direction, as a rough reflector sees the room. A metal floor
+// a ray meets then reflects the lit walls instead of reading black (the glossy-floor Cornell
+// box's gather read its walls too dark: `quality` 0.127 against `balanced`'s 0.103, H200,
+// docs/notes/light-quality.md). Surfaces mostly diffuse keep their specular layer's small
+// share out, and a query.
+fn probes_reflected(s: Surface, wo: vec3<f32>, read: ProbeRead) -> vec3<f32> {
+    var light = diffuse_weight(s) * read.irradiance;
+    if diffuse_share(s) < 0.5 {
+        let mirror = reflect(-wo, s.normal);
+        light += f0_of(s) * ddgi_irradiance(s.position, mirror, wo).irradiance;
+    }
+    return light;
 }
 
 // What a Lambertian surface reflects of the light one cosine-distributed ray traced on from it
@@ -82,7 +99,7 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, candidate
         light += throughput * (hit_punctual_light(h, wo, rand(rng)) + hit_emitter_light(h, wo, candidates, rng));
         let read = ddgi_irradiance_seen_from(h.position, h.normal, wo, hit.t);
         if !probes_blind_to(read, blind_bounces - bounce) {
-            return light + throughput * diffuse_weight(h) * read.irradiance;
+            return light + throughput * probes_reflected(h, wo, read);
         }
         throughput *= diffuse_weight(h);
         ray_origin = offset_ray(h.position, h.geometric_normal);

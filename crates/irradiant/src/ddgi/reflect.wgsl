@@ -81,6 +81,6 @@ fn reflected_light(pixel: vec2<u32>) -> vec4<f32> {
     let back = -wi;
     let direct = hit_punctual_light(at, back, rand(&rng)) + hit_emitter_light(at, back, GATHER_EMITTER_CANDIDATES, &rng);
     let probes = ddgi_irradiance_seen_from(at.position, at.normal, back, hit.t);
-    let light = direct + hit_probe_light(at, probes, 0u, &rng);
+    let light = direct + hit_probe_light(at, back, probes, 0u, &rng);
     return vec4<f32>(weight * light, hit.t);
 }
