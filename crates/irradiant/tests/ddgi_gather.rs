@@ -255,9 +255,10 @@ fn a_half_size_gather_converges_to_the_full_size_gather() {
     eprintln!(
         "8×8 tiles, largest departure from the full-size gather: half size {h:.3}, the query {q:.3}"
     );
+    // Seen on lavapipe: 0.066 against the query's 0.453.
     assert!(
-        h < 0.5 * q,
-        "the half-size gather reads the query somewhere"
+        h < 0.15,
+        "the half-size gather departs from the full-size one by {h:.3}"
     );
 }
 

@@ -42,20 +42,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
 }
 
 // The query ddgi/resolve wrote into `indirect` at `pixel` (every volume's, weighted), over the
-// surface's diffuse weight (rgb; where a channel of that weight is too dark to divide by, the
-// finest volume's query itself), and its luminance as ddgi/gather_upsample measures a pixel's
-// (a: `arriving_luminance`).
+// surface's diffuse weight (rgb: a channel the surface does not reflect reads 0, which it
+// never shows), and its luminance as ddgi/gather_upsample measures a pixel's (a).
 fn arriving_query(pixel: vec2<u32>) -> vec4<f32> {
     if gbuffer_depth_at(pixel) < 0.0 {
         return vec4<f32>(0.0);
     }
-    let s = gbuffer_surface(pixel);
-    let weight = diffuse_weight(s);
+    let weight = diffuse_weight(gbuffer_surface(pixel));
     let resolved = textureLoad(indirect, pixel);
-    let measured = arriving_luminance(resolved, weight);
-    if min(weight.r, min(weight.g, weight.b)) < 1e-3 {
-        let query = ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance;
-        return vec4<f32>(query, select(luminance(query), measured, luminance(weight) >= DARKEST_DIFFUSE));
-    }
-    return vec4<f32>(resolved.rgb / max(resolved.a, 1.0) / weight, measured);
+    let arriving = resolved.rgb / max(resolved.a, 1.0) / max(weight, vec3<f32>(DARKEST_DIFFUSE));
+    return vec4<f32>(arriving, arriving_luminance(resolved, weight));
 }

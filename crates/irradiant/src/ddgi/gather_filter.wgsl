@@ -9,9 +9,10 @@
 // never blurred. The history keeps the unfiltered mean, so nothing the filter does stays.
 //
 // FILTER_FIRST: the source is this frame's mean (rgb, gathers in a) and its moment; later
-// passes read the last pass's (rgb, variance of the mean). FILTER_LAST writes the frame's
-// `indirect` (rgb, weight 1), or with `gather.half_resolution` (GATHER_SCALE 2, a texel a 2×2
-// block, read on its top-left pixel's surface) ddgi/gather_upsample's source.
+// passes read the last pass's (rgb, variance of the mean); the last pass writes
+// ddgi/gather_upsample's source. All on the gather's image: with `gather.half_resolution`
+// (GATHER_SCALE 2) a texel is a 2×2 block, read on its top-left pixel's surface, and the taps'
+// steps are in texels.
 #import gbuffer
 #import history
 #import sampling

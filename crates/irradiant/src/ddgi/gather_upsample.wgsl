@@ -71,6 +71,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // The query's detail as a ratio; where the query is far darker than the gathered light
     // (light the probes miss) the ratio is noise, so it fades to 1 there.
     let floor_light = 0.1 * luminance(light) + 1e-9;
-    let detail = (arriving_luminance(query, diffuse) + floor_light) / (queried + floor_light);
+    // Bounded, for a pixel whose query differs from its neighbours' by more than light does
+    // within two pixels on one surface (a probe's visibility edge).
+    let detail = clamp((arriving_luminance(query, diffuse) + floor_light) / (queried + floor_light), 0.25, 4.0);
     textureStore(indirect, id.xy, vec4<f32>(diffuse * light * detail, 1.0));
 }

@@ -1,5 +1,5 @@
-// ddgi: the light a ray's hit sends back along the ray, for the probe rays (ddgi/shade) and the
-// final gather at the pixels (ddgi/resolve): punctual light with shadow rays, one emitter
+// ddgi: the light a ray's hit sends back along the ray, for the probe rays (ddgi/shade), the
+// final gather at the pixels (ddgi/gather) and the reflections' rays (ddgi/reflect): punctual light with shadow rays, one emitter
 // sample, and the probes' irradiance — read at the hit, or one traced bounce further on
 // (`traced_light`), and traced on past hits the probes are blind to (`probes_blind_to`).
 // Emission is left out: the frame's direct pass samples every emitter already.
@@ -58,7 +58,9 @@ fn hit_probe_light(s: Surface, wo: vec3<f32>, read: ProbeRead, bounces: u32, rng
 // What a surface sends back along wo of the probes' light, `read` about its normal: its
 // diffuse layer's share, and where its specular layer reflects more than its diffuse one
 // (diffuse_share under a half: metals, dark glossy dielectrics) that layer's share of the
-// probes' light about the mirror direction, as a rough reflector sees the room. A metal floor
+// probes' light about the mirror direction, as a rough reflector sees the room. (With several
+// volumes a traced bounce's hit is read later, as a Lambertian stand-in: it keeps no such
+// share.) A metal floor
 // a ray meets then reflects the lit walls instead of reading black (the glossy-floor Cornell
 // box's gather read its walls too dark: `quality` 0.127 against `balanced`'s 0.103, H200,
 // docs/notes/light-quality.md). Surfaces mostly diffuse keep their specular layer's small
@@ -67,7 +69,9 @@ fn probes_reflected(s: Surface, wo: vec3<f32>, read: ProbeRead) -> vec3<f32> {
     var light = diffuse_weight(s) * read.irradiance;
     if diffuse_share(s) < 0.5 {
         let mirror = reflect(-wo, s.normal);
-        light += f0_of(s) * ddgi_irradiance(s.position, mirror, wo).irradiance;
+        // About the mirror direction, the probes weighed about the surface's normal, so that
+        // none behind the surface counts.
+        light += f0_of(s) * ddgi_irradiance_along(s.position, s.normal, mirror, wo).irradiance;
     }
     return light;
 }

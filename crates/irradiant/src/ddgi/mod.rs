@@ -11,8 +11,8 @@
 //! light into the frame's, finest volume first. With the final gather (`gather.rays_per_pixel`)
 //! `ddgi/gather` traces rays from the pixels (or one pixel of each 2×2 block) whose hits the
 //! probes light, `ddgi/temporal` averages them over frames, `ddgi/gather_filter` across the
-//! image and `ddgi/gather_upsample` writes them over the query (gather.rs). The pipelines are compiled once (pipelines.rs) and shared by
-//! every volume ([`DdgiVolume`]).
+//! image and `ddgi/gather_upsample` writes them over the query (gather.rs). The pipelines are
+//! compiled once (pipelines.rs) and shared by every volume ([`DdgiVolume`]).
 
 mod cascades;
 pub mod constants;
@@ -265,7 +265,7 @@ impl Ddgi {
     }
 
     /// Records the diffuse light into the frame's `indirect`: every volume's ddgi/resolve
-    /// (finest first), and the final gather's mean and filter.
+    /// (finest first), and the final gather's passes (gather.rs).
     pub fn resolve_diffuse(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,

@@ -90,7 +90,6 @@ impl DdgiPipelines {
                     .constants(extra);
                 crate::shaders::pass(ctx, &desc).map_err(RenderError::from)
             };
-        // The light at a pixel: the query, or the final gather (resolve.wgsl's `pixel_light`).
         // ddgi/resolve queries; with the final gather ddgi/gather traces.
         let gather_rays = settings.gather.rays_per_pixel;
         let gather_constants = vec![

@@ -309,11 +309,11 @@ pub struct DdgiGatherSettings {
     /// goes and edges and contact shadows stay. More reach farther, against a pass over the
     /// image each and the blur of detail finer than the noise.
     pub filter_passes: u32,
-    /// The gather, its mean and its filter on a half-size image: one ray from the top-left
+    /// The gather, its mean and its filter on a half-size image: the rays from the top-left
     /// pixel of each 2×2 block, brought to every pixel by ddgi/gather_upsample (joint
-    /// bilateral, times the query's detail within the block). A quarter of the rays and of
-    /// the mean's and filter's passes, against light finer than two pixels and thin objects
-    /// no block's pixel lies on, which keep the query.
+    /// bilateral, times the query's detail within the block). A quarter of the rays, and a
+    /// third of the filter's time (Sibenik at 1080p, H200), against light finer than two pixels
+    /// and thin objects no block's pixel lies on, which keep the query.
     #[serde(default)]
     pub half_resolution: bool,
 }

@@ -52,7 +52,9 @@ fn same_surface_texel_scaled(pixel: vec2<u32>, n: vec3<f32>, geometry: texture_2
     if frame.history_frames == 0u || any(previous < vec2<f32>(0.0)) || any(previous >= frame_size()) {
         return vec2<i32>(-1);
     }
-    let p = vec2<i32>(previous) / i32(scale);
+    // The texel whose pixel (its block's top-left, scaled_pixel) lies nearest.
+    let last = vec2<i32>(scaled_size(scale)) - 1;
+    let p = clamp(vec2<i32>(floor((previous - 0.5) / f32(scale) + 0.5)), vec2<i32>(0), last);
     let x = gbuffer_position(pixel, gbuffer_depth_at(pixel));
     if !same_surface(textureLoad(geometry, p, 0), x, n, HISTORY_DEPTH_TOLERANCE, HISTORY_NORMAL_TOLERANCE) {
         return vec2<i32>(-1);
