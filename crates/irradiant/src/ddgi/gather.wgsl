@@ -14,8 +14,6 @@
 @group(2) @binding(11) var gathered: texture_storage_2d<rgba32float, read_write>;
 @group(2) @binding(12) var gather_query: texture_storage_2d<rgba32float, write>;
 
-const BLEND_DIFFUSE_WEIGHT: bool = false;
-
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) tile: vec3<u32>) {
     if any(id.xy >= scaled_size(GATHER_SCALE)) {

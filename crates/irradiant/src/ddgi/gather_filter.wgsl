@@ -120,10 +120,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             weights += w;
         }
     }
-    let light = sum / weights;
-    if FILTER_LAST == 1u {
-        textureStore(filter_target, pixel, vec4<f32>(light, 1.0));
-    } else {
-        textureStore(filter_target, pixel, vec4<f32>(light, sum_variance / (weights * weights)));
-    }
+    // Every pass writes (light, variance): the next pass reads both, ddgi/gather_upsample the
+    // light.
+    textureStore(filter_target, pixel, vec4<f32>(sum / weights, sum_variance / (weights * weights)));
 }

@@ -191,10 +191,23 @@ impl DdgiPipelines {
                 include_str!("blend_distance.wgsl"),
                 blend_constants(v.distance_texels),
             )?,
-            resolve: compile("ddgi/resolve", &resolve_source, vec![])?,
+            // resolve_blend.wgsl's switch: the resolve writes the light after the diffuse
+            // weight, the gather keeps the light arriving.
+            resolve: compile(
+                "ddgi/resolve",
+                &resolve_source,
+                vec![("BLEND_DIFFUSE_WEIGHT", "true".into())],
+            )?,
             gather: if gather_rays > 0 {
                 Some((
-                    compile("ddgi/gather", &gather_source, gather_constants)?,
+                    compile(
+                        "ddgi/gather",
+                        &gather_source,
+                        [("BLEND_DIFFUSE_WEIGHT", "false".into())]
+                            .into_iter()
+                            .chain(gather_constants)
+                            .collect(),
+                    )?,
                     compile_plain(
                         "ddgi/gather_upsample",
                         include_str!("gather_upsample.wgsl"),
@@ -224,7 +237,6 @@ impl DdgiPipelines {
                                 // 1, 2, 4, …: each pass reaches twice as far with the same 3×3 taps.
                                 ("FILTER_STEP", format!("{}u", 1u32 << k)),
                                 ("FILTER_FIRST", format!("{}u", (k == 0) as u32)),
-                                ("FILTER_LAST", format!("{}u", (k + 1 == passes) as u32)),
                             ],
                         )
                     })

@@ -7,7 +7,6 @@
 // (resolve_blend.wgsl).
 
 @group(2) @binding(10) var indirect: texture_storage_2d<rgba32float, read_write>;
-const BLEND_DIFFUSE_WEIGHT: bool = true;
 
 @compute @workgroup_size(8, 8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local_index: u32, @builtin(workgroup_id) tile: vec3<u32>) {
