@@ -50,37 +50,57 @@ fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32
 // that overflows where BLIND_BOUNCES is 0.
 fn hit_probe_light(s: Surface, wo: vec3<f32>, read: ProbeRead, bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
     if probes_blind_to(read, bounces) {
-        return reflected_from_a_traced_ray(s, bounces - 1u, rng);
+        return reflected_from_a_traced_ray(s, wo, bounces - 1u, rng);
     }
     return probes_reflected(s, wo, read);
 }
 
 // What a surface sends back along wo of the probes' light, `read` about its normal: its
-// diffuse layer's share, and where its specular layer reflects more than its diffuse one
-// (diffuse_share under a half: metals, dark glossy dielectrics) that layer's share of the
-// probes' light about the mirror direction, as a rough reflector sees the room. (With several
-// volumes a traced bounce's hit is read later, as a Lambertian stand-in: it keeps no such
-// share.) A metal floor
-// a ray meets then reflects the lit walls instead of reading black (the glossy-floor Cornell
-// box's gather read its walls too dark: `quality` 0.127 against `balanced`'s 0.103, H200,
-// docs/notes/light-quality.md). Surfaces mostly diffuse keep their specular layer's small
-// share out, and a query.
+// diffuse layer's share and its specular layer's (probes_mirrored).
 fn probes_reflected(s: Surface, wo: vec3<f32>, read: ProbeRead) -> vec3<f32> {
-    var light = diffuse_weight(s) * read.irradiance;
-    if diffuse_share(s) < 0.5 {
-        let mirror = reflect(-wo, s.normal);
-        // About the mirror direction, the probes weighed about the surface's normal, so that
-        // none behind the surface counts.
-        light += f0_of(s) * ddgi_irradiance_along(s.position, s.normal, mirror, wo).irradiance;
-    }
-    return light;
+    return diffuse_weight(s) * read.irradiance + probes_mirrored(s, wo);
 }
 
-// What a Lambertian surface reflects of the light one cosine-distributed ray traced on from it
-// brings back (traced_light, with `blind_bounces` of its own).
-fn reflected_from_a_traced_ray(s: Surface, blind_bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
+// Where a surface's specular layer reflects more than its diffuse one (diffuse_share under a
+// half: metals, dark glossy dielectrics), that layer's share of the probes' light about the
+// mirror direction, as a rough reflector sees the room; elsewhere none (a mostly diffuse
+// surface's small specular share is left out, and a query). A metal floor a ray meets then
+// reflects the lit walls instead of reading black (the glossy-floor Cornell box's gather read
+// its walls too dark: `quality` 0.127 against `balanced`'s 0.103, H200,
+// docs/notes/light-quality.md). A ray traced on from the surface (the traced bounce, the blind
+// bounces) stands for its diffuse layer only, so it adds this too. (With several volumes a
+// traced bounce's hit is read later, as a Lambertian stand-in: it keeps no such share.)
+fn probes_mirrored(s: Surface, wo: vec3<f32>) -> vec3<f32> {
+    if diffuse_share(s) >= 0.5 {
+        return vec3<f32>(0.0);
+    }
+    let mirror = reflect(-wo, s.normal);
+    // About the mirror direction, the probes weighed about the surface's normal, so that none
+    // behind the surface counts.
+    return f0_of(s) * ddgi_irradiance_along(s.position, s.normal, mirror, wo).irradiance;
+}
+
+// What a surface reflects of the light one cosine-distributed ray traced on from it brings
+// back (traced_light, with `blind_bounces` of its own), its specular layer's share from the
+// probes (probes_mirrored).
+fn reflected_from_a_traced_ray(s: Surface, wo: vec3<f32>, blind_bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
     let origin = offset_ray(s.position, s.geometric_normal);
-    return diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), blind_bounces, HIT_EMITTER_CANDIDATES, rng);
+    return diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), blind_bounces, HIT_EMITTER_CANDIDATES, rng) + probes_mirrored(s, wo);
+}
+
+// A traced ray's hit's emitter light: one emitter sample, and where the hit's specular layer
+// reflects more than its diffuse one (diffuse_share under a half) a BRDF-sampled ray as well,
+// the two weighed by MIS (emitter_light_both_ways). A gather ray from a wall that meets a
+// polished floor sees the lamp's reflection there through the floor's sharp lobe, which the
+// emitter sample seldom finds: the rare sample that does was a firefly in the pixel's mean for
+// `history_frames`, and the gather's clamp cut it (the glossy-floor Cornell box's `quality` read
+// darker than `balanced`, docs/notes/light-quality.md). The probe rays' hits keep the one
+// sample: each probe averages hundreds of rays over its hysteresis.
+fn traced_hit_emitter_light(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
+    if scene_info.emitter_count == 0u || diffuse_share(s) >= 0.5 {
+        return hit_emitter_light(s, wo, candidates, rng);
+    }
+    return emitter_light_both_ways(s, wo, candidates, rng);
 }
 
 // The radiance a ray from `origin` along `dir` brings back: the sky where it leaves the scene,
@@ -100,11 +120,12 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, candidate
         }
         let h = surface_at(ray_origin, ray_dir, hit.t, hit.triangle, hit.instance, hit.bary);
         let wo = -ray_dir;
-        light += throughput * (hit_punctual_light(h, wo, rand(rng)) + hit_emitter_light(h, wo, candidates, rng));
+        light += throughput * (hit_punctual_light(h, wo, rand(rng)) + traced_hit_emitter_light(h, wo, candidates, rng));
         let read = ddgi_irradiance_seen_from(h.position, h.normal, wo, hit.t);
         if !probes_blind_to(read, blind_bounces - bounce) {
             return light + throughput * probes_reflected(h, wo, read);
         }
+        light += throughput * probes_mirrored(h, wo);
         throughput *= diffuse_weight(h);
         ray_origin = offset_ray(h.position, h.geometric_normal);
         ray_dir = cosine_direction(h.normal, rng);
@@ -117,7 +138,7 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, candidate
 // hit's own surroundings, not the probes', decide its light: surfaces by an opening narrower
 // than the probe spacing see what lies beyond it.
 fn hit_emitter_and_traced_bounce(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
-    return hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng) + reflected_from_a_traced_ray(s, BLIND_BOUNCES, rng);
+    return hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng) + reflected_from_a_traced_ray(s, wo, BLIND_BOUNCES, rng);
 }
 
 // The traced bounce with the probes' light at the traced ray's hit left to ddgi/between_volumes

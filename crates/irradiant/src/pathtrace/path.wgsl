@@ -95,8 +95,7 @@ fn path_step_at(path: ptr<function, PathState>, hit: Hit, bounce: u32, max_bounc
         let brdf_pdf_prev = (*path).brdf_pdf_prev;
         if brdf_pdf_prev > 0.0 && scene_info.emitter_count > 0u && light_sampling != LIGHT_SAMPLING_BRDF {
             let cos_light = abs(dot(s.geometric_normal, dir));
-            let pdf_area = emitter_area_pdf(emitter_cell(origin), hit_emitter(hit.instance, hit.triangle));
-            let light_pdf = pdf_area * hit.t * hit.t / max(cos_light, 1e-8);
+            let light_pdf = emitter_solid_angle_pdf(origin, hit_emitter(hit.instance, hit.triangle), hit.t, cos_light);
             w = select(power_heuristic(brdf_pdf_prev, light_pdf), 0.0, light_sampling == LIGHT_SAMPLING_EMITTERS);
         }
         radiance += s.emission * w;
@@ -151,10 +150,8 @@ fn path_step_at(path: ptr<function, PathState>, hit: Hit, bounce: u32, max_bounc
 }
 
 // The emitters' light at s by next-event estimation: RIS over HIT_EMITTER_CANDIDATES points the
-// emitter grid picks, one shadow ray, weighted against BRDF sampling. The resampled pdf has no
-// closed form, so the MIS weights take the grid's pdf for the light strategy, here and at a
-// BRDF ray's emitter hit alike: weights that sum to one for every direction keep the estimator
-// unbiased whatever pdf they are built on, and the sample's own weight is the reservoir's W.
+// emitter grid picks, one shadow ray, weighted against BRDF sampling (the light strategy's pdf:
+// emitter_solid_angle_pdf, here and at a BRDF ray's emitter hit alike).
 // What it costs where the weights fit badly, and why p̂ over an estimate of its integral was
 // no better: docs/notes/light-quality.md, 2026-11-27.
 fn emitter_sample_light(s: Surface, wo: vec3<f32>, origin: vec3<f32>, light_sampling: u32, rng: ptr<function, u32>) -> vec3<f32> {
@@ -189,7 +186,7 @@ fn emitter_sample_unshadowed(s: Surface, wo: vec3<f32>, origin: vec3<f32>, light
     }
     var w = 1.0;
     if light_sampling != LIGHT_SAMPLING_EMITTERS {
-        let light_pdf = emitter_area_pdf(emitter_cell(origin), r.emitter) * out.light.distance * out.light.distance / out.light.cos_light;
+        let light_pdf = emitter_solid_angle_pdf(origin, r.emitter, out.light.distance, out.light.cos_light);
         w = power_heuristic(light_pdf, brdf_pdf(s, wo, out.light.wi));
     }
     out.light.light = out.light.light * r.w * w;

@@ -198,6 +198,50 @@ fn unpack_reservoir(texel: vec4<u32>) -> Reservoir {
     return r;
 }
 
+// The solid-angle pdf with which the emitter grid's pick and a uniform point on the triangle
+// find emitter `index` `distance` from `origin`, seen at `cos_light` there: the light
+// strategy's pdf in the MIS weights against BRDF sampling. The resampled pdf has no closed
+// form; weights that sum to one for every direction keep an estimator unbiased whatever pdf
+// they are built on, and a sample's own weight stays the reservoir's W.
+fn emitter_solid_angle_pdf(origin: vec3<f32>, index: u32, distance: f32, cos_light: f32) -> f32 {
+    return emitter_area_pdf(emitter_cell(origin), index) * distance * distance / max(cos_light, 1e-8);
+}
+
+// The emitters' light at s from both strategies, each weighed against the other by the power
+// heuristic (the path tracer's next-event estimation and its BRDF ray, for one bounce): RIS
+// over `candidates` with one shadow ray, and one BRDF-sampled ray that counts the emitter it
+// meets. For a surface whose sharp specular lobe sees a small part of an emitter: the grid's
+// picks, blind to the BRDF, seldom fall there, and one that does brings hundreds of times the
+// mean; the BRDF ray finds it every time.
+fn emitter_light_both_ways(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
+    var light = vec3<f32>(0.0);
+    let origin = shadow_origin(s);
+    let r = resample_emitters(s, origin, candidates, rng);
+    if r.emitter < scene_info.emitter_count && r.w > 0.0 {
+        let e = emitter_point(r.emitter, r.bary);
+        let reach = emitter_reach(s, wo, origin, e);
+        if any(reach.light != vec3<f32>(0.0)) && emitter_visible(origin, reach.wi, reach.distance, e) {
+            let light_pdf = emitter_solid_angle_pdf(origin, r.emitter, reach.distance, reach.cos_light);
+            light += reach.light * r.w * power_heuristic(light_pdf, brdf_pdf(s, wo, reach.wi));
+        }
+    }
+    let b = brdf_sample(s, wo, rand(rng), rand2(rng));
+    if b.pdf <= 0.0 || dot(b.dir, s.geometric_normal) <= 0.0 {
+        return light;
+    }
+    let hit = trace_ray(origin, b.dir, RAY_FAR, false);
+    if hit.triangle == INVALID {
+        return light;
+    }
+    let h = surface_at(origin, b.dir, hit.t, hit.triangle, hit.instance, hit.bary);
+    if all(h.emission == vec3<f32>(0.0)) {
+        return light;
+    }
+    let cos_light = abs(dot(h.geometric_normal, b.dir));
+    let light_pdf = emitter_solid_angle_pdf(origin, hit_emitter(hit.instance, hit.triangle), hit.t, cos_light);
+    return light + h.emission * b.weight * power_heuristic(b.pdf, light_pdf);
+}
+
 // An unbiased estimate of the direct light from every emitter at a ray's hit: RIS over
 // HIT_EMITTER_CANDIDATES candidates and one shadow ray.
 fn emitter_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
