@@ -3,9 +3,12 @@
 // is noise in every pixel (two-rooms: eight times the rays took `quality`'s relative MSE from
 // 0.0175 to 0.0077, docs/notes/light-quality.md). Each pass is a 3×3 à-trous step (Dammertz et
 // al. 2010) at FILTER_STEP pixels between taps; a neighbour counts where it lies on the
-// pixel's plane, faces its way and reads a light within a few of the pixel's standard errors,
-// the error of each pixel's mean estimated from its gathers' second moment, as SVGF does
-// (Schied et al. 2017). The filter works on irradiance, before the albedo: texture detail is
+// pixel's plane, faces its way and reads a light within a few standard errors of the
+// difference between the two, the error of each pixel's mean estimated from its gathers'
+// second moment, as SVGF does (Schied et al. 2017). The difference's error is both pixels'
+// (SVGF takes the centre's alone): else a pixel whose mean holds one rare bright gather takes
+// its quiet neighbours while they refuse it, and the light of rare bright paths is lost (the
+// glossy-floor Cornell box's ceiling, lit by the lamp through the metal floor, read 10 % dark). The filter works on irradiance, before the albedo: texture detail is
 // never blurred. The history keeps the unfiltered mean, so nothing the filter does stays.
 //
 // FILTER_FIRST: the source is this frame's mean (rgb, gathers in a) and its moment; later
@@ -28,8 +31,8 @@
 fn kernel(taps_out: i32) -> f32 {
     return select(0.25, 0.5, taps_out == 0);
 }
-// How many of the pixel's standard errors a neighbour's light may differ by and still count
-// fully (SVGF's σ_l).
+// How many standard errors of the difference between a pixel's light and a neighbour's the two
+// may differ by and still count fully (SVGF's σ_l).
 const LIGHT_SIGMA: f32 = 2.0;
 
 // The light at a pixel and the variance of that light as an estimate of the truth.
@@ -93,7 +96,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let x = gbuffer_position(surface_pixel, depth);
     let n = gbuffer_normal_at(surface_pixel);
-    let error = sqrt(smoothed_variance(pixel, here.variance, size));
+    let variance = smoothed_variance(pixel, here.variance, size);
     let l = luminance(here.rgb);
     var sum = vec3<f32>(0.0);
     var sum_variance = 0.0;
@@ -112,6 +115,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let there = source_light(q);
             var w = kernel(abs(tx)) * kernel(abs(ty));
             if tx != 0 || ty != 0 {
+                let error = sqrt(variance + there.variance);
                 let apart = abs(luminance(there.rgb) - l) / (LIGHT_SIGMA * error + 1e-9 + 1e-3 * l);
                 w *= surface_agreement(x, n, q_pixel, q_depth) * exp(-apart);
             }
