@@ -1,7 +1,9 @@
 // ddgi: the light a ray's hit sends back along the ray, for the probe rays (ddgi/shade), the
-// final gather at the pixels (ddgi/gather) and the reflections' rays (ddgi/reflect): punctual light with shadow rays, one emitter
-// sample, and the probes' irradiance — read at the hit, or one traced bounce further on
-// (`traced_light`), and traced on past hits the probes are blind to (`probes_blind_to`).
+// final gather at the pixels (ddgi/gather) and the reflections' rays (ddgi/reflect): punctual
+// light with shadow rays, the emitters' (one sample, and at a traced ray's glossy hit a
+// BRDF-sampled ray too: traced_hit_emitter_light), and the probes' irradiance — read at the
+// hit, or one traced bounce further on (`traced_light`), and traced on past hits the probes are
+// blind to (`probes_blind_to`).
 // Emission is left out: the frame's direct pass samples every emitter already.
 #import ddgi_query
 #import ddgi_rays
@@ -50,7 +52,7 @@ fn hit_emitter_and_probe_light(s: Surface, wo: vec3<f32>, rng: ptr<function, u32
 // that overflows where BLIND_BOUNCES is 0.
 fn hit_probe_light(s: Surface, wo: vec3<f32>, read: ProbeRead, bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
     if probes_blind_to(read, bounces) {
-        return reflected_from_a_traced_ray(s, wo, bounces - 1u, rng);
+        return reflected_from_a_traced_ray(s, bounces - 1u, rng);
     }
     return probes_reflected(s, wo, read);
 }
@@ -67,9 +69,11 @@ fn probes_reflected(s: Surface, wo: vec3<f32>, read: ProbeRead) -> vec3<f32> {
 // surface's small specular share is left out, and a query). A metal floor a ray meets then
 // reflects the lit walls instead of reading black (the glossy-floor Cornell box's gather read
 // its walls too dark: `quality` 0.127 against `balanced`'s 0.103, H200,
-// docs/notes/light-quality.md). A ray traced on from the surface (the traced bounce, the blind
-// bounces) stands for its diffuse layer only, so it adds this too. (With several volumes a
-// traced bounce's hit is read later, as a Lambertian stand-in: it keeps no such share.)
+// docs/notes/light-quality.md). The traced bounce's ray stands for its hit's diffuse layer
+// only, so that hit adds this too. A hit the probes are blind to does not: it would read the
+// probes that cannot see it (the blind bounces trace its diffuse layer on, and its specular
+// layer's share of the room is left out). With several volumes a traced bounce's hit is read
+// later, as a Lambertian stand-in, and keeps no such share.
 fn probes_mirrored(s: Surface, wo: vec3<f32>) -> vec3<f32> {
     if diffuse_share(s) >= 0.5 {
         return vec3<f32>(0.0);
@@ -80,12 +84,11 @@ fn probes_mirrored(s: Surface, wo: vec3<f32>) -> vec3<f32> {
     return f0_of(s) * ddgi_irradiance_along(s.position, s.normal, mirror, wo).irradiance;
 }
 
-// What a surface reflects of the light one cosine-distributed ray traced on from it brings
-// back (traced_light, with `blind_bounces` of its own), its specular layer's share from the
-// probes (probes_mirrored).
-fn reflected_from_a_traced_ray(s: Surface, wo: vec3<f32>, blind_bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
+// What a Lambertian surface reflects of the light one cosine-distributed ray traced on from it
+// brings back (traced_light, with `blind_bounces` of its own).
+fn reflected_from_a_traced_ray(s: Surface, blind_bounces: u32, rng: ptr<function, u32>) -> vec3<f32> {
     let origin = offset_ray(s.position, s.geometric_normal);
-    return diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), blind_bounces, HIT_EMITTER_CANDIDATES, rng) + probes_mirrored(s, wo);
+    return diffuse_weight(s) * traced_light(origin, cosine_direction(s.normal, rng), blind_bounces, HIT_EMITTER_CANDIDATES, rng);
 }
 
 // A traced ray's hit's emitter light: one emitter sample, and where the hit's specular layer
@@ -94,8 +97,9 @@ fn reflected_from_a_traced_ray(s: Surface, wo: vec3<f32>, blind_bounces: u32, rn
 // polished floor sees the lamp's reflection there through the floor's sharp lobe, which the
 // emitter sample seldom finds: the rare sample that does was a firefly in the pixel's mean for
 // `history_frames`, and the gather's clamp cut it (the glossy-floor Cornell box's `quality` read
-// darker than `balanced`, docs/notes/light-quality.md). The probe rays' hits keep the one
-// sample: each probe averages hundreds of rays over its hysteresis.
+// darker than `balanced`, docs/notes/light-quality.md). A probe ray's own hit keeps the one
+// sample, as each probe averages hundreds of rays over its hysteresis; the rays the traced and
+// blind bounces trace on from it are traced rays, and pay the BRDF ray at their glossy hits.
 fn traced_hit_emitter_light(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
     if scene_info.emitter_count == 0u || diffuse_share(s) >= 0.5 {
         return hit_emitter_light(s, wo, candidates, rng);
@@ -104,7 +108,8 @@ fn traced_hit_emitter_light(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr
 }
 
 // The radiance a ray from `origin` along `dir` brings back: the sky where it leaves the scene,
-// else its hit's direct light (its emitter sample kept from `candidates`) and the probes seen
+// else its hit's direct light (its emitters' from `candidates`: traced_hit_emitter_light) and
+// the probes seen
 // from the ray's length away; where they are
 // blind to the hit, the ray goes on, cosine-distributed, at most `blind_bounces` times. A ray
 // that meets a back face is shaded from that side, as the path tracer does.
@@ -125,7 +130,6 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, candidate
         if !probes_blind_to(read, blind_bounces - bounce) {
             return light + throughput * probes_reflected(h, wo, read);
         }
-        light += throughput * probes_mirrored(h, wo);
         throughput *= diffuse_weight(h);
         ray_origin = offset_ray(h.position, h.geometric_normal);
         ray_dir = cosine_direction(h.normal, rng);
@@ -134,11 +138,12 @@ fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, candidate
 }
 
 // The traced bounce (DdgiUpdateSettings::traced_bounce): one emitter sample and the light one
-// cosine-distributed ray from the hit brings back, which reads the probes where it lands. The
-// hit's own surroundings, not the probes', decide its light: surfaces by an opening narrower
+// cosine-distributed ray from the hit brings back, which reads the probes where it lands, and
+// the hit's specular layer's share of the probes' light (probes_mirrored). The hit's own
+// surroundings, not the probes', decide its diffuse light: surfaces by an opening narrower
 // than the probe spacing see what lies beyond it.
 fn hit_emitter_and_traced_bounce(s: Surface, wo: vec3<f32>, rng: ptr<function, u32>) -> vec3<f32> {
-    return hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng) + reflected_from_a_traced_ray(s, wo, BLIND_BOUNCES, rng);
+    return hit_emitter_light(s, wo, HIT_EMITTER_CANDIDATES, rng) + reflected_from_a_traced_ray(s, BLIND_BOUNCES, rng) + probes_mirrored(s, wo);
 }
 
 // The traced bounce with the probes' light at the traced ray's hit left to ddgi/between_volumes

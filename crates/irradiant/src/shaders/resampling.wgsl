@@ -204,6 +204,10 @@ fn unpack_reservoir(texel: vec4<u32>) -> Reservoir {
 // form; weights that sum to one for every direction keep an estimator unbiased whatever pdf
 // they are built on, and a sample's own weight stays the reservoir's W.
 fn emitter_solid_angle_pdf(origin: vec3<f32>, index: u32, distance: f32, cos_light: f32) -> f32 {
+    // No grid (every emitter removed): no light strategy, so the BRDF ray's weight is 1.
+    if scene_info.grid_clusters == 0u {
+        return 0.0;
+    }
     return emitter_area_pdf(emitter_cell(origin), index) * distance * distance / max(cos_light, 1e-8);
 }
 
@@ -212,7 +216,7 @@ fn emitter_solid_angle_pdf(origin: vec3<f32>, index: u32, distance: f32, cos_lig
 // over `candidates` with one shadow ray, and one BRDF-sampled ray that counts the emitter it
 // meets. For a surface whose sharp specular lobe sees a small part of an emitter: the grid's
 // picks, blind to the BRDF, seldom fall there, and one that does brings hundreds of times the
-// mean; the BRDF ray finds it every time.
+// mean; the BRDF ray falls there as often as the lobe points there.
 fn emitter_light_both_ways(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
     var light = vec3<f32>(0.0);
     let origin = shadow_origin(s);
