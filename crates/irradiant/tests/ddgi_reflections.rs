@@ -24,22 +24,10 @@ fn a_mirror_reflects_the_lit_room() {
     // The mirror's pixels, those at its silhouette left out (the path tracer's pixels there
     // mix the mirror with what lies behind it): surfaces that reflect no diffuse light and emit
     // none, with four such neighbours.
-    let is_mirror: Vec<bool> = with
-        .gbuffer
-        .iter()
-        .map(|g| g.depth >= 0.0 && g.diffuse.iter().all(|&c| c < 0.01) && g.emission == [0.0; 3])
-        .collect();
-    let at = |x: i64, y: i64| {
-        (0..width as i64).contains(&x)
-            && (0..height as i64).contains(&y)
-            && is_mirror[(y * width as i64 + x) as usize]
-    };
-    let mirror: Vec<bool> = (0..(width * height) as i64)
-        .map(|i| {
-            let (x, y) = (i % width as i64, i / width as i64);
-            at(x, y) && at(x - 1, y) && at(x + 1, y) && at(x, y - 1) && at(x, y + 1)
-        })
-        .collect();
+    let mirror = interior(width as usize, height as usize, |i| {
+        let g = &with.gbuffer[i];
+        g.depth >= 0.0 && g.diffuse.iter().all(|&c| c < 0.01) && g.emission == [0.0; 3]
+    });
     assert!(
         mirror.iter().filter(|&&m| m).count() > 100,
         "the camera sees the mirror"
@@ -119,32 +107,18 @@ fn the_room_a_metal_floor_mirrors_lights_the_ceiling() {
     // The ceiling's pixels whose four neighbours are ceiling too: the path tracer's pixels at
     // the lamp's edge take some of its emission.
     let (width, height) = (size.0 as usize, size.1 as usize);
-    let on_ceiling = |x: usize, y: usize| {
-        let g = &query.gbuffer[y * width + x];
+    let ceiling = interior(width, height, |i| {
+        let g = &query.gbuffer[i];
         g.depth >= 0.0 && g.normal[1] < -0.9 && g.emission == [0.0; 3]
-    };
-    let ceiling: Vec<bool> = (0..width * height)
-        .map(|i| {
-            let (x, y) = (i % width, i / width);
-            (1..width - 1).contains(&x)
-                && (1..height - 1).contains(&y)
-                && [(x, y), (x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)]
-                    .iter()
-                    .all(|&(x, y)| on_ceiling(x, y))
-        })
-        .collect();
+    });
     let truth = masked_mean(&path_traced_indirect(&reference, &query), &ceiling);
     // The mean difference between horizontally neighbouring ceiling pixels.
-    let speckle = (0..width * height - 1)
+    let light = |i: usize| pixel_luminance(&gathered.indirect.pixels[i]);
+    let steps: Vec<f64> = (0..width * height - 1)
         .filter(|&i| ceiling[i] && ceiling[i + 1])
-        .map(|i| {
-            let light = |i: usize| pixel_luminance(&gathered.indirect.pixels[i]);
-            (light(i) - light(i + 1)).abs()
-        })
-        .sum::<f64>()
-        / (0..width * height - 1)
-            .filter(|&i| ceiling[i] && ceiling[i + 1])
-            .count() as f64;
+        .map(|i| (light(i) - light(i + 1)).abs())
+        .collect();
+    let speckle = steps.iter().sum::<f64>() / steps.len() as f64;
     let [query, traced, gathered, filtered] =
         [&query, &traced, &gathered, &filtered].map(|f| masked_mean(&f.indirect, &ceiling));
     eprintln!(

@@ -109,10 +109,9 @@ fn traced_hit_emitter_light(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr
 
 // The radiance a ray from `origin` along `dir` brings back: the sky where it leaves the scene,
 // else its hit's direct light (its emitters' from `candidates`: traced_hit_emitter_light) and
-// the probes seen
-// from the ray's length away; where they are
-// blind to the hit, the ray goes on, cosine-distributed, at most `blind_bounces` times. A ray
-// that meets a back face is shaded from that side, as the path tracer does.
+// the probes seen from the ray's length away; where they are blind to the hit, the ray goes on,
+// cosine-distributed, at most `blind_bounces` times. A ray that meets a back face is shaded
+// from that side, as the path tracer does.
 fn traced_light(origin: vec3<f32>, dir: vec3<f32>, blind_bounces: u32, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
     var ray_origin = origin;
     var ray_dir = dir;

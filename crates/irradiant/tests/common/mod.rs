@@ -351,3 +351,19 @@ pub fn assert_cornell_box_probes_left_through_a_side(
         );
     }
 }
+
+/// The pixels of a `width`-wide image where `inside` holds at the pixel and its four
+/// neighbours: a region without its edge, where a path tracer's pixels mix it with what lies
+/// beside it.
+pub fn interior(width: usize, height: usize, inside: impl Fn(usize) -> bool) -> Vec<bool> {
+    (0..width * height)
+        .map(|i| {
+            let (x, y) = (i % width, i / width);
+            (1..width.saturating_sub(1)).contains(&x)
+                && (1..height.saturating_sub(1)).contains(&y)
+                && [i, i - 1, i + 1, i - width, i + width]
+                    .into_iter()
+                    .all(&inside)
+        })
+        .collect()
+}
