@@ -6,6 +6,12 @@
 // over frames.
 #import ddgi_hit_light
 
+// The luminance of the probes' light arriving at this thread's pixel, every volume's query as
+// ddgi/resolve wrote it (arriving_query): ddgi/gather's main sets it before blended_light, so
+// that the firefly bound costs no second query of the probes where the surface reflects enough
+// to tell that light from its resolved colour.
+var<private> probes_light_here: f32;
+
 fn pixel_light(s: Surface, pixel: vec2<u32>, tile: vec2<u32>, local_index: u32) -> vec3<f32> {
     bvh_thread(local_index);
     return gathered_light(s, pixel);
@@ -29,8 +35,11 @@ fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
     // which a single ray's light is a firefly.
     var bound = 3.0e38;
     if GATHER_FIREFLY_CLAMP > 0.0 {
-        let probes = ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance;
-        bound = GATHER_FIREFLY_CLAMP * max(luminance(probes), 1e-4);
+        var probes = probes_light_here;
+        if luminance(diffuse_weight(s)) <= DARKEST_DIFFUSE {
+            probes = luminance(ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance);
+        }
+        bound = GATHER_FIREFLY_CLAMP * max(probes, 1e-4);
     }
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < GATHER_RAYS; i++) {
