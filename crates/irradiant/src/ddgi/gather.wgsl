@@ -22,17 +22,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     let texel = vec2<i32>(id.xy);
     let pixel = scaled_pixel(id.xy, GATHER_SCALE);
     let traces = gather_tile_traces(tile.xy, frame.frame_index);
+    if volume.volume_index > 0u && !traces {
+        return;
+    }
     let query = arriving_query(pixel);
-    probes_light_here = query.a;
     if volume.volume_index == 0u {
         textureStore(gather_query, texel, query);
         if !traces {
             textureStore(gathered, texel, vec4<f32>(query.rgb, 1.0));
+            return;
         }
     }
-    if !traces {
-        return;
-    }
+    probes_light_here = query.a;
     var sum = vec4<f32>(0.0);
     if volume.volume_index > 0u {
         sum = textureLoad(gathered, texel);
