@@ -115,7 +115,7 @@ fn path_step_at(path: ptr<function, PathState>, hit: Hit, bounce: u32, max_bounc
         radiance += direct_punctual(s, wo);
     }
     if samples_emitters {
-        let e = emitter_sample_unshadowed(s, wo, origin_next, light_sampling, &rng);
+        let e = emitter_sample_unshadowed(s, wo, origin_next, HIT_EMITTER_CANDIDATES, light_sampling != LIGHT_SAMPLING_EMITTERS, &rng);
         if any(e.light.light != vec3<f32>(0.0)) {
             if defers {
                 let margin = e.light.distance * EMITTER_POINT_MARGIN;
@@ -147,50 +147,6 @@ fn path_step_at(path: ptr<function, PathState>, hit: Hit, bounce: u32, max_bounc
     (*path).dir = b.dir;
     (*path).rng = rng;
     return true;
-}
-
-// The emitters' light at s by next-event estimation: RIS over HIT_EMITTER_CANDIDATES points the
-// emitter grid picks, one shadow ray, weighted against BRDF sampling (the light strategy's pdf:
-// emitter_solid_angle_pdf, here and at a BRDF ray's emitter hit alike).
-// What it costs where the weights fit badly, and why p̂ over an estimate of its integral was
-// no better: docs/notes/light-quality.md, 2026-11-27.
-fn emitter_sample_light(s: Surface, wo: vec3<f32>, origin: vec3<f32>, light_sampling: u32, rng: ptr<function, u32>) -> vec3<f32> {
-    let e = emitter_sample_unshadowed(s, wo, origin, light_sampling, rng);
-    // A blocked sample brings nothing.
-    if all(e.light.light == vec3<f32>(0.0)) || !emitter_visible(origin, e.light.wi, e.light.distance, e.point) {
-        return vec3<f32>(0.0);
-    }
-    return e.light.light;
-}
-
-// emitter_sample_light's sample before its shadow ray: the point, and in `light` what it brings
-// if nothing blocks it (light 0: nothing to trace).
-struct EmitterSampleUnshadowed {
-    point: EmitterSample,
-    light: EmitterReach,
-}
-
-fn emitter_sample_unshadowed(s: Surface, wo: vec3<f32>, origin: vec3<f32>, light_sampling: u32, rng: ptr<function, u32>) -> EmitterSampleUnshadowed {
-    var out: EmitterSampleUnshadowed;
-    if SCENE_HAS_EMITTERS == 0u {
-        return out;
-    }
-    let r = resample_emitters(s, origin, HIT_EMITTER_CANDIDATES, rng);
-    if r.emitter >= scene_info.emitter_count || r.w <= 0.0 {
-        return out;
-    }
-    out.point = emitter_point(r.emitter, r.bary);
-    out.light = emitter_reach(s, wo, origin, out.point);
-    if all(out.light.light == vec3<f32>(0.0)) {
-        return out;
-    }
-    var w = 1.0;
-    if light_sampling != LIGHT_SAMPLING_EMITTERS {
-        let light_pdf = emitter_solid_angle_pdf(origin, r.emitter, out.light.distance, out.light.cos_light);
-        w = power_heuristic(light_pdf, brdf_pdf(s, wo, out.light.wi));
-    }
-    out.light.light = out.light.light * r.w * w;
-    return out;
 }
 
 // direct_punctual's lights, each with its shadow ray deferred (defer_shadow), weighted by the

@@ -211,6 +211,41 @@ fn emitter_solid_angle_pdf(origin: vec3<f32>, index: u32, distance: f32, cos_lig
     return emitter_area_pdf(emitter_cell(origin), index) * distance * distance / max(cos_light, 1e-8);
 }
 
+// An emitter sample before its shadow ray: RIS over `candidates` points the emitter grid picks,
+// the point, and in `light` what it brings if nothing blocks it (light 0: nothing to trace),
+// weighed against a BRDF-sampled ray by the power heuristic where `weighs_brdf` (the light
+// strategy's pdf: emitter_solid_angle_pdf, here and at a BRDF ray's emitter hit alike). The
+// path tracer's next-event estimation and emitter_light_both_ways. What it costs where the
+// weights fit badly, and why p̂ over an estimate of its integral was no better:
+// docs/notes/light-quality.md, 2026-11-27.
+struct EmitterSampleUnshadowed {
+    point: EmitterSample,
+    light: EmitterReach,
+}
+
+fn emitter_sample_unshadowed(s: Surface, wo: vec3<f32>, origin: vec3<f32>, candidates: u32, weighs_brdf: bool, rng: ptr<function, u32>) -> EmitterSampleUnshadowed {
+    var out: EmitterSampleUnshadowed;
+    if SCENE_HAS_EMITTERS == 0u {
+        return out;
+    }
+    let r = resample_emitters(s, origin, candidates, rng);
+    if r.emitter >= scene_info.emitter_count || r.w <= 0.0 {
+        return out;
+    }
+    out.point = emitter_point(r.emitter, r.bary);
+    out.light = emitter_reach(s, wo, origin, out.point);
+    if all(out.light.light == vec3<f32>(0.0)) {
+        return out;
+    }
+    var w = 1.0;
+    if weighs_brdf {
+        let light_pdf = emitter_solid_angle_pdf(origin, r.emitter, out.light.distance, out.light.cos_light);
+        w = power_heuristic(light_pdf, brdf_pdf(s, wo, out.light.wi));
+    }
+    out.light.light = out.light.light * r.w * w;
+    return out;
+}
+
 // The emitters' light at s from both strategies, each weighed against the other by the power
 // heuristic (the path tracer's next-event estimation and its BRDF ray, for one bounce): RIS
 // over `candidates` with one shadow ray, and one BRDF-sampled ray that counts the emitter it
@@ -220,14 +255,9 @@ fn emitter_solid_angle_pdf(origin: vec3<f32>, index: u32, distance: f32, cos_lig
 fn emitter_light_both_ways(s: Surface, wo: vec3<f32>, candidates: u32, rng: ptr<function, u32>) -> vec3<f32> {
     var light = vec3<f32>(0.0);
     let origin = shadow_origin(s);
-    let r = resample_emitters(s, origin, candidates, rng);
-    if r.emitter < scene_info.emitter_count && r.w > 0.0 {
-        let e = emitter_point(r.emitter, r.bary);
-        let reach = emitter_reach(s, wo, origin, e);
-        if any(reach.light != vec3<f32>(0.0)) && emitter_visible(origin, reach.wi, reach.distance, e) {
-            let light_pdf = emitter_solid_angle_pdf(origin, r.emitter, reach.distance, reach.cos_light);
-            light += reach.light * r.w * power_heuristic(light_pdf, brdf_pdf(s, wo, reach.wi));
-        }
+    let e = emitter_sample_unshadowed(s, wo, origin, candidates, true, rng);
+    if any(e.light.light != vec3<f32>(0.0)) && emitter_visible(origin, e.light.wi, e.light.distance, e.point) {
+        light = e.light.light;
     }
     let b = brdf_sample(s, wo, rand(rng), rand2(rng));
     if b.pdf <= 0.0 || dot(b.dir, s.geometric_normal) <= 0.0 {
