@@ -33,7 +33,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
             return;
         }
     }
-    probes_light_here = query.a;
+    probes_light_here = luminance(query.rgb);
     var sum = vec4<f32>(0.0);
     if volume.volume_index > 0u {
         sum = textureLoad(gathered, texel);

@@ -8,8 +8,9 @@
 
 // The luminance of the probes' light arriving at this thread's pixel, every volume's query as
 // ddgi/resolve wrote it (arriving_query): ddgi/gather's main sets it before blended_light, so
-// that the firefly bound costs no second query of the probes where the surface reflects enough
-// to tell that light from its resolved colour.
+// that the firefly bound costs no second query of the probes. It is exact where every channel
+// of the surface's diffuse weight is over DARKEST_DIFFUSE; a darker channel cannot tell that
+// light from the surface's colour, and gathered_light queries the probes there.
 var<private> probes_light_here: f32;
 
 fn pixel_light(s: Surface, pixel: vec2<u32>, tile: vec2<u32>, local_index: u32) -> vec3<f32> {
@@ -36,7 +37,7 @@ fn gathered_light(s: Surface, pixel: vec2<u32>) -> vec3<f32> {
     var bound = 3.0e38;
     if GATHER_FIREFLY_CLAMP > 0.0 {
         var probes = probes_light_here;
-        if luminance(diffuse_weight(s)) <= DARKEST_DIFFUSE {
+        if any(diffuse_weight(s) <= vec3<f32>(DARKEST_DIFFUSE)) {
             probes = luminance(ddgi_irradiance(s.position, s.normal, view_dir(s.position)).irradiance);
         }
         bound = GATHER_FIREFLY_CLAMP * max(probes, 1e-4);
