@@ -267,9 +267,11 @@ fn mesa_shader_cache() -> Option<PathBuf> {
             .filter(|v| !v.is_empty())
             .map(PathBuf::from)
     };
+    // Absolute, as the examples run from the repository's root rather than this folder.
     var("MESA_SHADER_CACHE_DIR")
         .or_else(|| var("XDG_CACHE_HOME"))
         .or_else(|| var("HOME").map(|home| home.join(".cache")))
+        .and_then(|folder| std::path::absolute(folder).ok())
 }
 
 /// Runs every example of one document, in order, from the repository's root, its outputs in a

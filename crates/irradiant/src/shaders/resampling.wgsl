@@ -214,8 +214,8 @@ fn emitter_solid_angle_pdf(origin: vec3<f32>, index: u32, distance: f32, cos_lig
 // An emitter sample before its shadow ray: RIS over `candidates` points the emitter grid picks,
 // the point, and in `light` what it brings if nothing blocks it (light 0: nothing to trace),
 // weighed against a BRDF-sampled ray by the power heuristic where `weighs_brdf` (the light
-// strategy's pdf: emitter_solid_angle_pdf, here and at a BRDF ray's emitter hit alike). The
-// path tracer's next-event estimation and emitter_light_both_ways. What it costs where the
+// strategy's pdf: emitter_solid_angle_pdf, here and at a BRDF ray's emitter hit alike). Used by
+// the path tracer's next-event estimation and by emitter_light_both_ways. What it costs where the
 // weights fit badly, and why p̂ over an estimate of its integral was no better:
 // docs/notes/light-quality.md, 2026-11-27.
 struct EmitterSampleUnshadowed {
