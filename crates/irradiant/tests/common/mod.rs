@@ -131,8 +131,6 @@ pub fn path_trace_view(
     spp: u32,
     max_bounces: u32,
 ) -> Image {
-    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
-    let mut tracer = PathTracer::new(ctx, &gpu_scene, size.0, size.1).unwrap();
     let settings = PathTraceSettings {
         samples_per_pixel: spp,
         samples_per_dispatch: 32,
@@ -141,9 +139,72 @@ pub fn path_trace_view(
         light_sampling: Default::default(),
         schedule: Default::default(),
     };
-    tracer
+    // Several tests, in several test binaries, take the same reference: the first renders it,
+    // the others read it (lossless: 32-bit floats) from the cache under target/tmp, keyed on
+    // everything that shapes it, on the sources that draw it and on the adapter.
+    let build = format!(
+        "{:016x} {} {} {camera:?}",
+        renderer_sources_hash(),
+        ctx.info.name,
+        ctx.info.driver_info
+    );
+    let entry = irradiant::pathtrace::reference_cache::ReferenceEntry::new(
+        &std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("test-references"),
+        scene,
+        &scene.pose_at(0.0),
+        size,
+        &settings,
+        &build,
+    );
+    if let Some(image) = entry.load(size) {
+        return image;
+    }
+    let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
+    let mut tracer = PathTracer::new(ctx, &gpu_scene, size.0, size.1).unwrap();
+    let image = tracer
         .render(ctx, &gpu_scene, camera, &settings, |_, _| {})
-        .unwrap()
+        .unwrap();
+    entry.store(&image);
+    image
+}
+
+/// A hash of the sources a reference is drawn by (the Rust and WGSL of irradiant and the crates
+/// under it, and Cargo.lock's versions of wgpu and the rest), read as the tests run: a changed
+/// path tracer, tree or scene loader never reads a reference an older one cached.
+fn renderer_sources_hash() -> u64 {
+    use std::hash::{Hash, Hasher};
+    static HASH: std::sync::OnceLock<u64> = std::sync::OnceLock::new();
+    *HASH.get_or_init(|| {
+        fn feed(dir: &std::path::Path, h: &mut std::collections::hash_map::DefaultHasher) {
+            let mut entries: Vec<_> = std::fs::read_dir(dir)
+                .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+                .map(|e| e.unwrap().path())
+                .collect();
+            entries.sort();
+            for path in entries {
+                if path.is_dir() {
+                    feed(&path, h);
+                } else {
+                    path.hash(h);
+                    std::fs::read(&path).unwrap().hash(h);
+                }
+            }
+        }
+        let crates = repo_root().join("crates");
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        std::fs::read(repo_root().join("Cargo.lock"))
+            .unwrap()
+            .hash(&mut h);
+        for name in [
+            "irradiant",
+            "irradiant-bvh",
+            "irradiant-gpu",
+            "irradiant-scene",
+        ] {
+            feed(&crates.join(name).join("src"), &mut h);
+        }
+        h.finish()
+    })
 }
 
 /// Mean FLIP of `test` against `reference`, both tonemapped to sRGB as reports show them.
