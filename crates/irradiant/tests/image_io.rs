@@ -48,3 +48,31 @@ fn damaged_cache_entries_are_refused_naming_the_file() {
         );
     }
 }
+
+/// Two tests of one process that render the same reference store it at once: every write
+/// succeeds and the entry reads back whole. (Their temporary files once shared a name, the
+/// process's id: one writer's rename moved the other's half-written file into place and the
+/// other's rename failed.)
+#[test]
+fn writers_of_one_entry_at_once_each_succeed_and_leave_it_whole() {
+    let dir = std::env::temp_dir().join(format!("irradiant-image-race-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("entry.exr");
+    let image = Image {
+        width: 64,
+        height: 64,
+        pixels: (0..64 * 64).map(|i| [i as f32, 0.25, -1.0]).collect(),
+    };
+    std::thread::scope(|threads| {
+        for _ in 0..4 {
+            threads.spawn(|| {
+                for _ in 0..25 {
+                    image.write_exr(&path).unwrap();
+                    let back = Image::read_exr(&path, Some((64, 64))).unwrap();
+                    assert_eq!(back.pixels, image.pixels);
+                }
+            });
+        }
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -151,9 +151,13 @@ pub fn write_atomically(
         .extension()
         .map(|e| e.to_string_lossy().into_owned())
         .unwrap_or_default();
-    // The temporary keeps the extension: the image crate picks the format from it.
+    // The temporary keeps the extension: the image crate picks the format from it. Its name
+    // is this write's alone (process and a count), so that threads storing one entry at once
+    // never write into each other's file.
+    static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let write_number = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let temporary = path.with_file_name(format!(
-        ".{name}.{}.partial.{extension}",
+        ".{name}.{}-{write_number}.partial.{extension}",
         std::process::id()
     ));
     let result = write(&temporary)
