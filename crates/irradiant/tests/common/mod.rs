@@ -139,24 +139,24 @@ pub fn path_trace_view(
         light_sampling: Default::default(),
         schedule: Default::default(),
     };
-    // Several tests, in several test binaries, take the same reference: the first renders it,
-    // the others read it (lossless: 32-bit floats) from the cache under target/tmp, keyed on
+    // Several tests, in several test binaries, take the same reference: once one has rendered
+    // it, the others read it (lossless: 32-bit floats) from the cache under target/tmp, keyed on
     // everything that shapes it, on the sources that draw it and on the adapter.
-    let build = format!(
-        "{:016x} {} {} {camera:?}",
-        renderer_sources_hash(),
-        ctx.info.name,
-        ctx.info.driver_info
-    );
-    let entry = irradiant::pathtrace::reference_cache::ReferenceEntry::new(
-        &std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("test-references"),
-        scene,
-        &scene.pose_at(0.0),
-        size,
-        &settings,
-        &build,
-    );
-    if let Some(image) = entry.load(size) {
+    let entry = renderer_sources_hash().map(|sources| {
+        let build = format!(
+            "{sources:016x} {} {} {} {camera:?}",
+            ctx.info.name, ctx.info.backend, ctx.info.driver_info
+        );
+        irradiant::pathtrace::reference_cache::ReferenceEntry::new(
+            &std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("test-references"),
+            scene,
+            &scene.pose_at(0.0),
+            size,
+            &settings,
+            &build,
+        )
+    });
+    if let Some(image) = entry.as_ref().and_then(|e| e.load(size)) {
         return image;
     }
     let gpu_scene = GpuScene::new(ctx, scene, &Default::default()).unwrap();
@@ -164,46 +164,55 @@ pub fn path_trace_view(
     let image = tracer
         .render(ctx, &gpu_scene, camera, &settings, |_, _| {})
         .unwrap();
-    entry.store(&image);
+    if let Some(entry) = entry {
+        entry.store(&image);
+    }
     image
 }
 
 /// A hash of the sources a reference is drawn by (the Rust and WGSL of irradiant and the crates
 /// under it, and Cargo.lock's versions of wgpu and the rest), read as the tests run: a changed
-/// path tracer, tree or scene loader never reads a reference an older one cached.
-fn renderer_sources_hash() -> u64 {
+/// path tracer, tree or scene loader never reads a reference an older one cached. `None` (no
+/// caching) where a source is newer than this test binary, which was then built from other
+/// sources than those the hash reads.
+fn renderer_sources_hash() -> Option<u64> {
     use std::hash::{Hash, Hasher};
-    static HASH: std::sync::OnceLock<u64> = std::sync::OnceLock::new();
+    use std::time::SystemTime;
+    static HASH: std::sync::OnceLock<Option<u64>> = std::sync::OnceLock::new();
     *HASH.get_or_init(|| {
-        fn feed(dir: &std::path::Path, h: &mut std::collections::hash_map::DefaultHasher) {
-            let mut entries: Vec<_> = std::fs::read_dir(dir)
-                .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-                .map(|e| e.unwrap().path())
-                .collect();
-            entries.sort();
-            for path in entries {
-                if path.is_dir() {
-                    feed(&path, h);
-                } else {
-                    path.hash(h);
-                    std::fs::read(&path).unwrap().hash(h);
+        fn feed(path: &std::path::Path, h: &mut impl Hasher, newest: &mut SystemTime) {
+            if path.is_dir() {
+                let mut entries: Vec<_> = std::fs::read_dir(path)
+                    .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+                    .map(|e| e.unwrap().path())
+                    .collect();
+                entries.sort();
+                for entry in entries {
+                    feed(&entry, h, newest);
                 }
+            } else {
+                path.hash(h);
+                std::fs::read(path).unwrap().hash(h);
+                let modified = std::fs::metadata(path).and_then(|m| m.modified()).unwrap();
+                *newest = (*newest).max(modified);
             }
         }
         let crates = repo_root().join("crates");
         let mut h = std::collections::hash_map::DefaultHasher::new();
-        std::fs::read(repo_root().join("Cargo.lock"))
-            .unwrap()
-            .hash(&mut h);
+        let mut newest = SystemTime::UNIX_EPOCH;
+        feed(&repo_root().join("Cargo.lock"), &mut h, &mut newest);
         for name in [
             "irradiant",
             "irradiant-bvh",
             "irradiant-gpu",
             "irradiant-scene",
         ] {
-            feed(&crates.join(name).join("src"), &mut h);
+            feed(&crates.join(name).join("src"), &mut h, &mut newest);
         }
-        h.finish()
+        let built = std::env::current_exe()
+            .and_then(|exe| std::fs::metadata(exe)?.modified())
+            .ok()?;
+        (newest <= built).then(|| h.finish())
     })
 }
 
