@@ -356,8 +356,9 @@ fn every_example_in_the_readme_runs() {
 }
 
 /// The guide in two parts that run side by side (their examples took 196 s one after another
-/// on lavapipe, most of it one process at a time on one of two cores). Section 8 reads the
-/// camera file section 7 saves, so the split comes later.
+/// on lavapipe, most of it one process at a time on one of two cores). No example from section
+/// 9 on reads an earlier one's output: the camera file and the saved probes are read within
+/// their own sections (7 and 3).
 const GUIDE_SPLIT: &str = "## 9. Timing";
 
 #[test]
