@@ -410,6 +410,8 @@ impl Scene {
             mesh.triangle_materials.hash(h);
         }
         for t in &self.textures {
+            // The shape too: the same bytes as 2×1 and 1×2 texels are other textures.
+            (t.width, t.height).hash(h);
             t.rgba8.hash(h);
         }
         format!("{:?}{:?}{:?}", self.instances, self.materials, self.sky).hash(h);

@@ -114,6 +114,18 @@ mod tests {
         let mut bent = scene.clone();
         bent.meshes[0].positions[0].y += 1e-3;
         assert_ne!(base, key(&bent, (64, 64), &settings, "a"));
+        // The same texels in another shape.
+        let textured = |width, height| {
+            let mut s = scene.clone();
+            s.textures.push(irradiant_scene::Texture {
+                name: "shape".into(),
+                width,
+                height,
+                rgba8: vec![7; 8],
+            });
+            key(&s, (64, 64), &settings, "a")
+        };
+        assert_ne!(textured(2, 1), textured(1, 2));
         // A light switched off (the viewer's lights) is another reference.
         let lamp = irradiant_scene::builtin("two-rooms").unwrap();
         let lit = lamp.pose_at(0.0);
